@@ -1,0 +1,224 @@
+"""Stage 1 (load): read and validate element and law files into specs.
+
+Input: paths of `elements/*.toml` and `laws/*.toml`.
+Output: immutable `ElementSpec` and `LawSpec` objects. Every error names the
+file and the key at fault (`GeneratorInputError`).
+"""
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import sympy
+
+from .model import ElementSpec, FormatOrder, LawSpec, QuadratureRule
+
+REFERENCE_VARIABLES = sympy.symbols("r s t", real=True)
+ELEMENT_KEYS = {
+    "name", "description", "dim", "order", "nodes", "shape_functions", "edges",
+    "faces", "reference_volume", "default_quadrature", "quadrature", "gmsh",
+    "vtk", "calculix",
+}
+ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
+RULE_KEYS = {"degree", "points", "weights"}
+FORMAT_KEYS = {"type", "node_order"}
+LAW_KEYS = {"name", "description", "energy", "parameters", "derived"}
+
+
+class GeneratorInputError(Exception):
+    """A description file is malformed; the message names the file and key."""
+
+
+def _fail(source: str, key: str, message: str) -> GeneratorInputError:
+    return GeneratorInputError(f"{source}: key '{key}': {message}")
+
+
+def _read_toml(path: Path) -> dict:
+    try:
+        with open(path, "rb") as stream:
+            return tomllib.load(stream)
+    except tomllib.TOMLDecodeError as error:
+        raise GeneratorInputError(f"{path}: not valid TOML: {error}") from None
+
+
+def _check_keys(data: dict, allowed: set, required: set, source: str, where: str) -> None:
+    for key in data:
+        if key not in allowed:
+            raise _fail(source, f"{where}{key}", f"unknown key (allowed: {', '.join(sorted(allowed))})")
+    for key in sorted(required):
+        if key not in data:
+            raise _fail(source, f"{where}{key}", "missing")
+
+
+def _number(value: Any, source: str, key: str) -> sympy.Expr:
+    """An exact number: an int, or a string SymPy parses without free symbols."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise _fail(source, key, f"expected a number or a numeric string, got {value!r}")
+    if isinstance(value, float):
+        raise _fail(source, key, f"write {value!r} as an exact string (floats lose digits)")
+    try:
+        expr = sympy.sympify(value, rational=True)
+    except (sympy.SympifyError, SyntaxError, TypeError) as error:
+        raise _fail(source, key, f"cannot parse {value!r}: {error}") from None
+    if expr.free_symbols or not expr.is_finite or not expr.is_real:
+        raise _fail(source, key, f"{value!r} is not a finite real number")
+    return expr
+
+
+def _int_list(value: Any, source: str, key: str, bound: int) -> tuple[int, ...]:
+    if not isinstance(value, list) or not all(isinstance(v, int) and not isinstance(v, bool) for v in value):
+        raise _fail(source, key, "expected a list of integers")
+    for v in value:
+        if not 0 <= v < bound:
+            raise _fail(source, key, f"node index {v} out of range 0..{bound - 1}")
+    return tuple(value)
+
+
+def _format_order(data: Any, source: str, key: str, nodes: int) -> FormatOrder:
+    if not isinstance(data, dict):
+        raise _fail(source, key, "expected a table")
+    _check_keys(data, FORMAT_KEYS, FORMAT_KEYS, source, f"{key}.")
+    order = _int_list(data["node_order"], source, f"{key}.node_order", nodes)
+    if sorted(order) != list(range(nodes)):
+        raise _fail(source, f"{key}.node_order", f"must be a permutation of 0..{nodes - 1}")
+    return FormatOrder(type=data["type"], node_order=order)
+
+
+def _rule(name: str, data: Any, source: str, dim: int) -> QuadratureRule:
+    key = f"quadrature.{name}"
+    if not isinstance(data, dict):
+        raise _fail(source, key, "expected a table")
+    _check_keys(data, RULE_KEYS, RULE_KEYS, source, f"{key}.")
+    points = data["points"]
+    weights = data["weights"]
+    if not isinstance(points, list) or not isinstance(weights, list) or len(points) != len(weights) or not points:
+        raise _fail(source, key, "points and weights must be non-empty lists of equal length")
+    parsed_points = []
+    for q, point in enumerate(points):
+        if not isinstance(point, list) or len(point) != dim:
+            raise _fail(source, f"{key}.points[{q}]", f"expected {dim} coordinates")
+        parsed_points.append(tuple(_number(x, source, f"{key}.points[{q}]") for x in point))
+    parsed_weights = tuple(_number(w, source, f"{key}.weights[{q}]") for q, w in enumerate(weights))
+    degree = data["degree"]
+    if not isinstance(degree, int) or degree < 0:
+        raise _fail(source, f"{key}.degree", "expected a non-negative integer")
+    return QuadratureRule(name=name, degree=degree, points=tuple(parsed_points), weights=parsed_weights)
+
+
+def _shape_functions(data: Any, source: str, dim: int, nodes: int) -> tuple[sympy.Expr, ...]:
+    if not isinstance(data, list) or len(data) != nodes:
+        raise _fail(source, "shape_functions", f"expected {nodes} strings, one per node")
+    variables = REFERENCE_VARIABLES[:dim]
+    names = {str(v): v for v in variables}
+    result = []
+    for i, text in enumerate(data):
+        if not isinstance(text, str):
+            raise _fail(source, f"shape_functions[{i}]", "expected a string")
+        try:
+            expr = sympy.sympify(text, locals=names, rational=True)
+        except (sympy.SympifyError, SyntaxError, TypeError) as error:
+            raise _fail(source, f"shape_functions[{i}]", f"cannot parse {text!r}: {error}") from None
+        extra = expr.free_symbols - set(variables)
+        if extra:
+            raise _fail(source, f"shape_functions[{i}]",
+                        f"unknown symbols {sorted(map(str, extra))} (use {', '.join(names)})")
+        result.append(expr)
+    return tuple(result)
+
+
+def load_element(path: Path) -> ElementSpec:
+    source = str(path)
+    data = _read_toml(path)
+    _check_keys(data, ELEMENT_KEYS, ELEMENT_REQUIRED, source, "")
+    if data["name"] != path.stem:
+        raise _fail(source, "name", f"'{data['name']}' must equal the file name '{path.stem}'")
+    dim = data["dim"]
+    if dim not in (2, 3):
+        raise _fail(source, "dim", "must be 2 or 3")
+    if data["order"] not in (1, 2):
+        raise _fail(source, "order", "must be 1 or 2")
+    raw_nodes = data["nodes"]
+    if not isinstance(raw_nodes, list) or len(raw_nodes) < dim + 1:
+        raise _fail(source, "nodes", f"expected at least {dim + 1} nodes")
+    nodes = []
+    for i, node in enumerate(raw_nodes):
+        if not isinstance(node, list) or len(node) != dim:
+            raise _fail(source, f"nodes[{i}]", f"expected {dim} coordinates")
+        nodes.append(tuple(_number(x, source, f"nodes[{i}]") for x in node))
+    count = len(nodes)
+    edges = tuple(_int_list(e, source, f"edges[{i}]", count) for i, e in enumerate(data["edges"]))
+    faces = tuple(_int_list(f, source, f"faces[{i}]", count) for i, f in enumerate(data.get("faces", [])))
+    if dim == 3 and not faces:
+        raise _fail(source, "faces", "3D elements must list their faces")
+    quadrature = data["quadrature"]
+    if not isinstance(quadrature, dict) or not quadrature:
+        raise _fail(source, "quadrature", "expected at least one [quadrature.NAME] table")
+    rules = tuple(_rule(name, rule, source, dim) for name, rule in quadrature.items())
+    if data["default_quadrature"] not in quadrature:
+        raise _fail(source, "default_quadrature", f"no rule named '{data['default_quadrature']}'")
+    calculix = data.get("calculix")
+    return ElementSpec(
+        name=data["name"],
+        description=str(data["description"]),
+        source=source,
+        dim=dim,
+        order=data["order"],
+        nodes=tuple(nodes),
+        shape_functions=_shape_functions(data["shape_functions"], source, dim, count),
+        edges=edges,
+        faces=faces,
+        reference_volume=_number(data["reference_volume"], source, "reference_volume"),
+        default_quadrature=data["default_quadrature"],
+        quadrature=rules,
+        gmsh=_format_order(data["gmsh"], source, "gmsh", count),
+        vtk=_format_order(data["vtk"], source, "vtk", count),
+        calculix=None if calculix is None else _format_order(calculix, source, "calculix", count),
+    )
+
+
+def load_law(path: Path) -> LawSpec:
+    source = str(path)
+    data = _read_toml(path)
+    _check_keys(data, LAW_KEYS, LAW_KEYS, source, "")
+    if data["name"] != path.stem:
+        raise _fail(source, "name", f"'{data['name']}' must equal the file name '{path.stem}'")
+    parameters = data["parameters"]
+    if not isinstance(parameters, list) or not parameters or not all(isinstance(p, str) and p.isidentifier() for p in parameters):
+        raise _fail(source, "parameters", "expected a non-empty list of identifiers")
+    if not isinstance(data["energy"], str):
+        raise _fail(source, "energy", "expected a string")
+    symbols = {p: sympy.Symbol(p, real=True) for p in parameters}
+    derived = []
+    if not isinstance(data["derived"], dict):
+        raise _fail(source, "derived", "expected a table name = expression")
+    for name, text in data["derived"].items():
+        key = f"derived.{name}"
+        if not name.isidentifier() or not isinstance(text, str):
+            raise _fail(source, key, "expected identifier = \"expression\"")
+        try:
+            expr = sympy.sympify(text, locals=symbols, rational=True)
+        except (sympy.SympifyError, SyntaxError, TypeError) as error:
+            raise _fail(source, key, f"cannot parse {text!r}: {error}") from None
+        unknown = expr.free_symbols - set(symbols.values())
+        if unknown:
+            raise _fail(source, key, f"unknown symbols {sorted(map(str, unknown))}; parameters are {parameters}")
+        derived.append((name, expr))
+    return LawSpec(
+        name=data["name"],
+        description=str(data["description"]),
+        source=source,
+        energy=data["energy"],
+        parameters=tuple(parameters),
+        derived=tuple(derived),
+    )
+
+
+def load_all(elements_dir: Path, laws_dir: Path) -> tuple[tuple[ElementSpec, ...], tuple[LawSpec, ...]]:
+    element_paths = sorted(elements_dir.glob("*.toml"))
+    law_paths = sorted(laws_dir.glob("*.toml"))
+    if not element_paths:
+        raise GeneratorInputError(f"{elements_dir}: no element files (*.toml)")
+    if not law_paths:
+        raise GeneratorInputError(f"{laws_dir}: no law files (*.toml)")
+    return tuple(load_element(p) for p in element_paths), tuple(load_law(p) for p in law_paths)

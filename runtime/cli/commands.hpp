@@ -1,0 +1,20 @@
+/// \file commands.hpp
+/// The subcommands of the `tensormass` command line. Each takes the
+/// arguments after its name and returns the process exit code
+/// (0 success, 2 bad input, 3 numerical failure).
+#ifndef TENSORMASS_CLI_COMMANDS_HPP
+#define TENSORMASS_CLI_COMMANDS_HPP
+
+#include <string>
+#include <vector>
+
+namespace tensormass::cli {
+
+using Arguments = std::vector<std::string>;
+
+int kernels_command(const Arguments& args);
+int demo_command(const Arguments& args);
+
+}  // namespace tensormass::cli
+
+#endif

@@ -1,0 +1,52 @@
+// `tensormass kernels [--json]`: the registry, one row per LES triple.
+#include <cstdio>
+#include <string>
+
+#include "commands.hpp"
+#include "tensormass/registry.hpp"
+
+namespace tensormass::cli {
+
+namespace {
+
+void print_table() {
+  std::printf("%-11s %-9s %-7s %5s %4s %6s %7s %12s %12s\n", "law", "element", "split", "nodes", "dim", "points",
+              "consts", "flops_grad", "flops_hess");
+  for (const tm_kernel* k : Registry::instance().kernels())
+    std::printf("%-11s %-9s %-7s %5d %4d %6d %7d %12ld %12ld\n", k->law, k->element, k->split, k->nodes, k->dim,
+                k->quadrature_points, k->consts, k->flops_gradient, k->flops_hessian);
+  std::printf("%zu kernels\n", Registry::instance().kernels().size());
+}
+
+void print_json() {
+  std::printf("[\n");
+  const auto kernels = Registry::instance().kernels();
+  for (std::size_t i = 0; i < kernels.size(); ++i) {
+    const tm_kernel* k = kernels[i];
+    std::printf(
+        "  {\"law\": \"%s\", \"element\": \"%s\", \"split\": \"%s\", \"nodes\": %d, \"dim\": %d, "
+        "\"quadrature_points\": %d, \"consts\": %d, \"flops_energy\": %ld, \"flops_gradient\": %ld, "
+        "\"flops_hessian\": %ld}%s\n",
+        k->law, k->element, k->split, k->nodes, k->dim, k->quadrature_points, k->consts, k->flops_energy,
+        k->flops_gradient, k->flops_hessian, i + 1 < kernels.size() ? "," : "");
+  }
+  std::printf("]\n");
+}
+
+}  // namespace
+
+int kernels_command(const Arguments& args) {
+  bool json = false;
+  for (const std::string& arg : args) {
+    if (arg == "--json") {
+      json = true;
+    } else {
+      std::fprintf(stderr, "tensormass kernels: unknown argument '%s' (expected --json)\n", arg.c_str());
+      return 2;
+    }
+  }
+  json ? print_json() : print_table();
+  return 0;
+}
+
+}  // namespace tensormass::cli

@@ -1,0 +1,54 @@
+// tensormass: the command line. `tensormass help` lists the subcommands.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "commands.hpp"
+#ifdef TENSORMASS_WITH_BENCH
+#include "kernel_bench.hpp"
+#endif
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: tensormass COMMAND [ARGS]\n"
+    "\n"
+    "commands:\n"
+    "  kernels [--json]                 list the kernel registry (one row per law/element/split)\n"
+    "  demo [LAW [ELEMENT [SPLIT]]]     evaluate one element's energy, force and stiffness\n"
+    "  bench kernels [--json FILE] [--quick]\n"
+    "                                   time every kernel (median ns per element)\n"
+    "  help                             this text\n";
+
+int usage_error(const std::string& message) {
+  std::fprintf(stderr, "tensormass: %s\n\n%s", message.c_str(), kUsage);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return usage_error("missing command");
+  const std::string command = argv[1];
+  tensormass::cli::Arguments args(argv + 2, argv + argc);
+  try {
+    if (command == "help" || command == "--help" || command == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (command == "kernels") return tensormass::cli::kernels_command(args);
+    if (command == "demo") return tensormass::cli::demo_command(args);
+    if (command == "bench") {
+#ifdef TENSORMASS_WITH_BENCH
+      if (!args.empty() && args[0] == "kernels") return tensormass::bench::kernels_command({args.begin() + 1, args.end()});
+      return usage_error("bench: expected 'kernels'");
+#else
+      return usage_error("bench: this build has no benchmarks (TENSORMASS_BUILD_BENCH=OFF)");
+#endif
+    }
+    return usage_error("unknown command '" + command + "'");
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "tensormass: error: %s\n", error.what());
+    return 2;
+  }
+}

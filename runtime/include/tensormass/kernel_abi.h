@@ -1,0 +1,91 @@
+/// \file kernel_abi.h
+/// The C ABI of generated kernels: one `tm_kernel` per LES triple
+/// (Law, Element, Split). Plain C so that any solver can call it.
+///
+/// Shapes (n = nodes, d = dim, dofs = n*d, Q = quadrature points):
+///   rest_positions  n by d, node-major (x0 y0 z0 x1 ...)
+///   params          the law's parameters in `param_names` order (young, poisson)
+///   consts          `consts` doubles per element, filled by `precompute`
+///   u               dofs displacements, node-major
+///   gradient        dofs: dW/du, the element's internal force
+///   hessian         dofs by dofs, row-major, symmetric: d2W/du2
+///   stress          Q by d by d: first Piola-Kirchhoff stress at each point
+#ifndef TENSORMASS_KERNEL_ABI_H
+#define TENSORMASS_KERNEL_ABI_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Returns 0, or q+1 when the rest Jacobian at quadrature point q has a
+/// non-positive (or non-finite) determinant; consts are then unusable.
+typedef int (*tm_precompute_fn)(const double* rest_positions, const double* params, double* consts);
+typedef double (*tm_energy_fn)(const double* u, const double* consts);
+typedef void (*tm_gradient_fn)(const double* u, const double* consts, double* gradient);
+typedef void (*tm_hessian_fn)(const double* u, const double* consts, double* hessian);
+typedef void (*tm_gradient_hessian_fn)(const double* u, const double* consts, double* gradient,
+                                       double* hessian);
+typedef void (*tm_stress_fn)(const double* u, const double* consts, double* stress);
+
+/// Layout shared by every split: consts[0 .. derived_params) are the law's
+/// derived parameters (lam, mu, ...), then per quadrature point q the weight
+/// w_q * det(J_q) followed by the shape gradients dN_j/dX_c stored as
+/// G^T (d by n, row c holds all nodes); split-specific data follow.
+typedef struct tm_kernel {
+  const char* law;
+  const char* element;
+  const char* split;
+  int dim;
+  int nodes;
+  int dofs;
+  int quadrature_points;
+  int params;          ///< user parameters (length of `params`)
+  int derived_params;  ///< leading doubles of consts
+  int consts;          ///< doubles per element
+  const char* const* param_names;
+  tm_precompute_fn precompute;
+  tm_energy_fn energy;
+  tm_gradient_fn gradient;
+  tm_hessian_fn hessian;
+  tm_gradient_hessian_fn gradient_hessian;
+  tm_stress_fn stress;
+  long flops_energy;
+  long flops_gradient;
+  long flops_hessian;
+} tm_kernel;
+
+/// Static reference-element facts the runtime needs (meshes, criteria, output).
+typedef struct tm_element_info {
+  const char* name;
+  int dim;
+  int order;
+  int nodes;
+  int vtk_type;
+  int gmsh_type;
+  const int* vtk_order;   ///< vtk_order[k]: our index of the k-th VTK node
+  const int* gmsh_order;  ///< gmsh_order[k]: our index of the k-th Gmsh node
+  int edge_count;
+  int edge_size;          ///< 2, or 3 with the mid-edge node
+  const int* edges;       ///< edge_count by edge_size
+  int face_count;
+  const int* face_sizes;  ///< face_count
+  const int* face_offsets;
+  const int* faces;       ///< concatenated, corners counter-clockwise from outside
+  const double* reference_nodes;  ///< nodes by dim
+  int quadrature_points;  ///< of the default rule
+  const double* weights;  ///< quadrature_points
+  const double* shape_values;  ///< quadrature_points by nodes
+  const char* calculix_type;   ///< "" when CalculiX has no such element
+  const int* calculix_order;
+} tm_element_info;
+
+int tm_kernel_count(void);
+const tm_kernel* tm_kernel_at(int index);
+int tm_element_count(void);
+const tm_element_info* tm_element_at(int index);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
