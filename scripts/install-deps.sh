@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs what tensormass needs on Debian 12 (run as root, or with sudo).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  g++ cmake ninja-build git \
+  python3 python3-sympy python3-jinja2 python3-pytest python3-numpy \
+  libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev
