@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <ostream>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -68,6 +69,8 @@ inline std::vector<LawElement> law_element_pairs() {
     if (seen.emplace(kernel->law, kernel->element).second) result.push_back({kernel->law, kernel->element});
   return result;
 }
+
+inline void PrintTo(const LawElement& pair, std::ostream* os) { *os << pair.law << "/" << pair.element; }
 
 struct LawElementParamName {
   std::string operator()(const testing::TestParamInfo<LawElement>& info) const {
@@ -423,5 +426,11 @@ inline Vector solve_dense(Vector A, Vector b) {
 }
 
 }  // namespace tmtest
+
+/// Test parameters print as law/element/split (found by argument-dependent
+/// lookup: tm_kernel is in the global namespace).
+inline void PrintTo(const tm_kernel* kernel, std::ostream* os) {
+  *os << kernel->law << "/" << kernel->element << "/" << kernel->split;
+}
 
 #endif

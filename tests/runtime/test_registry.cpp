@@ -1,0 +1,192 @@
+// The registry (which LES triples exist, lookups) and the reference-element
+// facts exposed at runtime (tm_element_info: shape functions, quadrature).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernel_test_support.hpp"
+
+namespace tmtest {
+namespace {
+
+const std::vector<std::string> kLaws = {"hooke", "neohookean", "stvk"};
+const std::vector<std::string> kSplits = {"tensor", "terms", "whole"};
+const std::vector<std::string> kFirstOrder = {"tri3", "quad4", "tet4", "hex8", "prism6", "pyramid5"};
+
+struct ExpectedElement {
+  int dim, order, nodes, vtk_type;
+};
+
+const std::map<std::string, ExpectedElement>& expected_elements() {
+  static const std::map<std::string, ExpectedElement> table = {
+      {"tri3", {2, 1, 3, 5}},     {"quad4", {2, 1, 4, 9}},    {"tet4", {3, 1, 4, 10}},
+      {"hex8", {3, 1, 8, 12}},    {"prism6", {3, 1, 6, 13}},  {"pyramid5", {3, 1, 5, 14}},
+      {"tri6", {2, 2, 6, 22}},    {"quad8", {2, 2, 8, 23}},   {"tet10", {3, 2, 10, 24}},
+      {"hex20", {3, 2, 20, 25}},
+  };
+  return table;
+}
+
+bool contains(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+TEST(Registry, HasTheTenElementsAndThreeLaws) {
+  std::set<std::string> names;
+  for (const tm_element_info* info : registry().elements()) names.insert(info->name);
+  std::set<std::string> expected;
+  for (const auto& [name, facts] : expected_elements()) expected.insert(name);
+  EXPECT_EQ(names, expected);
+  EXPECT_EQ(registry().elements().size(), std::size_t{10});
+  EXPECT_EQ(registry().laws(), kLaws);
+  EXPECT_EQ(registry().splits(), kSplits);
+}
+
+/// whole and terms for every (law, element) pair; tensor exactly for hooke
+/// and stvk on the six first-order elements: 10 x 3 x 2 + 2 x 6 = 72.
+TEST(Registry, OffersTheExpectedTriples) {
+  int expected_count = 0;
+  for (const auto& [element, facts] : expected_elements())
+    for (const std::string& law : kLaws)
+      for (const std::string& split : kSplits) {
+        const bool expected = split != "tensor" || ((law == "hooke" || law == "stvk") && contains(kFirstOrder, element));
+        const tm_kernel* kernel = registry().find(law, element, split);
+        EXPECT_EQ(kernel != nullptr, expected) << law << "/" << element << "/" << split;
+        if (expected) ++expected_count;
+        if (kernel == nullptr) continue;
+        EXPECT_EQ(kernel->law, law);
+        EXPECT_EQ(kernel->element, element);
+        EXPECT_EQ(kernel->split, split);
+      }
+  EXPECT_EQ(expected_count, 72);
+  EXPECT_EQ(registry().kernels().size(), static_cast<std::size_t>(expected_count));
+  EXPECT_EQ(tm_kernel_count(), expected_count);
+}
+
+TEST(Registry, KernelsAreUniqueAndComplete) {
+  std::set<std::string> names;
+  for (const tm_kernel* kernel : registry().kernels()) {
+    SCOPED_TRACE(kernel_name(*kernel));
+    EXPECT_TRUE(names.insert(kernel_name(*kernel)).second) << "duplicate triple";
+    const tm_element_info* info = registry().element(kernel->element);
+    ASSERT_NE(info, nullptr);
+    EXPECT_EQ(kernel->dim, info->dim);
+    EXPECT_EQ(kernel->nodes, info->nodes);
+    EXPECT_EQ(kernel->dofs, kernel->nodes * kernel->dim);
+    EXPECT_EQ(kernel->quadrature_points, info->quadrature_points);
+    EXPECT_EQ(kernel->params, 2);
+    ASSERT_NE(kernel->param_names, nullptr);
+    EXPECT_STREQ(kernel->param_names[0], "young");
+    EXPECT_STREQ(kernel->param_names[1], "poisson");
+    EXPECT_EQ(kernel->derived_params, 2);
+    EXPECT_GE(kernel->consts, kernel->derived_params + kernel->quadrature_points * (1 + kernel->dim * kernel->nodes));
+    EXPECT_NE(kernel->precompute, nullptr);
+    EXPECT_NE(kernel->energy, nullptr);
+    EXPECT_NE(kernel->gradient, nullptr);
+    EXPECT_NE(kernel->hessian, nullptr);
+    EXPECT_NE(kernel->gradient_hessian, nullptr);
+    EXPECT_NE(kernel->stress, nullptr);
+    EXPECT_GT(kernel->flops_energy, 0);
+    EXPECT_GT(kernel->flops_gradient, 0);
+    EXPECT_GE(kernel->flops_hessian, 0);
+    EXPECT_EQ(registry().find(kernel->law, kernel->element, kernel->split), kernel);
+    EXPECT_EQ(&registry().get(kernel->law, kernel->element, kernel->split), kernel);
+  }
+  for (int i = 0; i < tm_kernel_count(); ++i) EXPECT_EQ(tm_kernel_at(i), registry().kernels()[static_cast<std::size_t>(i)]);
+  EXPECT_EQ(tm_kernel_at(-1), nullptr);
+  EXPECT_EQ(tm_kernel_at(tm_kernel_count()), nullptr);
+}
+
+TEST(Registry, FindReturnsNullForUnknownNames) {
+  EXPECT_EQ(registry().find("hooke", "tet4", "nope"), nullptr);
+  EXPECT_EQ(registry().find("nope", "tet4", "whole"), nullptr);
+  EXPECT_EQ(registry().find("hooke", "tet5", "whole"), nullptr);
+  EXPECT_EQ(registry().find("", "", ""), nullptr);
+  EXPECT_EQ(registry().find("Hooke", "tet4", "whole"), nullptr);
+  EXPECT_EQ(registry().find("hooke/tet4", "", "whole"), nullptr);
+  EXPECT_EQ(registry().find("neohookean", "tet4", "tensor"), nullptr);
+  EXPECT_EQ(registry().find("hooke", "hex20", "tensor"), nullptr);
+  EXPECT_EQ(registry().element("nope"), nullptr);
+  EXPECT_EQ(registry().element(""), nullptr);
+}
+
+TEST(Registry, GetThrowsInvalidArgumentForUnknownNames) {
+  EXPECT_THROW(registry().get("hooke", "tet4", "nope"), std::invalid_argument);
+  EXPECT_THROW(registry().get("nope", "tet4", "whole"), std::invalid_argument);
+  EXPECT_THROW(registry().get("hooke", "tet5", "whole"), std::invalid_argument);
+  EXPECT_THROW(registry().get("neohookean", "hex8", "tensor"), std::invalid_argument);
+  EXPECT_THROW(registry().get("", "", ""), std::invalid_argument);
+  try {
+    registry().get("neohookean", "hex8", "tensor");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("neohookean"), std::string::npos) << message;
+    EXPECT_NE(message.find("hex8"), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(registry().get("stvk", "tet4", "tensor"));
+}
+
+// --- Reference elements at runtime -------------------------------------------
+
+class ElementInfo : public testing::TestWithParam<std::string> {};
+
+TEST_P(ElementInfo, FactsMatchTheElement) {
+  const tm_element_info* info = registry().element(GetParam());
+  ASSERT_NE(info, nullptr);
+  const ExpectedElement& expected = expected_elements().at(GetParam());
+  EXPECT_STREQ(info->name, GetParam().c_str());
+  EXPECT_EQ(info->dim, expected.dim);
+  EXPECT_EQ(info->order, expected.order);
+  EXPECT_EQ(info->nodes, expected.nodes);
+  EXPECT_EQ(info->vtk_type, expected.vtk_type);
+  // tensormass node order = VTK order.
+  for (int k = 0; k < info->nodes; ++k) EXPECT_EQ(info->vtk_order[k], k);
+  std::vector<int> gmsh(info->gmsh_order, info->gmsh_order + info->nodes);
+  std::sort(gmsh.begin(), gmsh.end());
+  for (int k = 0; k < info->nodes; ++k) EXPECT_EQ(gmsh[static_cast<std::size_t>(k)], k) << "gmsh_order is a permutation";
+  EXPECT_EQ(info->edge_size, info->order == 1 ? 2 : 3);
+  for (int i = 0; i < info->edge_count * info->edge_size; ++i) {
+    EXPECT_GE(info->edges[i], 0);
+    EXPECT_LT(info->edges[i], info->nodes);
+  }
+  EXPECT_GT(info->quadrature_points, 0);
+}
+
+/// At every quadrature point the shape functions sum to 1 (partition of
+/// unity), the weights sum to the reference volume (tri 1/2, quad 4, tet
+/// 1/6, hex 8, prism 1, pyramid 4/3), and sum_j N_j(q) r_j lies inside the
+/// reference element's bounding box.
+TEST_P(ElementInfo, ShapeFunctionsAndWeights) {
+  const tm_element_info& info = *registry().element(GetParam());
+  const int points = info.quadrature_points, nodes = info.nodes, dim = info.dim;
+  double weights = 0.0;
+  for (int q = 0; q < points; ++q) {
+    EXPECT_GT(info.weights[q], 0.0) << "weight " << q;
+    weights += info.weights[q];
+    double sum = 0.0;
+    for (int j = 0; j < nodes; ++j) sum += info.shape_values[q * nodes + j];
+    EXPECT_NEAR(sum, 1.0, 1e-14) << "partition of unity at point " << q;
+    for (int a = 0; a < dim; ++a) {
+      double x = 0.0, low = 1e300, high = -1e300;
+      for (int j = 0; j < nodes; ++j) {
+        x += info.shape_values[q * nodes + j] * info.reference_nodes[j * dim + a];
+        low = std::min(low, info.reference_nodes[j * dim + a]);
+        high = std::max(high, info.reference_nodes[j * dim + a]);
+      }
+      EXPECT_GT(x, low) << "point " << q << " coordinate " << a;
+      EXPECT_LT(x, high) << "point " << q << " coordinate " << a;
+    }
+  }
+  EXPECT_NEAR(weights, reference_volume(info.name), 1e-14 * reference_volume(info.name));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllElements, ElementInfo, testing::ValuesIn(element_names()), ElementParamName());
+
+}  // namespace
+}  // namespace tmtest
