@@ -180,7 +180,7 @@ def test_printer_never_uses_pow_for_integer_powers():
     assert print_expr(x**3) == "(x*x*x)"
     assert print_expr(x**-2) == "(1.0/(x*x))"
     assert print_expr((x + y)**2) == "((x + y)*(x + y))"
-    assert print_expr(sympy.Rational(1, 3) * x) == "0.3333333333333333*x"
+    assert print_expr(sympy.Rational(1, 3) * x) == "(0.3333333333333333)*x"
     assert print_expr(sympy.Symbol("H3"), {"H3": "H[3]"}) == "H[3]"
 
 
