@@ -26,8 +26,8 @@ import sympy
 
 from .load import GeneratorInputError
 from .model import Block, ElementSpec, KernelIR, LawKernelIR, LawSpec
-from .optimize import count_flops, eliminate
-from .symbolic import element_tables, gradient_symbols, law_derivatives, parameter_symbols, strain_quadratic
+from .optimize import eliminate
+from .symbolic import element_tables, law_derivatives, strain_quadratic
 
 SPLITS = ("whole", "terms", "tensor")
 DEFAULT_TENSOR_LIMIT = 3000
@@ -220,10 +220,6 @@ def elasticity_assignments(law: LawSpec, quadratic) -> list[tuple[int, sympy.Exp
     return flat
 
 
-def derived_parameter_exprs(law: LawSpec) -> list[tuple[str, sympy.Expr]]:
-    return list(law.derived)
-
-
 def h_expressions(element: ElementSpec) -> list[tuple[str, sympy.Expr]]:
     """H[a*d+C] = sum_j u[j*d+a] GT[C*n+j], as symbols for the terms split."""
     n, d = element.node_count, element.dim
@@ -231,10 +227,3 @@ def h_expressions(element: ElementSpec) -> list[tuple[str, sympy.Expr]]:
     G = [[sympy.Symbol(f"G{c}_{j}", real=True) for c in range(d)] for j in range(n)]
     return [(f"H[{a * d + c}]", sum(u[j * d + a] * G[j][c] for j in range(n)))
             for a in range(d) for c in range(d)]
-
-
-__all__ = [
-    "SPLITS", "DEFAULT_TENSOR_LIMIT", "SplitRefused", "build_law_ir", "build_kernel_ir",
-    "point_stride", "elasticity_assignments", "h_expressions", "count_flops", "parameter_symbols",
-    "gradient_symbols",
-]
