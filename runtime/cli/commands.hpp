@@ -14,6 +14,9 @@ using Arguments = std::vector<std::string>;
 
 int kernels_command(const Arguments& args);
 int demo_command(const Arguments& args);
+int run_command(const Arguments& args);
+int beam_command(const Arguments& args);
+int mesh_info_command(const Arguments& args);
 
 }  // namespace tensormass::cli
 

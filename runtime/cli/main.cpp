@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "tensormass/errors.hpp"
 #ifdef TENSORMASS_WITH_BENCH
 #include "kernel_bench.hpp"
 #endif
@@ -18,6 +19,10 @@ constexpr const char* kUsage =
     "  demo [LAW [ELEMENT [SPLIT]]]     evaluate one element's energy, force and stiffness\n"
     "  bench kernels [--json FILE] [--quick]\n"
     "                                   time every kernel (median ns per element)\n"
+    "  run SCENE.yaml [--set a.b=VALUE ...]\n"
+    "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
+    "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
+    "  mesh-info FILE                   element counts per type, quality, inverted elements\n"
     "  help                             this text\n";
 
 int usage_error(const std::string& message) {
@@ -38,6 +43,9 @@ int main(int argc, char** argv) {
     }
     if (command == "kernels") return tensormass::cli::kernels_command(args);
     if (command == "demo") return tensormass::cli::demo_command(args);
+    if (command == "run") return tensormass::cli::run_command(args);
+    if (command == "beam") return tensormass::cli::beam_command(args);
+    if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
     if (command == "bench") {
 #ifdef TENSORMASS_WITH_BENCH
       if (!args.empty() && args[0] == "kernels") return tensormass::bench::kernels_command({args.begin() + 1, args.end()});
@@ -47,6 +55,12 @@ int main(int argc, char** argv) {
 #endif
     }
     return usage_error("unknown command '" + command + "'");
+  } catch (const tensormass::NumericalError& error) {
+    std::fprintf(stderr, "tensormass: numerical failure: %s\n", error.what());
+    return 3;
+  } catch (const tensormass::InputError& error) {
+    std::fprintf(stderr, "tensormass: error: %s\n", error.what());
+    return 2;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "tensormass: error: %s\n", error.what());
     return 2;

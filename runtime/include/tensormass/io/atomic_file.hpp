@@ -1,0 +1,21 @@
+/// \file atomic_file.hpp
+/// Writes a file under a temporary name in the same directory, then renames
+/// it over the target: a reader never sees a partial file, and a failure
+/// leaves no file behind.
+#ifndef TENSORMASS_IO_ATOMIC_FILE_HPP
+#define TENSORMASS_IO_ATOMIC_FILE_HPP
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace tensormass::io {
+
+/// Calls `write` with a binary stream on "path.tmp-PID", checks the stream,
+/// then renames onto `path`. On any error the temporary file is removed and
+/// std::runtime_error names the path.
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+}  // namespace tensormass::io
+
+#endif

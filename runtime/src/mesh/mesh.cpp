@@ -1,0 +1,81 @@
+#include "tensormass/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "tensormass/errors.hpp"
+
+namespace tensormass {
+
+int Mesh::cell_count() const {
+  int total = 0;
+  for (const ElementBlock& block : blocks) total += block.count();
+  return total;
+}
+
+const Group* Mesh::group(std::string_view name) const {
+  for (const Group& g : groups)
+    if (g.name == name) return &g;
+  return nullptr;
+}
+
+std::pair<int, int> Mesh::locate(int cell) const {
+  for (int b = 0; b < static_cast<int>(blocks.size()); ++b) {
+    const ElementBlock& block = blocks[b];
+    if (cell >= block.first_cell && cell < block.first_cell + block.count()) return {b, cell - block.first_cell};
+  }
+  return {-1, -1};
+}
+
+std::string Mesh::describe_cell(int cell) const {
+  const auto [b, local] = locate(cell);
+  std::ostringstream text;
+  text << "element " << cell;
+  if (b >= 0) {
+    const ElementBlock& block = blocks[b];
+    text << " (" << block.element->name;
+    if (local < static_cast<int>(block.source_ids.size()))
+      text << ", id " << block.source_ids[local] << " in " << (source.empty() ? "the mesh" : source);
+    text << ")";
+  }
+  return text.str();
+}
+
+void Mesh::validate() const {
+  const std::string where = source.empty() ? std::string("mesh") : source;
+  if (dim != 2 && dim != 3) throw InputError(where + ": dimension " + std::to_string(dim) + " is not 2 or 3");
+  if (rest_positions.size() % 3 != 0) throw InputError(where + ": positions are not n by 3");
+  const int n = node_count();
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(rest_positions[3 * i + c]))
+        throw InputError(where + ": node " + std::to_string(node_source_ids.empty() ? i : node_source_ids[i]) +
+                         " has a non-finite coordinate");
+  int next = 0;
+  for (const ElementBlock& block : blocks) {
+    if (!block.element) throw InputError(where + ": element block without a reference element");
+    if (block.element->dim != dim)
+      throw InputError(where + ": " + block.element->name + " cells in a " + std::to_string(dim) + "D mesh");
+    if (block.first_cell != next) throw InputError(where + ": block numbering is not contiguous");
+    if (block.connectivity.size() % block.element->nodes != 0)
+      throw InputError(where + ": " + block.element->name + " connectivity is not a multiple of its node count");
+    for (int local = 0; local < block.count(); ++local)
+      for (int node : block.cell_nodes(local))
+        if (node < 0 || node >= n)
+          throw InputError(where + ": " + describe_cell(block.first_cell + local) + " refers to node index " +
+                           std::to_string(node) + ", outside 0.." + std::to_string(n - 1));
+    next += block.count();
+  }
+  if (next == 0) throw InputError(where + ": no " + std::to_string(dim) + "D elements");
+  for (const Group& g : groups) {
+    for (int node : g.nodes)
+      if (node < 0 || node >= n) throw InputError(where + ": group '" + g.name + "' refers to a missing node");
+    for (int cell : g.cells)
+      if (cell < 0 || cell >= next) throw InputError(where + ": group '" + g.name + "' refers to a missing element");
+    for (int node : g.facets.nodes)
+      if (node < 0 || node >= n) throw InputError(where + ": group '" + g.name + "' has a facet on a missing node");
+  }
+}
+
+}  // namespace tensormass
