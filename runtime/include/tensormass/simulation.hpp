@@ -1,0 +1,45 @@
+/// \file simulation.hpp
+/// Runs a scene end to end: reads and checks everything first (a bad input
+/// writes nothing), then integrates while reporting progress and writing
+/// frames, and finally writes final.vtu, series.pvd and summary.json.
+/// A numerical failure writes last_good.vtu and a summary with status
+/// "failed" before the NumericalError propagates.
+#ifndef TENSORMASS_SIMULATION_HPP
+#define TENSORMASS_SIMULATION_HPP
+
+#include <string>
+#include <vector>
+
+#include "tensormass/integrators.hpp"
+#include "tensormass/scene.hpp"
+
+namespace tensormass {
+
+struct RunOptions {
+  bool progress = true;  ///< progress on stderr (a bar on a terminal, lines otherwise)
+};
+
+/// What a run produced, for the end-of-run summary and tests.
+struct RunReport {
+  std::string output_directory;
+  std::vector<std::string> files;  ///< written, relative to output_directory
+  State state;
+  SolveStatistics statistics;
+  double wall_seconds = 0;
+  double output_seconds = 0;
+  int nodes = 0, cells = 0, dofs = 0, free_dofs = 0;
+  std::vector<std::pair<std::string, int>> cells_per_law;
+  std::vector<std::pair<std::string, int>> cells_per_type;
+  std::string linear_solver;
+  double max_displacement = 0;
+  int max_displacement_node = -1;
+};
+
+RunReport run_scene(const Scene& scene, const RunOptions& options = {});
+
+/// The one-screen text summary printed at the end of `tensormass run`.
+std::string format_report(const Scene& scene, const RunReport& report);
+
+}  // namespace tensormass
+
+#endif

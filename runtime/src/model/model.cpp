@@ -1,0 +1,169 @@
+#include "tensormass/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "tensormass/errors.hpp"
+#include "tensormass/registry.hpp"
+
+namespace tensormass {
+
+std::string default_split(const std::string& law, const tm_element_info& element) {
+  if (law == "hooke" && element.order == 1 && Registry::instance().find(law, element.name, "tensor")) return "tensor";
+  return "whole";
+}
+
+namespace {
+
+std::string at_line(const Scene& scene, int line) {
+  return scene.path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
+}
+
+bool group_has_cell(const Group& group, int cell) {
+  return std::binary_search(group.cells.begin(), group.cells.end(), cell);
+}
+
+/// Index of the first material whose region contains the cell, or -1.
+int find_material(const Scene& scene, const Mesh& mesh, int cell) {
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const MaterialSpec& material = scene.materials[m];
+    if (material.region == "all") return static_cast<int>(m);
+    const Group* group = mesh.group(material.region);
+    if (group && group_has_cell(*group, cell)) return static_cast<int>(m);
+  }
+  return -1;
+}
+
+}  // namespace
+
+Model::Model(const Mesh& mesh, const Scene& scene) : mesh_(&mesh), dim_(mesh.dim) {
+  law_names_ = Registry::instance().laws();
+  cell_offsets_.push_back(0);
+  for (const ElementBlock& block : mesh.blocks) {
+    cell_connectivity_.insert(cell_connectivity_.end(), block.connectivity.begin(), block.connectivity.end());
+    for (int local = 0; local < block.count(); ++local) cell_offsets_.push_back(cell_offsets_.back() + block.element->nodes);
+  }
+  bind_kernels(scene);
+  compute_masses_and_gravity(scene);
+  apply_nodal_forces_and_pressure(scene);
+  collect_constraints(scene);
+}
+
+void Model::bind_kernels(const Scene& scene) {
+  const Registry& registry = Registry::instance();
+  const int cells = mesh_->cell_count();
+  kernels_.resize(cells);
+  cell_material_.resize(cells);
+  consts_offsets_.resize(cells + 1);
+  for (const MaterialSpec& material : scene.materials) material_params_.push_back({material.young, material.poisson});
+  std::size_t total = 0;
+  for (const ElementBlock& block : mesh_->blocks) {
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      const int m = find_material(scene, *mesh_, cell);
+      if (m < 0)
+        throw InputError(scene.path + ": no material region contains " + mesh_->describe_cell(cell) +
+                         " (add a material with region: all)");
+      const MaterialSpec& material = scene.materials[m];
+      const std::string split = material.split.empty() ? default_split(material.law, *block.element) : material.split;
+      const tm_kernel* kernel = registry.find(material.law, block.element->name, split);
+      if (!kernel)
+        throw InputError(at_line(scene, material.line) + "no kernel for law '" + material.law + "', element '" +
+                         block.element->name + "', split '" + split + "' (see `tensormass kernels`)");
+      kernels_[cell] = kernel;
+      cell_material_[cell] = m;
+      consts_offsets_[cell] = total;
+      total += static_cast<std::size_t>(kernel->consts);
+    }
+  }
+  consts_offsets_[cells] = total;
+  consts_.assign(total, 0.0);
+  for (int cell = 0; cell < cells; ++cell) precompute(cell);
+}
+
+void Model::precompute(int cell) {
+  const tm_kernel& kernel = *kernels_[cell];
+  double rest[3 * 27];
+  const auto nodes = cell_nodes(cell);
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    for (int a = 0; a < dim_; ++a) rest[j * dim_ + a] = mesh_->rest_positions[3 * nodes[j] + a];
+  const auto& params = material_params_[cell_material_[cell]];
+  const int status = kernel.precompute(rest, params.data(), consts_.data() + consts_offsets_[cell]);
+  if (status != 0)
+    throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) +
+                     " has a non-positive Jacobian at rest (quadrature point " + std::to_string(status - 1) +
+                     "): inverted or degenerate element");
+}
+
+int Model::law_id(int cell) const {
+  const auto it = std::find(law_names_.begin(), law_names_.end(), kernels_[cell]->law);
+  return static_cast<int>(it - law_names_.begin());
+}
+
+void Model::set_law(int cell, const std::string& law) {
+  const tm_kernel& current = *kernels_[cell];
+  if (law == current.law) return;
+  const Registry& registry = Registry::instance();
+  // The tensor split's constants extend the quadrature layout that `whole`
+  // reads, so a tensor cell can switch to `whole` of another law in place.
+  const tm_kernel* next = registry.find(law, current.element, current.split);
+  if (!next || next->consts > current.consts) next = registry.find(law, current.element, "whole");
+  if (!next) throw std::invalid_argument("no kernel for law '" + law + "' on " + current.element);
+  const std::size_t slot = consts_offsets_[cell + 1] - consts_offsets_[cell];
+  if (static_cast<std::size_t>(next->consts) > slot)
+    throw std::invalid_argument("law switch to " + law + " needs more constants than the cell holds");
+  const bool same_prefix = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
+  kernels_[cell] = next;
+  if (!same_prefix) precompute(cell);
+}
+
+void Model::gather(int cell, std::span<const double> u, double* local) const {
+  const auto nodes = cell_nodes(cell);
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    for (int a = 0; a < dim_; ++a) local[j * dim_ + a] = u[static_cast<std::size_t>(nodes[j]) * dim_ + a];
+}
+
+double Model::strain_energy(std::span<const double> u) const {
+  double total = 0.0;
+  double local[81];
+  for (int cell = 0; cell < cell_count(); ++cell) {
+    gather(cell, u, local);
+    total += kernels_[cell]->energy(local, consts(cell));
+  }
+  return total;
+}
+
+int Model::first_inverted_cell(std::span<const double> u) const {
+  double local[81];
+  for (int cell = 0; cell < cell_count(); ++cell) {
+    const tm_kernel& kernel = *kernels_[cell];
+    const int n = kernel.nodes, d = dim_;
+    gather(cell, u, local);
+    for (int q = 0; q < kernel.quadrature_points; ++q) {
+      const double* GT = consts(cell) + kernel.derived_params + q * (1 + d * n) + 1;
+      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c)
+          for (int j = 0; j < n; ++j) F[a][c] += local[j * d + a] * GT[c * n + j];
+      const double det = d == 2 ? F[0][0] * F[1][1] - F[0][1] * F[1][0]
+                                : F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
+                                      F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+                                      F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+      if (!(det > 0.0)) return cell;
+    }
+  }
+  return -1;
+}
+
+void Model::apply_constraints(double t, std::span<double> u, bool static_load_factor) const {
+  for (const PrescribedDof& p : prescribed_) {
+    const TimeProfile& profile = profiles_[p.profile];
+    // A static solve reaches the full value at the last load step whatever the
+    // time profile: the load factor scales it linearly.
+    const double factor = static_load_factor ? t : profile.factor(t);
+    u[p.dof] = p.amplitude * factor;
+  }
+}
+
+}  // namespace tensormass

@@ -1,0 +1,65 @@
+// The one-screen summary at the end of `tensormass run`.
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "summary_json.hpp"
+#include "tensormass/simulation.hpp"
+
+namespace tensormass {
+
+namespace {
+
+std::string list(const std::vector<std::pair<std::string, int>>& items) {
+  std::ostringstream text;
+  for (std::size_t i = 0; i < items.size(); ++i) text << (i ? ", " : "") << items[i].second << " " << items[i].first;
+  return text.str();
+}
+
+std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+  return buffer;
+}
+
+}  // namespace
+
+std::string format_report(const Scene& scene, const RunReport& report) {
+  const SolveStatistics& s = report.statistics;
+  const auto [mean, median] = detail::mean_and_median(s.step_ms);
+  const bool dynamic = scene.solver.type != "static";
+  std::ostringstream text;
+  text << "tensormass run " << scene.path << "\n";
+  text << "  mesh      " << scene.mesh << ": " << list(report.cells_per_type) << "; " << report.nodes << " nodes, "
+       << report.dofs << " dofs (" << report.free_dofs << " free)\n";
+  text << "  laws      " << list(report.cells_per_law) << "\n";
+  text << "  solver    " << scene.solver.type;
+  if (dynamic) text << format(", dt %g s, %g steps", scene.solver.dt, scene.solver.steps);
+  else text << format(", %g load steps, tolerance %g", scene.solver.load_steps, scene.solver.tolerance);
+  text << ", linear: " << report.linear_solver << "\n";
+  if (scene.solver.type == "explicit") text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
+  text << format("  time      %.3f s; per step mean %.4g ms, median %.4g ms\n", report.wall_seconds, mean, median);
+  text << format("  phases    assembly %.3f s, solve %.3f s", s.assembly_seconds, s.solve_seconds)
+       << format(", output %.3f s\n", report.output_seconds);
+  if (scene.solver.type != "explicit") {
+    text << "  newton    " << s.newton_iterations << " iterations";
+    if (!s.newton_per_step.empty())
+      text << format(" (%.2f per step)", static_cast<double>(s.newton_iterations) / s.newton_per_step.size());
+    text << "; linear iterations " << s.linear_iterations << "\n";
+  }
+  if (dynamic) {
+    double stepping = 0;
+    for (double x : s.step_ms) stepping += x / 1e3;
+    text << format("  simulated %.4g s, real-time factor %.3g\n", report.state.time,
+                   stepping > 0 ? report.state.time / stepping : 0.0);
+  }
+  text << format("  result    max displacement %.6g", report.max_displacement) << " at node "
+       << report.max_displacement_node << "\n";
+  for (const std::string& warning : s.warnings) text << "  warning   " << warning << "\n";
+  text << "  output    " << report.output_directory << "/ :";
+  for (const std::string& file : report.files) text << " " << file;
+  text << "\n";
+  return text.str();
+}
+
+}  // namespace tensormass

@@ -1,0 +1,164 @@
+#include "tensormass/simulation.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "../solvers/integration_support.hpp"
+#include "progress.hpp"
+#include "summary_json.hpp"
+#include "tensormass/assembler.hpp"
+#include "tensormass/errors.hpp"
+#include "tensormass/io/vtu_writer.hpp"
+#include "tensormass/linear_solver.hpp"
+#include "tensormass/mesh.hpp"
+#include "tensormass/model.hpp"
+#include "tensormass/registry.hpp"
+
+namespace tensormass {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Point displacement (and velocity) with 3 components, and per-cell fields.
+void write_state(const std::string& path, const Model& model, const State& state) {
+  const Mesh& mesh = model.mesh();
+  const int d = model.dim(), nodes = mesh.node_count();
+  std::vector<double> displacement(3 * static_cast<std::size_t>(nodes), 0.0);
+  io::Field velocity{"velocity", 3, std::vector<double>(3 * static_cast<std::size_t>(nodes), 0.0)};
+  for (int i = 0; i < nodes; ++i)
+    for (int a = 0; a < d; ++a) {
+      displacement[3 * i + a] = state.displacement[i * d + a];
+      velocity.values[3 * i + a] = state.velocity[i * d + a];
+    }
+  io::Field point_displacement{"displacement", 3, displacement};
+  io::Field law{"law_id", 1, {}}, type{"element_type", 1, {}}, material{"material", 1, {}};
+  for (const ElementBlock& block : mesh.blocks)
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      law.values.push_back(model.law_id(cell));
+      type.values.push_back(block.element->vtk_type);
+      material.values.push_back(model.material(cell));
+    }
+  // The deformed shape is displacement applied to the rest positions: keep
+  // the points at rest so ParaView's "Warp By Vector" shows the motion.
+  io::write_vtu(path, mesh, {}, {point_displacement, velocity}, {law, type, material});
+}
+
+void locate_max_displacement(const Model& model, const State& state, RunReport& report) {
+  const int d = model.dim();
+  report.max_displacement = 0;
+  for (int i = 0; i < model.mesh().node_count(); ++i) {
+    double length2 = 0;
+    for (int a = 0; a < d; ++a) length2 += state.displacement[i * d + a] * state.displacement[i * d + a];
+    if (std::sqrt(length2) > report.max_displacement || report.max_displacement_node < 0) {
+      report.max_displacement = std::sqrt(length2);
+      report.max_displacement_node = i;
+    }
+  }
+}
+
+void count_cells(const Model& model, RunReport& report) {
+  std::map<std::string, int> per_law;
+  for (int cell = 0; cell < model.cell_count(); ++cell) ++per_law[model.kernel(cell).law];
+  report.cells_per_law.assign(per_law.begin(), per_law.end());
+  report.cells_per_type.clear();
+  for (const ElementBlock& block : model.mesh().blocks) report.cells_per_type.push_back({block.element->name, block.count()});
+}
+
+int total_steps(const Scene& scene) {
+  return scene.solver.type == "static" ? scene.solver.load_steps : scene.solver.steps;
+}
+
+}  // namespace
+
+RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  // Everything that can be wrong with the input is found before any output.
+  const Mesh mesh = read_mesh(scene.mesh);
+  check_groups(scene, mesh);
+  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
+  const Model model(mesh, scene);
+  const Assembler assembler(model);
+  std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
+  if (scene.solver.type == "explicit" && scene.solver.damping_stiffness != 0.0)
+    throw InputError(scene.path + ": solver.damping.stiffness is not supported by the explicit solver (use damping.mass)");
+
+  RunReport report;
+  report.output_directory = scene.output.directory;
+  report.nodes = mesh.node_count();
+  report.cells = mesh.cell_count();
+  report.dofs = model.dof_count();
+  report.free_dofs = model.free_dof_count();
+  report.linear_solver = scene.solver.type == "explicit" ? "none (lumped mass)" : linear->name();
+  std::error_code error;
+  fs::create_directories(scene.output.directory, error);
+  if (error) throw InputError("cannot create output directory " + scene.output.directory + ": " + error.message());
+
+  SolveStatistics& statistics = report.statistics;
+  Integration run{model, assembler, *linear, scene, statistics};
+  State last_good;
+  last_good.displacement.assign(model.dof_count(), 0.0);
+  last_good.velocity.assign(model.dof_count(), 0.0);
+  std::vector<io::SeriesEntry> series;
+  detail::Progress progress(total_steps(scene), scene.solver.type, options.progress);
+  auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
+  const StepObserver observer = [&](const State& state) {
+    last_good = state;
+    if (scene.output.every > 0 && state.step % scene.output.every == 0) {
+      detail::PhaseTimer timer(report.output_seconds);
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%06d.vtu", state.step);
+      write_state(output_path(name), model, state);
+      series.push_back({state.time, name});
+      io::write_pvd(output_path("series.pvd"), series);
+    }
+    const auto& ms = statistics.step_ms;
+    double mean = 0;
+    for (double x : ms) mean += x / ms.size();
+    progress.update(state.step, mean);
+    return false;
+  };
+  State state;
+  state.displacement.assign(model.dof_count(), 0.0);
+  state.velocity.assign(model.dof_count(), 0.0);
+  try {
+    if (scene.solver.type == "static") solve_static(run, state, observer);
+    else if (scene.solver.type == "implicit") solve_implicit(run, state, observer);
+    else if (scene.solver.type == "explicit") solve_explicit(run, state, observer);
+    else throw InputError(scene.path + ": unknown solver type '" + scene.solver.type + "'");
+  } catch (const NumericalError& failure) {
+    progress.finish();
+    write_state(output_path("last_good.vtu"), model, last_good);
+    report.files.push_back("last_good.vtu");
+    report.state = last_good;
+    report.wall_seconds = detail::seconds_since(start);
+    count_cells(model, report);
+    locate_max_displacement(model, last_good, report);
+    detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
+    throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
+                         ") written to " + output_path("last_good.vtu"));
+  }
+  progress.finish();
+  {
+    detail::PhaseTimer timer(report.output_seconds);
+    write_state(output_path("final.vtu"), model, state);
+  }
+  report.files.push_back("final.vtu");
+  if (!series.empty()) report.files.push_back("series.pvd");
+  report.state = std::move(state);
+  count_cells(model, report);
+  locate_max_displacement(model, report.state, report);
+  report.wall_seconds = detail::seconds_since(start);
+  report.files.push_back("summary.json");
+  detail::write_summary(output_path("summary.json"), scene, model, report, "");
+  return report;
+}
+
+}  // namespace tensormass

@@ -1,0 +1,108 @@
+#include "summary_json.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "tensormass/io/atomic_file.hpp"
+
+namespace tensormass::detail {
+
+std::pair<double, double> mean_and_median(std::vector<double> values) {
+  if (values.empty()) return {0.0, 0.0};
+  double mean = 0;
+  for (double x : values) mean += x / values.size();
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  const double median = n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+  return {mean, median};
+}
+
+namespace {
+
+std::string quoted(const std::string& text) {
+  std::ostringstream out;
+  out << '"';
+  for (char c : text) {
+    switch (c) {
+      case '"': out << "\\\""; break;
+      case '\\': out << "\\\\"; break;
+      case '\n': out << "\\n"; break;
+      case '\t': out << "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+        else out << c;
+    }
+  }
+  out << '"';
+  return out.str();
+}
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "null";
+  std::ostringstream out;
+  out << std::setprecision(17) << x;
+  return out.str();
+}
+
+}  // namespace
+
+void write_summary(const std::string& path, const Scene& scene, const Model& model, const RunReport& report,
+                   const std::string& failure) {
+  const SolveStatistics& s = report.statistics;
+  const auto [mean, median] = mean_and_median(s.step_ms);
+  double steps_total_s = 0;
+  for (double x : s.step_ms) steps_total_s += x / 1e3;
+  const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds);
+  const bool dynamic = scene.solver.type != "static";
+  std::ostringstream j;
+  j << "{\n";
+  j << "  \"status\": " << quoted(failure.empty() ? "ok" : "failed") << ",\n";
+  if (!failure.empty()) j << "  \"error\": " << quoted(failure) << ",\n";
+  j << "  \"scene\": " << quoted(scene.path) << ",\n";
+  j << "  \"mesh\": " << quoted(scene.mesh) << ",\n";
+  j << "  \"solver\": {\"type\": " << quoted(scene.solver.type) << ", \"linear\": " << quoted(report.linear_solver);
+  if (dynamic) j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
+  else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
+  j << ", \"threads\": " << omp_get_max_threads() << "},\n";
+  j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
+    << ", \"free_dofs\": " << report.free_dofs << ",\n";
+  j << "  \"steps\": " << s.step_ms.size() << ",\n";
+  j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";
+  j << "  \"time_per_phase_s\": {\"criteria\": 0, \"assembly\": " << number(s.assembly_seconds)
+    << ", \"solve\": " << number(s.solve_seconds) << ", \"output\": " << number(report.output_seconds)
+    << ", \"other\": " << number(other) << ", \"total\": " << number(report.wall_seconds) << "},\n";
+  j << "  \"newton_iterations\": {\"total\": " << s.newton_iterations << ", \"per_step\": [";
+  for (std::size_t i = 0; i < s.newton_per_step.size(); ++i) j << (i ? ", " : "") << s.newton_per_step[i];
+  j << "]},\n";
+  j << "  \"linear_iterations\": " << s.linear_iterations << ",\n";
+  j << "  \"elements_per_law\": {";
+  for (std::size_t i = 0; i < report.cells_per_law.size(); ++i)
+    j << (i ? ", " : "") << quoted(report.cells_per_law[i].first) << ": " << report.cells_per_law[i].second;
+  j << "},\n  \"elements_per_type\": {";
+  for (std::size_t i = 0; i < report.cells_per_type.size(); ++i)
+    j << (i ? ", " : "") << quoted(report.cells_per_type[i].first) << ": " << report.cells_per_type[i].second;
+  j << "},\n  \"switches\": 0,\n  \"law_ids\": {";
+  for (std::size_t i = 0; i < model.law_names().size(); ++i)
+    j << (i ? ", " : "") << quoted(std::to_string(i)) << ": " << quoted(model.law_names()[i]);
+  j << "},\n";
+  if (dynamic) {
+    j << "  \"simulated_time_s\": " << number(report.state.time) << ",\n";
+    j << "  \"real_time_factor\": " << number(steps_total_s > 0 ? report.state.time / steps_total_s : 0) << ",\n";
+  }
+  if (scene.solver.type == "explicit") j << "  \"stable_dt_s\": " << number(s.stable_dt) << ",\n";
+  j << "  \"max_displacement\": {\"value\": " << number(report.max_displacement) << ", \"node\": "
+    << report.max_displacement_node << "},\n";
+  j << "  \"warnings\": [";
+  for (std::size_t i = 0; i < s.warnings.size(); ++i) j << (i ? ", " : "") << quoted(s.warnings[i]);
+  j << "],\n  \"files\": [";
+  for (std::size_t i = 0; i < report.files.size(); ++i) j << (i ? ", " : "") << quoted(report.files[i]);
+  j << "]\n}\n";
+  const std::string text = j.str();
+  io::write_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+}  // namespace tensormass::detail

@@ -1,0 +1,21 @@
+// summary.json of a run (internal header).
+#ifndef TENSORMASS_SIMULATION_SUMMARY_JSON_HPP
+#define TENSORMASS_SIMULATION_SUMMARY_JSON_HPP
+
+#include <string>
+
+#include "tensormass/model.hpp"
+#include "tensormass/simulation.hpp"
+
+namespace tensormass::detail {
+
+/// Writes summary.json atomically; `failure` is empty for a successful run.
+void write_summary(const std::string& path, const Scene& scene, const Model& model, const RunReport& report,
+                   const std::string& failure);
+
+/// Mean and median of the step times (0 when there are none).
+std::pair<double, double> mean_and_median(std::vector<double> values);
+
+}  // namespace tensormass::detail
+
+#endif

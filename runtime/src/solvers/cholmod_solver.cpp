@@ -1,0 +1,91 @@
+// Sparse Cholesky through the CHOLMOD C API (SuiteSparse).
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "tensormass/errors.hpp"
+#include "tensormass/linear_solver.hpp"
+
+namespace tensormass {
+
+namespace {
+
+class CholmodSolver final : public LinearSolver {
+ public:
+  CholmodSolver() { cholmod_start(&common_); common_.print = 0; }
+  ~CholmodSolver() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_finish(&common_);
+  }
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+
+  void factorize(const SparseMatrix& A) override {
+    // A is stored with both triangles; as compressed columns it is the same
+    // matrix (symmetric), and stype = -1 makes CHOLMOD read only its lower part.
+    cholmod_sparse view{};
+    view.nrow = view.ncol = static_cast<std::size_t>(A.rows);
+    view.nzmax = A.values.size();
+    view.p = const_cast<int*>(A.row_start.data());
+    view.i = const_cast<int*>(A.columns.data());
+    view.x = const_cast<double*>(A.values.data());
+    view.stype = -1;
+    view.itype = CHOLMOD_INT;
+    view.xtype = CHOLMOD_REAL;
+    view.dtype = CHOLMOD_DOUBLE;
+    view.sorted = 1;
+    view.packed = 1;
+    if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) analyse(view, CHOLMOD_AUTO);
+    rows_ = A.rows;
+    nonzeros_ = A.nonzeros();
+    cholmod_factorize(&view, factor_, &common_);
+    if (common_.status == CHOLMOD_NOT_POSDEF && !simplicial_) {
+      // Not positive definite (buckling, compressed StVK): LDL^T without
+      // pivoting still solves most indefinite tangents a Newton step meets.
+      simplicial_ = true;
+      analyse(view, CHOLMOD_SIMPLICIAL);
+      cholmod_factorize(&view, factor_, &common_);
+    }
+    if (common_.status != CHOLMOD_OK || factor_->minor < factor_->n)
+      throw NumericalError("sparse Cholesky failed: the stiffness matrix is singular (column " +
+                           std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
+                           "); is the body constrained?");
+  }
+
+  int solve(std::span<const double> b, std::span<double> x) override {
+    cholmod_dense rhs{};
+    rhs.nrow = rhs.nzmax = rhs.d = b.size();
+    rhs.ncol = 1;
+    rhs.x = const_cast<double*>(b.data());
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* solution = cholmod_solve(CHOLMOD_A, factor_, &rhs, &common_);
+    if (!solution) throw NumericalError("sparse Cholesky solve failed");
+    std::memcpy(x.data(), solution->x, sizeof(double) * x.size());
+    cholmod_free_dense(&solution, &common_);
+    return 1;
+  }
+
+  std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
+
+ private:
+  void analyse(cholmod_sparse& view, int supernodal) {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    common_.supernodal = supernodal;
+    common_.final_ll = supernodal == CHOLMOD_SIMPLICIAL ? 0 : 1;
+    factor_ = cholmod_analyze(&view, &common_);
+    if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
+  }
+
+  cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+  int rows_ = -1, nonzeros_ = -1;
+  bool simplicial_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodSolver>(); }
+
+}  // namespace tensormass

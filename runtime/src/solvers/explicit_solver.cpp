@@ -1,0 +1,79 @@
+// Symplectic Euler (central differences with velocities at half steps) on
+// the lumped mass: v += dt M^-1 (f - g(u) - alpha M v); u += dt v.
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "integration_support.hpp"
+
+namespace tensormass {
+
+double estimate_stable_time_step(const Model& model, const Assembler& assembler, int iterations) {
+  const int n = model.free_dof_count();
+  const auto& free = model.free_dofs();
+  std::vector<double> zero(model.dof_count(), 0.0), g(model.dof_count());
+  SparseMatrix K = assembler.pattern();
+  assembler.assemble(zero, g, &K);
+  std::vector<double> inverse_sqrt_mass(n), x(n), y(n), w(n);
+  for (int i = 0; i < n; ++i) inverse_sqrt_mass[i] = 1.0 / std::sqrt(model.lumped_mass()[free[i]]);
+  // A fixed, non-special start vector (deterministic).
+  for (int i = 0; i < n; ++i) x[i] = 1.0 + 0.5 * std::sin(1.0 + 12.9898 * i);
+  double lambda = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    const double length = norm(x);
+    for (double& value : x) value /= length;
+    for (int i = 0; i < n; ++i) w[i] = inverse_sqrt_mass[i] * x[i];
+    K.multiply(w, y);
+    for (int i = 0; i < n; ++i) y[i] *= inverse_sqrt_mass[i];
+    lambda = dot(x, y);
+    x.swap(y);
+  }
+  return lambda > 0.0 ? 2.0 / std::sqrt(lambda) : INFINITY;
+}
+
+void solve_explicit(Integration& run, State& state, const StepObserver& observer) {
+  const Model& model = run.model;
+  const SolverSpec& spec = run.scene.solver;
+  const double dt = spec.dt, alpha = spec.damping_mass;
+  if (spec.damping_stiffness != 0.0)
+    throw InputError(run.scene.path + ": solver.damping.stiffness is not supported by the explicit solver "
+                     "(use damping.mass)");
+  const int dofs = model.dof_count();
+  const auto& free = model.free_dofs();
+  const auto& mass = model.lumped_mass();
+  state.displacement.resize(dofs, 0.0);
+  state.velocity.resize(dofs, 0.0);
+  run.statistics.stable_dt = estimate_stable_time_step(model, run.assembler);
+  if (dt > run.statistics.stable_dt) {
+    std::ostringstream text;
+    text << "dt = " << dt << " s exceeds the estimated stable time step " << run.statistics.stable_dt
+         << " s: the explicit solve will likely blow up";
+    run.statistics.warnings.push_back(text.str());
+  }
+  std::vector<double> g(dofs), next(dofs);
+  for (int s = 1; s <= spec.steps; ++s) {
+    const auto start = std::chrono::steady_clock::now();
+    const double t = state.time, t1 = t + dt;
+    const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
+    auto& u = state.displacement;
+    auto& v = state.velocity;
+    detail::assemble(run, u, g, nullptr);
+    const std::vector<double> f = external_force(model, run.scene.loads.profile.factor(t));
+    for (int d : free) v[d] += dt * ((f[d] - g[d]) / mass[d] - alpha * v[d]);
+    // Constrained dofs follow their prescribed path.
+    next = u;
+    model.apply_constraints(t1, next);
+    for (const PrescribedDof& p : model.prescribed()) v[p.dof] = (next[p.dof] - u[p.dof]) / dt;
+    for (int d : free) u[d] += dt * v[d];
+    for (const PrescribedDof& p : model.prescribed()) u[p.dof] = next[p.dof];
+    detail::require_finite(u, "the displacement " + where);
+    state.time = t1;
+    state.step = s;
+    run.statistics.newton_per_step.push_back(0);
+    run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
+    if (observer) observer(state);
+  }
+  detail::require_no_inversion(model, state.displacement, "at the end of the explicit run");
+}
+
+}  // namespace tensormass
