@@ -6,6 +6,7 @@ namespace tensormass {
 
 namespace {
 constexpr int kMaxDofs = 81;  // hex20 in 3D is 60; 27 nodes by 3 leaves room
+constexpr int kParallelCells = 4096;
 }
 
 Assembler::Assembler(const Model& model) : model_(&model) {
@@ -99,11 +100,14 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
   const int d = model.dim();
   std::fill(gradient.begin(), gradient.end(), 0.0);
   if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
-  for (int c = 0; c + 1 < static_cast<int>(colour_start_.size()); ++c) {
-#pragma omp parallel
-    {
-      double local_u[kMaxDofs], local_g[kMaxDofs];
-      std::vector<double> local_k(stiffness ? kMaxDofs * kMaxDofs : 0);
+  // One parallel region for all colours; small meshes stay on one thread,
+  // where the barriers between colours would cost more than they save.
+  const int colours = colour_count();
+#pragma omp parallel if (model.cell_count() >= kParallelCells)
+  {
+    double local_u[kMaxDofs], local_g[kMaxDofs];
+    std::vector<double> local_k(stiffness ? kMaxDofs * kMaxDofs : 0);
+    for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(static)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
         const int cell = coloured_cells_[k];
