@@ -19,6 +19,7 @@ namespace tensormass {
 class Assembler {
  public:
   explicit Assembler(const Model& model);
+  explicit Assembler(Model&&) = delete;  ///< keeps a reference to the model
 
   /// An empty matrix with the pattern of K (free dofs by free dofs).
   const SparseMatrix& pattern() const { return pattern_; }

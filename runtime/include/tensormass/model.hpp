@@ -35,6 +35,8 @@ class Model {
   /// Throws InputError (unknown kernel, non-positive Jacobian at rest named
   /// by element, unknown groups, no constraint in a static scene, ...).
   Model(const Mesh& mesh, const Scene& scene);
+  /// The model keeps a reference to the mesh: a temporary mesh would dangle.
+  Model(Mesh&&, const Scene&) = delete;
 
   const Mesh& mesh() const { return *mesh_; }
   int dim() const { return dim_; }

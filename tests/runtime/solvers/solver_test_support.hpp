@@ -1,0 +1,42 @@
+// Scenes and beams built in code for the model, assembly and solver tests.
+#ifndef TENSORMASS_TESTS_SOLVER_TEST_SUPPORT_HPP
+#define TENSORMASS_TESTS_SOLVER_TEST_SUPPORT_HPP
+
+#include <string>
+
+#include "tensormass/beam.hpp"
+#include "tensormass/scene.hpp"
+
+namespace tensormass::test {
+
+inline Mesh beam(int dim, const std::string& cut, std::array<int, 3> cells, int order = 1) {
+  BeamSpec spec;
+  spec.dim = dim;
+  spec.cells = cells;
+  spec.size = {double(cells[0]) / cells[1], 1.0, double(cells[2]) / cells[1]};
+  spec.phases = {{cut, 1.0}};
+  spec.order = order;
+  return make_beam(spec);
+}
+
+/// A clamped beam under gravity with one material on every cell.
+inline Scene cantilever(const std::string& law, const std::string& type = "static") {
+  Scene scene;
+  scene.path = "test-scene.yaml";
+  scene.mesh = "test-beam.msh";
+  MaterialSpec material;
+  material.law = law;
+  material.young = 1e6;
+  material.poisson = 0.3;
+  material.density = 1000;
+  scene.materials = {material};
+  scene.fixed = {"clamp"};
+  scene.loads.gravity = {0, -9.81, 0};
+  scene.solver.type = type;
+  scene.solver.tolerance = 1e-10;
+  return scene;
+}
+
+}  // namespace tensormass::test
+
+#endif
