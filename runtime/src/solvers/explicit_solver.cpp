@@ -2,6 +2,7 @@
 // the lumped mass: v += dt M^-1 (f - g(u) - alpha M v); u += dt v.
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "integration_support.hpp"
@@ -49,6 +50,7 @@ void solve_explicit(Integration& run, State& state, const StepObserver& observer
     text << "dt = " << dt << " s exceeds the estimated stable time step " << run.statistics.stable_dt
          << " s: the explicit solve will likely blow up";
     run.statistics.warnings.push_back(text.str());
+    std::fprintf(stderr, "tensormass: warning: %s\n", text.str().c_str());  // now, not after a long run
   }
   std::vector<double> g(dofs), next(dofs);
   for (int s = 1; s <= spec.steps; ++s) {
