@@ -11,6 +11,8 @@ std::unique_ptr<LinearSolver> make_cholmod_solver();
 
 namespace {
 
+constexpr int kParallelLength = 50000;  // smaller vectors: one thread is faster
+
 class ConjugateGradientSolver final : public LinearSolver {
  public:
   explicit ConjugateGradientSolver(const LinearSolverSpec& spec) : spec_(spec) {}
@@ -30,7 +32,7 @@ class ConjugateGradientSolver final : public LinearSolver {
     const int n = A_->rows;
     r_.resize(n), z_.resize(n), p_.resize(n), q_.resize(n);
     A_->multiply(x, r_);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelLength)
     for (int i = 0; i < n; ++i) r_[i] = b[i] - r_[i];
     const double b_norm = norm(b);
     if (b_norm == 0.0) {
@@ -46,7 +48,7 @@ class ConjugateGradientSolver final : public LinearSolver {
     for (int iteration = 1; iteration <= spec_.max_iterations; ++iteration) {
       A_->multiply(p_, q_);
       const double alpha = rz / dot(p_, q_);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelLength)
       for (int i = 0; i < n; ++i) {
         x[i] += alpha * p_[i];
         r_[i] -= alpha * q_[i];
@@ -58,7 +60,7 @@ class ConjugateGradientSolver final : public LinearSolver {
       const double rz_next = dot(r_, z_);
       const double beta = rz_next / rz;
       rz = rz_next;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelLength)
       for (int i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
     }
     throw NumericalError("conjugate gradients did not converge in " + std::to_string(spec_.max_iterations) +
@@ -70,7 +72,7 @@ class ConjugateGradientSolver final : public LinearSolver {
  private:
   void precondition() {
     const int n = static_cast<int>(r_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelLength)
     for (int i = 0; i < n; ++i) z_[i] = inverse_diagonal_[i] * r_[i];
   }
 

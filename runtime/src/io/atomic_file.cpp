@@ -1,0 +1,44 @@
+#include "tensormass/io/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace tensormass::io {
+namespace {
+
+std::string temporary_name(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+
+std::string system_reason() { return errno ? std::string(": ") + std::strerror(errno) : std::string(); }
+
+}  // namespace
+
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  const std::string temporary = temporary_name(path);
+  errno = 0;
+  std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
+  if (!stream) throw std::runtime_error("cannot write " + path + system_reason());
+  try {
+    write(stream);
+    stream.flush();
+    if (!stream) throw std::runtime_error("cannot write " + path + ": write failed (disk full?)");
+    stream.close();
+    if (!stream) throw std::runtime_error("cannot write " + path + ": closing failed");
+  } catch (...) {
+    stream.close();
+    std::remove(temporary.c_str());
+    throw;  // keeps the writer's own error type (InputError stays InputError)
+  }
+  errno = 0;
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = system_reason();
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot write " + path + reason);
+  }
+}
+
+}  // namespace tensormass::io

@@ -1,0 +1,344 @@
+// Reading and validating a scene file (docs/scene.md is the reference of
+// every key). The tree is read, overrides are applied, unknown keys are
+// rejected, then each section is read into its Spec with typed checks.
+#include "tensormass/scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+
+#include "tensormass/errors.hpp"
+#include "tensormass/registry.hpp"
+#include "yaml_reader.hpp"
+
+namespace tensormass {
+
+namespace {
+
+using scene_yaml::KeyTable;
+using scene_yaml::Value;
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
+const std::vector<std::string> kProfileKinds = {"constant", "ramp", "sinusoid"};
+const std::vector<std::string> kSolverTypes = {"static", "implicit", "explicit"};
+const std::vector<std::string> kLinearTypes = {"cholmod", "cg"};
+const std::vector<std::string> kCriteria = {"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
+const std::vector<std::string> kActions = {"upgrade"};
+
+/// Every map of the schema and its keys, by path pattern.
+const KeyTable& scene_keys() {
+  static const KeyTable table = {
+      {"", {"mesh", "materials", "fixed", "prescribed", "loads", "solver", "adaptivity", "output"}},
+      {"materials[]", {"region", "law", "young", "poisson", "density", "split"}},
+      {"prescribed[]", {"region", "displacement", "profile"}},
+      {"prescribed[].profile", kProfileKeys},
+      {"loads", {"gravity", "nodal_forces", "pressure", "profile"}},
+      {"loads.nodal_forces[]", {"region", "force"}},
+      {"loads.pressure[]", {"region", "pressure"}},
+      {"loads.profile", kProfileKeys},
+      {"solver",
+       {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "damping", "linear",
+        "threads"}},
+      {"solver.damping", {"mass", "stiffness"}},
+      {"solver.linear", {"type", "tolerance", "max_iterations"}},
+      {"adaptivity", {"criteria", "action", "every", "blend_steps", "downgrade"}},
+      {"adaptivity.criteria[]", {"name", "threshold"}},
+      {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
+      {"output", {"directory", "every"}},
+  };
+  return table;
+}
+
+// --- Typed reads with ranges -------------------------------------------------
+
+/// Reads `key` of `map` into `target` with `read` when it is present.
+template <class T, class Read>
+void read_optional(const Value& map, std::string_view key, T& target, Read read) {
+  const Value value = map.child(key);
+  if (value.present()) target = read(value);
+}
+
+std::string one_of(const Value& value, const std::vector<std::string>& known, const std::string& what) {
+  const std::string name = value.text();
+  if (std::find(known.begin(), known.end(), name) == known.end())
+    value.fail("unknown " + what + " '" + name + "' (known: " + scene_yaml::join(known) + ")");
+  return name;
+}
+
+double positive(const Value& value) {
+  const double x = value.number();
+  if (!(x > 0)) value.fail("must be > 0, got " + value.scalar());
+  return x;
+}
+
+double non_negative(const Value& value) {
+  const double x = value.number();
+  if (!(x >= 0)) value.fail("must be >= 0, got " + value.scalar());
+  return x;
+}
+
+/// A number strictly between 0 and 1 (tolerances, hysteresis).
+double open_fraction(const Value& value) {
+  const double x = value.number();
+  if (!(x > 0 && x < 1)) value.fail("must be > 0 and < 1, got " + value.scalar());
+  return x;
+}
+
+std::function<int(const Value&)> at_least(int minimum) {
+  return [minimum](const Value& value) {
+    const int n = value.integer();
+    if (n < minimum) value.fail("must be >= " + std::to_string(minimum) + ", got " + value.scalar());
+    return n;
+  };
+}
+
+/// 2 or 3 numbers; a 2D vector gets z = 0.
+std::array<double, 3> vector3(const Value& value) {
+  if (!value.is_list()) value.fail("expected a list of 2 or 3 numbers, got " + value.describe());
+  const std::vector<Value> items = value.items();
+  if (items.size() != 2 && items.size() != 3)
+    value.fail("expected 2 or 3 numbers, got " + std::to_string(items.size()));
+  std::array<double, 3> out{};
+  for (std::size_t c = 0; c < items.size(); ++c) out[c] = items[c].number();
+  return out;
+}
+
+std::string resolve_path(const fs::path& directory, const std::string& path) {
+  const fs::path given(path);
+  if (given.is_absolute() || directory.empty()) return given.lexically_normal().string();
+  return (directory / given).lexically_normal().string();
+}
+
+// --- Sections ------------------------------------------------------------------
+
+MaterialSpec read_material(const Value& item) {
+  item.expect_map();
+  const Registry& registry = Registry::instance();
+  MaterialSpec m;
+  m.line = item.line();
+  read_optional(item, "region", m.region, [](const Value& v) { return v.text(); });
+  m.law = one_of(item.required("law"), registry.laws(), "law");
+  const Value split = item.child("split");
+  if (split.present() && !split.scalar().empty()) m.split = one_of(split, registry.splits(), "split");
+  m.young = positive(item.required("young"));
+  const Value poisson = item.required("poisson");
+  m.poisson = poisson.number();
+  if (!(m.poisson > -1 && m.poisson < 0.5)) poisson.fail("must be > -1 and < 0.5, got " + poisson.scalar());
+  m.density = positive(item.required("density"));
+  return m;
+}
+
+std::vector<MaterialSpec> read_materials(const Value& list) {
+  const std::vector<Value> items = list.items();
+  if (items.empty()) list.fail("needs at least one material");
+  std::vector<MaterialSpec> out;
+  for (const Value& item : items) out.push_back(read_material(item));
+  return out;
+}
+
+void read_fixed(const Value& list, Scene& scene) {
+  if (!list.present()) return;
+  for (const Value& item : list.items()) {
+    scene.fixed.push_back(item.text());
+    scene.fixed_lines.push_back(item.line());
+  }
+}
+
+TimeProfile read_profile(const Value& value) {
+  TimeProfile p;
+  if (value.is_scalar()) {
+    p.kind = one_of(value, kProfileKinds, "profile");
+    return p;
+  }
+  if (!value.is_map()) value.fail("expected a profile name or a map {type: ...}, got " + value.describe());
+  p.kind = one_of(value.required("type"), kProfileKinds, "profile type");
+  read_optional(value, "duration", p.duration, positive);
+  read_optional(value, "period", p.period, positive);
+  read_optional(value, "phase", p.phase, [](const Value& v) { return v.number(); });
+  return p;
+}
+
+/// Like vector3, but a null entry leaves that component free.
+void read_displacement(const Value& value, PrescribedSpec& spec) {
+  if (!value.is_list()) value.fail("expected a list of 2 or 3 numbers or nulls, got " + value.describe());
+  const std::vector<Value> items = value.items();
+  if (items.size() != 2 && items.size() != 3)
+    value.fail("expected 2 or 3 components, got " + std::to_string(items.size()));
+  spec.components = {false, false, false};
+  for (std::size_t c = 0; c < items.size(); ++c) {
+    spec.components[c] = items[c].present();
+    spec.displacement[c] = spec.components[c] ? items[c].number() : 0.0;
+  }
+}
+
+std::vector<PrescribedSpec> read_prescribed(const Value& list) {
+  std::vector<PrescribedSpec> out;
+  if (!list.present()) return out;
+  for (const Value& item : list.items()) {
+    item.expect_map();
+    PrescribedSpec spec;
+    spec.line = item.line();
+    spec.region = item.required("region").text();
+    read_displacement(item.required("displacement"), spec);
+    read_optional(item, "profile", spec.profile, read_profile);
+    out.push_back(spec);
+  }
+  return out;
+}
+
+std::vector<NodalForceSpec> read_nodal_forces(const Value& list) {
+  std::vector<NodalForceSpec> out;
+  if (!list.present()) return out;
+  for (const Value& item : list.items()) {
+    item.expect_map();
+    out.push_back({item.required("region").text(), vector3(item.required("force")), item.line()});
+  }
+  return out;
+}
+
+std::vector<PressureSpec> read_pressures(const Value& list) {
+  std::vector<PressureSpec> out;
+  if (!list.present()) return out;
+  for (const Value& item : list.items()) {
+    item.expect_map();
+    out.push_back({item.required("region").text(), item.required("pressure").number(), item.line()});
+  }
+  return out;
+}
+
+LoadsSpec read_loads(const Value& section) {
+  LoadsSpec loads;
+  if (!section.present()) return loads;
+  section.expect_map();
+  read_optional(section, "gravity", loads.gravity, vector3);
+  loads.nodal_forces = read_nodal_forces(section.child("nodal_forces"));
+  loads.pressures = read_pressures(section.child("pressure"));
+  read_optional(section, "profile", loads.profile, read_profile);
+  return loads;
+}
+
+void read_damping(const Value& section, SolverSpec& solver) {
+  if (!section.present()) return;
+  read_optional(section, "mass", solver.damping_mass, non_negative);
+  read_optional(section, "stiffness", solver.damping_stiffness, non_negative);
+}
+
+LinearSolverSpec read_linear(const Value& section) {
+  LinearSolverSpec linear;
+  if (!section.present()) return linear;
+  read_optional(section, "type", linear.type, [](const Value& v) { return one_of(v, kLinearTypes, "linear solver"); });
+  read_optional(section, "tolerance", linear.tolerance, open_fraction);
+  read_optional(section, "max_iterations", linear.max_iterations, at_least(1));
+  return linear;
+}
+
+SolverSpec read_solver(const Value& section) {
+  section.expect_map();
+  SolverSpec solver;
+  solver.type = one_of(section.required("type"), kSolverTypes, "solver type");
+  read_optional(section, "load_steps", solver.load_steps, at_least(1));
+  read_optional(section, "tolerance", solver.tolerance, open_fraction);
+  read_optional(section, "max_iterations", solver.max_iterations, at_least(1));
+  // Keys of the other solver types are read (and checked) but not required.
+  const bool dynamic = solver.type != "static";
+  const std::string reason = "(needed by solver type " + solver.type + ")";
+  if (dynamic) {
+    section.required("dt", reason);
+    section.required("steps", reason);
+  }
+  read_optional(section, "dt", solver.dt, positive);
+  read_optional(section, "steps", solver.steps, at_least(1));
+  read_optional(section, "newton_iterations", solver.newton_iterations, at_least(1));
+  read_damping(section.child("damping"), solver);
+  solver.linear = read_linear(section.child("linear"));
+  read_optional(section, "threads", solver.threads, at_least(0));
+  return solver;
+}
+
+CriterionSpec read_criterion(const Value& item) {
+  item.expect_map();
+  CriterionSpec c;
+  c.line = item.line();
+  c.name = one_of(item.required("name"), kCriteria, "criterion");
+  c.threshold = non_negative(item.required("threshold"));
+  return c;
+}
+
+void read_downgrade(const Value& value, AdaptivitySpec& spec) {
+  if (!value.present()) return;
+  if (value.is_scalar() && (value.scalar() == "true" || value.scalar() == "false")) {
+    spec.downgrade = value.scalar() == "true";
+    return;
+  }
+  if (!value.is_map()) value.fail("expected a map {hysteresis, calm_steps} or true/false, got " + value.describe());
+  spec.downgrade = true;
+  read_optional(value, "hysteresis", spec.hysteresis, open_fraction);
+  read_optional(value, "calm_steps", spec.calm_steps, at_least(1));
+}
+
+AdaptivitySpec read_adaptivity(const Value& section) {
+  AdaptivitySpec spec;
+  if (!section.present()) return spec;
+  section.expect_map();
+  spec.enabled = true;
+  const Value criteria = section.required("criteria");
+  for (const Value& item : criteria.items()) {
+    const CriterionSpec c = read_criterion(item);
+    for (const CriterionSpec& before : spec.criteria)
+      if (before.name == c.name) item.fail("criterion " + c.name + " is listed twice");
+    spec.criteria.push_back(c);
+  }
+  if (spec.criteria.empty()) criteria.fail("needs at least one criterion");
+  read_optional(section, "action", spec.action, [](const Value& v) { return one_of(v, kActions, "action"); });
+  read_optional(section, "every", spec.every, at_least(1));
+  read_optional(section, "blend_steps", spec.blend_steps, at_least(0));
+  read_downgrade(section.child("downgrade"), spec);
+  return spec;
+}
+
+OutputSpec read_output(const Value& section, const fs::path& directory) {
+  OutputSpec output;
+  if (section.present()) {
+    section.expect_map();
+    read_optional(section, "directory", output.directory, [](const Value& v) { return v.text(); });
+    read_optional(section, "every", output.every, at_least(0));
+  }
+  output.directory = resolve_path(directory, output.directory);
+  return output;
+}
+
+Scene read_scene(const Value& root, const std::string& path) {
+  const fs::path directory = fs::path(path).parent_path();
+  Scene scene;
+  scene.path = path;
+  scene.mesh = resolve_path(directory, root.required("mesh").text());
+  scene.materials = read_materials(root.required("materials"));
+  read_fixed(root.child("fixed"), scene);
+  scene.prescribed = read_prescribed(root.child("prescribed"));
+  scene.loads = read_loads(root.child("loads"));
+  scene.solver = read_solver(root.required("solver"));
+  scene.adaptivity = read_adaptivity(root.child("adaptivity"));
+  scene.output = read_output(root.child("output"), directory);
+  return scene;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  scene_yaml::Source source(path);
+  try {
+    YAML::Node root = scene_yaml::read_yaml_file(path);
+    if (!root.IsMap())
+      Value(source, root, {}).fail_here("a scene is a map of keys (mesh, materials, solver, ...), got " +
+                                        Value(source, root, {}).describe());
+    for (const std::string& text : overrides) scene_yaml::apply_override(root, text, scene_keys(), source);
+    const Value top(source, root, {});
+    scene_yaml::check_keys(top, scene_keys());
+    return read_scene(top, path);
+  } catch (const YAML::Exception& e) {  // defensive: yaml-cpp errors not caught above
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+}  // namespace tensormass
