@@ -9,4 +9,5 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   g++ cmake ninja-build git \
   python3 python3-sympy python3-jinja2 python3-pytest python3-numpy \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  python3-meshio python3-gmsh gmsh calculix-ccx
