@@ -1,0 +1,84 @@
+// Helpers of the scene tests: a private temporary directory per test and
+// capture of InputError messages.
+#ifndef TENSORMASS_SCENE_TEST_SUPPORT_HPP
+#define TENSORMASS_SCENE_TEST_SUPPORT_HPP
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tensormass/errors.hpp"
+#include "tensormass/scene.hpp"
+
+namespace scene_test {
+
+namespace fs = std::filesystem;
+
+/// A fresh directory for the running test, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    for (char& c : name)
+      if (c == '/') c = '_';
+    path_ = fs::temp_directory_path() / ("tensormass_scene_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  /// Writes `text` to `name` in this directory; returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path file = path_ / name;
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file.string();
+  }
+
+ private:
+  fs::path path_;
+};
+
+/// The message of the InputError that load_scene throws (a test failure when none).
+inline std::string load_error(const std::string& path, const std::vector<std::string>& overrides = {}) {
+  try {
+    tensormass::load_scene(path, overrides);
+  } catch (const tensormass::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return {};
+}
+
+/// A small valid static scene; line numbers matter to the tests.
+inline const std::string kBaseScene =
+    "mesh: beam.msh\n"                                                              // 1
+    "materials:\n"                                                                  // 2
+    "  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}\n"     // 3
+    "fixed: [clamp]\n"                                                              // 4
+    "solver:\n"                                                                     // 5
+    "  type: static\n"                                                              // 6
+    "  load_steps: 10\n";                                                           // 7
+
+/// `text` with the first occurrence of `from` replaced by `to`.
+inline std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+}  // namespace scene_test
+
+#endif
