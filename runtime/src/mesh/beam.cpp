@@ -99,7 +99,7 @@ double grid_coordinate(int index, int count, double length) {
 /// (u, v) being its two in-plane axes in x, y, z order.
 enum class FaceStyle { quad, low_high, cross };
 
-/// The linear cells of one reference element, with the phase of each cell.
+/// The cells of one reference element, with the phase of each cell.
 struct CellList {
   const tm_element_info* element = nullptr;
   std::vector<int> connectivity;
@@ -123,7 +123,6 @@ class BeamBuilder {
   const std::string& cut_at(int i) const { return spec_.phases[phase_of_column_[i]].cut; }
   FaceStyle native_style(int i, int j, int k, int face) const;
   FaceStyle face_style(int i, int j, int k, int face) const;
-  std::array<int, 4> face_cycle(const std::array<int, 8>& corners, int face) const;
   void cut_cube(int i, int j, int k);
   void cut_hex(const std::array<int, 8>& c);
   void cut_tet5(const std::array<int, 8>& c, int parity);
@@ -232,7 +231,7 @@ FaceStyle BeamBuilder::face_style(int i, int j, int k, int face) const {
 }
 
 /// The face's corners as the cycle (0,0), (1,0), (1,1), (0,1) in its in-plane axes.
-std::array<int, 4> BeamBuilder::face_cycle(const std::array<int, 8>& corners, int face) const {
+std::array<int, 4> face_cycle(const std::array<int, 8>& corners, int face) {
   const int axis = face / 2;
   const int u = axis == 0 ? 1 : 0;
   const int v = axis == 2 ? 1 : 2;
@@ -268,8 +267,10 @@ void BeamBuilder::cut_tet5(const std::array<int, 8>& c, int parity) {
   std::vector<int> even;
   for (int corner = 0; corner < 8; ++corner) {
     const bool is_even = (std::popcount(static_cast<unsigned>(corner)) + parity) % 2 == 0;
-    if (is_even) even.push_back(c[corner]);
-    else add_tet(c[corner], c[corner ^ 1], c[corner ^ 2], c[corner ^ 4]);
+    if (is_even)
+      even.push_back(c[corner]);
+    else
+      add_tet(c[corner], c[corner ^ 1], c[corner ^ 2], c[corner ^ 4]);
   }
   add_tet(even[0], even[1], even[2], even[3]);
 }
@@ -384,9 +385,11 @@ Mesh BeamBuilder::build() {
   for (int i = 0; i < n_[0]; ++i) {
     phase_ = phase_of_column_[i];
     for (int j = 0; j < n_[1]; ++j) {
-      if (spec_.dim == 2) cut_square(i, j);
-      else
-        for (int k = 0; k < n_[2]; ++k) cut_cube(i, j, k);
+      if (spec_.dim == 2) {
+        cut_square(i, j);
+        continue;
+      }
+      for (int k = 0; k < n_[2]; ++k) cut_cube(i, j, k);
     }
   }
   if (spec_.order == 2) make_quadratic();
