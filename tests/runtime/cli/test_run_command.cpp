@@ -153,6 +153,20 @@ TEST_F(RunCommand, InvalidMaterialIsExitTwo) {
   EXPECT_FALSE(fs::exists(out()));
 }
 
+TEST_F(RunCommand, InvertedElementAtRestIsExitTwoNamingIt) {
+  // Two unit squares; the second is numbered clockwise (negative Jacobian).
+  std::ofstream(directory_ / "beam.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                                            "$PhysicalNames\n1\n1 1 \"clamp\"\n$EndPhysicalNames\n"
+                                            "$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n"
+                                            "$Elements\n3\n1 1 2 1 1 1 4\n7 3 2 0 1 1 2 5 4\n8 3 2 0 1 2 5 6 3\n"
+                                            "$EndElements\n";
+  const Result result = run("run " + write_scene(kStatic).string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("id 8"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("non-positive Jacobian"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
 TEST_F(RunCommand, NewtonDivergenceIsExitThreeWithTheLastGoodState) {
   // A very soft beam in one load step and two Newton iterations cannot converge.
   const Result result = run("run " + write_scene(kStatic).string() +
