@@ -138,7 +138,7 @@ Mesh GmshReader::read() {
 }
 
 void GmshReader::read_format() {
-  const Location where = in_.location();
+  const Location where = in_.here();
   const std::string version(in_.token("the format version"));
   if (version == "4.1") major_ = 4;
   else if (version.size() >= 2 && version.substr(0, 2) == "2.") major_ = 2;
@@ -163,24 +163,25 @@ void GmshReader::read_format() {
 void GmshReader::read_physical_names() {
   const long count = in_.count("physical names", 6);
   for (long i = 0; i < count; ++i) {
+    const Location where = in_.here();
     const int dim = static_cast<int>(in_.integer("a physical dimension"));
     const long tag = in_.integer("a physical tag");
     std::string_view name = in_.rest_of_line();
     if (name.size() < 2 || name.front() != '"' || name.back() != '"')
-      in_.fail("physical name must be a quoted string, found '" + std::string(name.substr(0, 40)) + "'");
+      in_.fail_at(where, "physical name must be a quoted string, found '" + std::string(name.substr(0, 40)) + "'");
     names_[{dim, tag}] = std::string(name.substr(1, name.size() - 2));
   }
   in_.expect("$EndPhysicalNames");
 }
 
 long GmshReader::binary_size(std::string_view what, std::size_t min_bytes_each) {
-  const Location where = in_.location();
+  const Location where = in_.here();
   const auto n = in_.value<std::uint64_t>(what, order_);
   return in_.checked_count(n, what, min_bytes_each, where);
 }
 
 long GmshReader::binary_tag(std::string_view what) {
-  const Location where = in_.location();
+  const Location where = in_.here();
   const auto tag = in_.value<std::uint64_t>(what, order_);
   if (tag > static_cast<std::uint64_t>(LONG_MAX)) in_.fail_at(where, std::string(what) + " " + std::to_string(tag) + " is too large");
   return static_cast<long>(tag);
@@ -233,7 +234,7 @@ void GmshReader::read_nodes_22() {
   builder_.reserve_nodes(static_cast<std::size_t>(count));
   if (binary_) in_.skip_line_end();
   for (long i = 0; i < count; ++i) {
-    const Location where = in_.location();
+    const Location where = in_.here();
     const long id = binary_ ? binary_int("a node id") : in_.integer("a node id");
     double xyz[3];
     for (double& x : xyz) x = coordinate("a node coordinate");
@@ -276,7 +277,7 @@ void GmshReader::read_node_block_41(long count, int entity_dim, bool parametric)
   }
   const int extra = parametric ? entity_dim : 0;
   for (long tag : tags) {
-    const Location where = in_.location();
+    const Location where = in_.here();
     double xyz[3];
     for (double& x : xyz) x = coordinate("a node coordinate");
     for (int p = 0; p < extra; ++p) coordinate("a parametric coordinate");
@@ -311,7 +312,7 @@ void GmshReader::read_elements_22() {
   } else {
     std::vector<long> nodes;
     for (long i = 0; i < count; ++i) {
-      const Location where = in_.location();
+      const Location where = in_.here();
       const long id = in_.integer("an element id");
       const long type_id = in_.integer("an element type");
       const GmshType* type = find_gmsh_type(type_id);
@@ -336,7 +337,7 @@ void GmshReader::read_elements_22_binary(long total) {
   std::vector<long> nodes;
   long done = 0;
   while (done < total) {
-    const Location where = in_.location();
+    const Location where = in_.here();
     const long type_id = binary_int("an element type");
     const GmshType* type = find_gmsh_type(type_id);
     mapping_for(type_id, where);
@@ -349,7 +350,7 @@ void GmshReader::read_elements_22_binary(long total) {
     in_.checked_count(static_cast<unsigned long long>(count), "elements", 4 * static_cast<std::size_t>(1 + tags + type->nodes), where);
     nodes.resize(static_cast<std::size_t>(type->nodes));
     for (long i = 0; i < count; ++i) {
-      const Location element_where = in_.location();
+      const Location element_where = in_.here();
       const long id = binary_int("an element id");
       long physical = 0;
       for (long t = 0; t < tags; ++t) {
@@ -380,7 +381,7 @@ void GmshReader::read_elements_41() {
   }
   std::vector<long> nodes;
   for (long b = 0; b < blocks; ++b) {
-    const Location where = in_.location();
+    const Location where = in_.here();
     const int entity_dim = binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
     const long entity = binary_ ? binary_int("an entity tag") : in_.integer("an entity tag");
     const long type_id = binary_ ? binary_int("an element type") : in_.integer("an element type");
@@ -393,7 +394,7 @@ void GmshReader::read_elements_41() {
       for (long tag : found->second) groups.push_back(group_key(entity_dim, tag));
     nodes.resize(static_cast<std::size_t>(type->nodes));
     for (long i = 0; i < count; ++i) {
-      const Location element_where = in_.location();
+      const Location element_where = in_.here();
       const long id = binary_ ? binary_tag("an element tag") : in_.integer("an element tag");
       for (long& node : nodes) node = binary_ ? binary_tag("a node tag") : in_.integer("a node tag");
       add_element(*type, id, nodes, groups, element_where);

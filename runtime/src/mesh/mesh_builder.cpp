@@ -42,7 +42,7 @@ bool InputCursor::at_end() {
 }
 
 std::string_view InputCursor::token(std::string_view what) {
-  if (at_end()) fail("unexpected end of file, expected " + std::string(what));
+  if (at_end()) fail("unexpected end of file (truncated file?), expected " + std::string(what));
   const std::size_t begin = pos_;
   while (pos_ < data_.size() && !is_space(data_[pos_])) ++pos_;
   return std::string_view(data_).substr(begin, pos_ - begin);
@@ -103,7 +103,7 @@ double InputCursor::real(std::string_view what) {
 }
 
 long InputCursor::count(std::string_view what, std::size_t min_bytes_each) {
-  const Location where = location();
+  const Location where = here();
   const long n = integer(what);
   if (n < 0) fail_at(where, "negative " + std::string(what) + " " + std::to_string(n));
   return checked_count(static_cast<unsigned long long>(n), what, min_bytes_each, where);
@@ -116,14 +116,14 @@ long InputCursor::checked_count(unsigned long long n, std::string_view what, std
                        std::to_string(INT_MAX) + ")");
   if (min_bytes_each > 0 && n > remaining() / min_bytes_each)
     fail_at(where, "the file declares " + std::to_string(n) + " " + std::string(what) + " but only " +
-                       std::to_string(remaining()) + " bytes are left: truncated file or bad count");
+                       std::to_string(remaining()) + " bytes are left (truncated file or bad count)");
   return static_cast<long>(n);
 }
 
 std::span<const unsigned char> InputCursor::bytes(std::size_t n, std::string_view what) {
   if (n > remaining())
-    fail("unexpected end of file reading " + std::string(what) + " (" + std::to_string(n) + " bytes needed, " +
-         std::to_string(remaining()) + " left)");
+    fail("unexpected end of file reading " + std::string(what) + " (truncated file? " + std::to_string(n) +
+         " bytes needed, " + std::to_string(remaining()) + " left)");
   const auto* begin = reinterpret_cast<const unsigned char*>(data_.data()) + pos_;
   pos_ += n;
   return {begin, n};
@@ -183,21 +183,84 @@ const Shape* shape_of(const tm_element_info* element) {
 // ---------------------------------------------------------------- builder
 
 /// File node id -> raw node index: a dense table when ids are compact, a hash map otherwise.
-struct MeshBuilder::NodeIndex {
-  long min_id = 0;
-  std::vector<int> dense;
-  std::unordered_map<long, int> sparse;
-  bool use_dense = true;
-
-  int find(long id) const {
-    if (use_dense) {
-      const long k = id - min_id;
-      return k >= 0 && k < static_cast<long>(dense.size()) ? dense[static_cast<std::size_t>(k)] : -1;
+class MeshBuilder::NodeIndex {
+ public:
+  /// Indexes `ids`; throws at the second occurrence of a duplicate id.
+  NodeIndex(const std::string& source, const std::vector<long>& ids, const std::vector<Location>& where) {
+    if (ids.empty()) throw InputError(source + ": the file has no nodes");
+    const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
+    min_id_ = *lo;
+    const unsigned long long span = static_cast<unsigned long long>(*hi - *lo) + 1;
+    dense_mode_ = span <= 4 * ids.size() + 1024;
+    if (dense_mode_) dense_.assign(span, -1);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      int& slot = dense_mode_ ? dense_[static_cast<std::size_t>(ids[i] - min_id_)] : sparse_.try_emplace(ids[i], -1).first->second;
+      if (slot >= 0)
+        throw InputError(format_location(source, where[i]) + ": duplicate node id " + std::to_string(ids[i]) +
+                         " (first defined at " + format_location(source, where[static_cast<std::size_t>(slot)]) + ")");
+      slot = static_cast<int>(i);
     }
-    const auto found = sparse.find(id);
-    return found == sparse.end() ? -1 : found->second;
   }
+
+  /// The raw index of node `id`, or -1.
+  int find(long id) const {
+    if (!dense_mode_) {
+      const auto found = sparse_.find(id);
+      return found == sparse_.end() ? -1 : found->second;
+    }
+    const long k = id - min_id_;
+    return k >= 0 && k < static_cast<long>(dense_.size()) ? dense_[static_cast<std::size_t>(k)] : -1;
+  }
+
+ private:
+  long min_id_ = 0;
+  bool dense_mode_ = true;
+  std::vector<int> dense_;
+  std::unordered_map<long, int> sparse_;
 };
+
+/// The raw elements resolved against the nodes, shared by the build steps.
+struct MeshBuilder::Resolved {
+  int dim = 0;
+  std::vector<int> raw;       ///< per element node entry: raw node index
+  std::vector<int> renumber;  ///< raw node index -> mesh node, -1 when used by no cell
+  std::vector<int> first;     ///< per element: the first element with the same shape and nodes
+  std::vector<int> cell_of;   ///< per element: mesh-wide cell index, -1 when not a cell
+};
+
+namespace {
+
+/// Index of the first element with the same shape and nodes, for each element.
+std::vector<int> find_duplicates(const std::vector<const Shape*>& shapes, const std::vector<std::size_t>& offsets,
+                                 const std::vector<int>& nodes) {
+  std::vector<int> first(shapes.size());
+  std::unordered_multimap<std::size_t, int> seen;
+  seen.reserve(shapes.size());
+  for (std::size_t e = 0; e < shapes.size(); ++e) {
+    const auto begin = nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e]);
+    const auto end = nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e + 1]);
+    std::size_t h = std::hash<const void*>()(shapes[e]);
+    for (auto it = begin; it != end; ++it) h = h * 1000003u ^ static_cast<std::size_t>(*it);
+    first[e] = static_cast<int>(e);
+    const auto [lo, hi] = seen.equal_range(h);
+    for (auto it = lo; it != hi; ++it) {
+      const auto other = static_cast<std::size_t>(it->second);
+      if (shapes[other] == shapes[e] && std::equal(begin, end, nodes.begin() + static_cast<std::ptrdiff_t>(offsets[other]))) {
+        first[e] = it->second;
+        break;
+      }
+    }
+    if (first[e] == static_cast<int>(e)) seen.emplace(h, static_cast<int>(e));
+  }
+  return first;
+}
+
+void sort_unique(std::vector<int>& values) {
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+}
+
+}  // namespace
 
 MeshBuilder::MeshBuilder(std::string source, std::string element_word)
     : source_(std::move(source)), element_word_(std::move(element_word)) {}
@@ -243,173 +306,111 @@ int MeshBuilder::mesh_dimension() const {
   return dim;
 }
 
-namespace {
-
-/// Builds the id -> index table; throws on a duplicate id.
-void index_nodes(const std::string& source, const std::vector<long>& ids, const std::vector<Location>& where,
-                 long& min_id, std::vector<int>& dense, std::unordered_map<long, int>& sparse, bool& use_dense) {
-  if (ids.empty()) throw InputError(source + ": the file has no nodes");
-  const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
-  min_id = *lo;
-  const unsigned long long span = static_cast<unsigned long long>(*hi - *lo) + 1;
-  use_dense = span <= 4 * ids.size() + 1024;
-  if (use_dense) dense.assign(span, -1);
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    int* slot = nullptr;
-    if (use_dense) {
-      slot = &dense[static_cast<std::size_t>(ids[i] - min_id)];
-    } else {
-      slot = &sparse.try_emplace(ids[i], -1).first->second;
-    }
-    if (*slot >= 0)
-      throw InputError(format_location(source, where[i]) + ": duplicate node id " + std::to_string(ids[i]) +
-                       " (first defined at " + format_location(source, where[static_cast<std::size_t>(*slot)]) + ")");
-    *slot = static_cast<int>(i);
-  }
-}
-
-/// Index of the first element with the same shape and nodes, for each element.
-std::vector<int> find_duplicates(const std::vector<const Shape*>& shapes, const std::vector<std::size_t>& offsets,
-                                 const std::vector<int>& nodes) {
-  std::vector<int> first(shapes.size());
-  std::unordered_multimap<std::size_t, int> seen;
-  seen.reserve(shapes.size());
-  for (std::size_t e = 0; e < shapes.size(); ++e) {
-    std::size_t h = std::hash<const void*>()(shapes[e]);
-    for (std::size_t k = offsets[e]; k < offsets[e + 1]; ++k) h = h * 1000003u ^ static_cast<std::size_t>(nodes[k]);
-    first[e] = static_cast<int>(e);
-    const auto [begin, end] = seen.equal_range(h);
-    for (auto it = begin; it != end; ++it) {
-      const auto other = static_cast<std::size_t>(it->second);
-      if (shapes[other] == shapes[e] &&
-          std::equal(nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e]),
-                     nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e + 1]),
-                     nodes.begin() + static_cast<std::ptrdiff_t>(offsets[other]))) {
-        first[e] = it->second;
-        break;
-      }
-    }
-    if (first[e] == static_cast<int>(e)) seen.emplace(h, static_cast<int>(e));
-  }
-  return first;
-}
-
-struct GroupParts {
-  Group group;
-  bool dim_given = false;
-};
-
-void sort_unique(std::vector<int>& values) {
-  std::sort(values.begin(), values.end());
-  values.erase(std::unique(values.begin(), values.end()), values.end());
-}
-
-}  // namespace
-
-std::vector<int> MeshBuilder::map_nodes(const NodeIndex& index, int dim, std::vector<int>& renumber) const {
-  std::vector<int> raw(element_nodes_.size());
+MeshBuilder::Resolved MeshBuilder::resolve() const {
+  Resolved r;
+  r.dim = mesh_dimension();
+  const NodeIndex index(source_, node_ids_, node_where_);
+  r.raw.resize(element_nodes_.size());
   for (std::size_t e = 0; e < shapes_.size(); ++e)
     for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) {
-      raw[k] = index.find(element_nodes_[k]);
-      if (raw[k] < 0) fail_element(e, "refers to node " + std::to_string(element_nodes_[k]) + ", which the file does not define");
+      r.raw[k] = index.find(element_nodes_[k]);
+      if (r.raw[k] < 0) fail_element(e, "refers to node " + std::to_string(element_nodes_[k]) + ", which the file does not define");
     }
-  renumber.assign(node_ids_.size(), -1);
+  r.renumber.assign(node_ids_.size(), -1);
   for (std::size_t e = 0; e < shapes_.size(); ++e)
-    if (shapes_[e]->dim == dim)
-      for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) renumber[static_cast<std::size_t>(raw[k])] = 0;
+    if (shapes_[e]->dim == r.dim)
+      for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) r.renumber[static_cast<std::size_t>(r.raw[k])] = 0;
   int next = 0;
-  for (int& number : renumber)
+  for (int& number : r.renumber)
     if (number == 0) number = next++;
-  return raw;
+  r.first = find_duplicates(shapes_, node_offsets_, r.raw);
+  r.cell_of.assign(shapes_.size(), -1);
+  return r;
 }
 
-Mesh MeshBuilder::build(const std::function<GroupInfo(long key)>& describe) {
-  const int dim = mesh_dimension();
-  NodeIndex index;
-  index_nodes(source_, node_ids_, node_where_, index.min_id, index.dense, index.sparse, index.use_dense);
-  std::vector<int> renumber;
-  const std::vector<int> raw = map_nodes(index, dim, renumber);
-  const std::vector<int> first = find_duplicates(shapes_, node_offsets_, raw);
-
-  Mesh mesh;
-  mesh.dim = dim;
-  mesh.source = source_;
-  const int node_count = static_cast<int>(std::count_if(renumber.begin(), renumber.end(), [](int n) { return n >= 0; }));
-  mesh.rest_positions.resize(3 * static_cast<std::size_t>(node_count));
-  mesh.node_source_ids.resize(static_cast<std::size_t>(node_count));
-  for (std::size_t i = 0; i < renumber.size(); ++i) {
-    if (renumber[i] < 0) continue;
-    const auto n = static_cast<std::size_t>(renumber[i]);
+void MeshBuilder::fill_nodes(Mesh& mesh, const Resolved& r) const {
+  const auto count = static_cast<std::size_t>(std::count_if(r.renumber.begin(), r.renumber.end(), [](int n) { return n >= 0; }));
+  mesh.rest_positions.resize(3 * count);
+  mesh.node_source_ids.resize(count);
+  for (std::size_t i = 0; i < r.renumber.size(); ++i) {
+    if (r.renumber[i] < 0) continue;
+    const auto n = static_cast<std::size_t>(r.renumber[i]);
     mesh.node_source_ids[n] = node_ids_[i];
-    std::copy_n(xyz_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, mesh.rest_positions.begin() + static_cast<std::ptrdiff_t>(3 * n));
+    for (std::size_t c = 0; c < 3; ++c) mesh.rest_positions[3 * n + c] = xyz_[3 * i + c];
   }
+}
 
-  // Cells, block by block in registry order, file order inside a block.
-  std::vector<int> cell_of(shapes_.size(), -1);
+void MeshBuilder::fill_blocks(Mesh& mesh, Resolved& r) const {
   int next_cell = 0;
   for (const tm_element_info* element : Registry::instance().elements()) {
-    if (element->dim != dim) continue;
+    if (element->dim != r.dim) continue;
     ElementBlock block;
     block.element = element;
     block.first_cell = next_cell;
     for (std::size_t e = 0; e < shapes_.size(); ++e) {
-      if (shapes_[e]->element != element || first[e] != static_cast<int>(e)) continue;
+      if (shapes_[e]->element != element || r.first[e] != static_cast<int>(e)) continue;
       for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k)
-        block.connectivity.push_back(renumber[static_cast<std::size_t>(raw[k])]);
+        block.connectivity.push_back(r.renumber[static_cast<std::size_t>(r.raw[k])]);
       block.source_ids.push_back(element_ids_[e]);
-      cell_of[e] = next_cell++;
+      r.cell_of[e] = next_cell++;
     }
     if (block.count() > 0) mesh.blocks.push_back(std::move(block));
   }
+}
 
-  // Groups: (key, first element) pairs in key order, then file order.
+void MeshBuilder::add_to_group(Group& group, std::size_t e, const Resolved& r) const {
+  const Shape& shape = *shapes_[e];
+  group.dim = std::max(group.dim, shape.dim);
+  const bool facet = shape.dim == r.dim - 1;
+  for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) {
+    const int node = r.renumber[static_cast<std::size_t>(r.raw[k])];
+    if (node < 0)
+      fail_element(e, "of group '" + group.name + "' uses node " + std::to_string(element_nodes_[k]) +
+                          ", which belongs to no " + std::to_string(r.dim) + "D element");
+    group.nodes.push_back(node);
+    if (facet) group.facets.nodes.push_back(node);
+  }
+  if (shape.dim == r.dim) group.cells.push_back(r.cell_of[e]);
+  if (facet) {
+    group.facets.offsets.push_back(static_cast<int>(group.facets.nodes.size()));
+    group.facets.orders.push_back(shape.order);
+  }
+}
+
+void MeshBuilder::fill_groups(Mesh& mesh, const Resolved& r, const std::function<GroupInfo(long key)>& describe) const {
+  // (key, first element) pairs: key order, then file order; duplicates once.
   std::vector<std::pair<long, int>> members;
   for (std::size_t e = 0; e < shapes_.size(); ++e)
-    for (std::size_t k = group_offsets_[e]; k < group_offsets_[e + 1]; ++k) members.emplace_back(element_groups_[k], first[e]);
+    for (std::size_t k = group_offsets_[e]; k < group_offsets_[e + 1]; ++k) members.emplace_back(element_groups_[k], r.first[e]);
   std::sort(members.begin(), members.end());
   members.erase(std::unique(members.begin(), members.end()), members.end());
-
-  std::vector<GroupParts> parts;
   std::map<std::string, std::size_t> by_name;
-  long current_key = 0;
-  GroupParts* target = nullptr;
-  for (const auto& [key, e_int] : members) {
-    if (!target || key != current_key) {
-      const GroupInfo info = describe(key);
-      auto [it, added] = by_name.try_emplace(info.name, parts.size());
-      if (added) {
-        parts.emplace_back();
-        parts.back().group.name = info.name;
-        parts.back().group.dim = -1;
-      }
-      target = &parts[it->second];
-      if (info.dim >= 0) target->group.dim = std::max(target->group.dim, info.dim);
-      current_key = key;
+  std::size_t target = 0;
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    if (m == 0 || members[m].first != members[m - 1].first) {
+      const GroupInfo info = describe(members[m].first);
+      const auto [it, added] = by_name.try_emplace(info.name, mesh.groups.size());
+      if (added) mesh.groups.push_back(Group{info.name, -1, {}, {}, {}});
+      target = it->second;
+      mesh.groups[target].dim = std::max(mesh.groups[target].dim, info.dim);
     }
-    const auto e = static_cast<std::size_t>(e_int);
-    const Shape& shape = *shapes_[e];
-    target->group.dim = std::max(target->group.dim, shape.dim);
-    for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) {
-      const int node = renumber[static_cast<std::size_t>(raw[k])];
-      if (node < 0)
-        fail_element(e, "of group '" + target->group.name + "' uses node " + std::to_string(element_nodes_[k]) +
-                            ", which belongs to no " + std::to_string(dim) + "D element");
-      target->group.nodes.push_back(node);
-      if (shape.dim == dim - 1) target->group.facets.nodes.push_back(node);
-    }
-    if (shape.dim == dim) target->group.cells.push_back(cell_of[e]);
-    if (shape.dim == dim - 1) {
-      target->group.facets.offsets.push_back(static_cast<int>(target->group.facets.nodes.size()));
-      target->group.facets.orders.push_back(shape.order);
-    }
+    add_to_group(mesh.groups[target], static_cast<std::size_t>(members[m].second), r);
   }
-  for (GroupParts& part : parts) {
-    sort_unique(part.group.nodes);
-    sort_unique(part.group.cells);
-    mesh.groups.push_back(std::move(part.group));
+  for (Group& group : mesh.groups) {
+    sort_unique(group.nodes);
+    sort_unique(group.cells);
   }
+}
 
-  if (dim == 2) flatten_2d(mesh);
+Mesh MeshBuilder::build(const std::function<GroupInfo(long key)>& describe) {
+  Resolved r = resolve();
+  Mesh mesh;
+  mesh.dim = r.dim;
+  mesh.source = source_;
+  fill_nodes(mesh, r);
+  fill_blocks(mesh, r);
+  fill_groups(mesh, r, describe);
+  if (r.dim == 2) flatten_2d(mesh);
   mesh.validate();
   return mesh;
 }
@@ -421,8 +422,10 @@ void MeshBuilder::flatten_2d(Mesh& mesh) const {
   for (int n = 0; n < mesh.node_count(); ++n) {
     double& z = mesh.rest_positions[3 * static_cast<std::size_t>(n) + 2];
     if (std::abs(z) > tolerance)
-      throw InputError(source_ + ": 2D mesh with node " + std::to_string(mesh.node_source_ids[static_cast<std::size_t>(n)]) +
-                       " at z = " + std::to_string(z) + "; 2D meshes must lie in the plane z = 0");
+      throw InputError(source_ + ": the highest elements are 2D, but node " +
+                       std::to_string(mesh.node_source_ids[static_cast<std::size_t>(n)]) + " has z = " + std::to_string(z) +
+                       "; 2D meshes must lie in the plane z = 0 (for a 3D mesh, the file must hold its volume "
+                       "elements: with Gmsh, add a Physical Volume or set Mesh.SaveAll = 1)");
     z = 0;
   }
 }

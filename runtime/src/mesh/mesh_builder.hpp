@@ -45,6 +45,12 @@ class InputCursor {
   bool binary() const { return binary_; }
   void set_binary(bool binary) { binary_ = binary; }
   Location location() const { return binary_ ? Location{static_cast<long>(pos_), true} : Location{line_, false}; }
+  /// Where the next item starts: skips whitespace first in text mode (so the
+  /// line is the item's own), nothing in binary mode.
+  Location here() {
+    if (!binary_) at_end();
+    return location();
+  }
   /// The line number of byte `offset` (counted from the start of the file).
   long line_at(std::size_t offset) const;
 
@@ -153,9 +159,14 @@ class MeshBuilder {
   Mesh build(const std::function<GroupInfo(long key)>& describe);
 
  private:
-  struct NodeIndex;
-  std::vector<int> map_nodes(const NodeIndex& index, int dim, std::vector<int>& renumber) const;
+  class NodeIndex;
+  struct Resolved;
   int mesh_dimension() const;
+  Resolved resolve() const;
+  void fill_nodes(Mesh& mesh, const Resolved& r) const;
+  void fill_blocks(Mesh& mesh, Resolved& r) const;
+  void fill_groups(Mesh& mesh, const Resolved& r, const std::function<GroupInfo(long key)>& describe) const;
+  void add_to_group(Group& group, std::size_t e, const Resolved& r) const;
   void flatten_2d(Mesh& mesh) const;
   [[noreturn]] void fail_element(std::size_t e, const std::string& message) const;
 

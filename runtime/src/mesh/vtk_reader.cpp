@@ -265,10 +265,7 @@ std::vector<double> LegacyReader::values(long count, std::string_view type, std:
   std::vector<double> result(static_cast<std::size_t>(count));
   if (where) where->resize(result.size());
   for (std::size_t i = 0; i < result.size(); ++i) {
-    if (where) {
-      if (!binary_) in_.at_end();
-      (*where)[i] = in_.location();
-    }
+    if (where) (*where)[i] = in_.here();
     result[i] = value(type, size);
   }
   return result;
@@ -333,8 +330,7 @@ void LegacyReader::read_cells_classic(long cells, long size) {
   if (cells > size) in_.fail_at(where_, "CELLS: more cells (" + std::to_string(cells) + ") than list entries");
   long used = 0;
   for (long c = 0; c < cells; ++c) {
-    if (!binary_) in_.at_end();
-    grid_.cell_where.push_back(in_.location());
+    grid_.cell_where.push_back(in_.here());
     const double n = value("int", 4);
     if (!is_integer_value(n) || n < 0 || used + 1 + static_cast<long>(n) > size)
       in_.fail_at(grid_.cell_where.back(), "cell " + std::to_string(c) + ": bad node count " + std::to_string(n));
@@ -512,7 +508,7 @@ void XmlDocument::parse() {
     else pos = start_tag(lt, open);
   }
   if (appended_begin == std::string::npos && !open.empty())
-    fail(text_.size(), "unexpected end of file inside <" + elements[static_cast<std::size_t>(open.back())].name + ">");
+    fail(text_.size(), "unexpected end of file (truncated file?) inside <" + elements[static_cast<std::size_t>(open.back())].name + ">");
   if (elements.empty()) fail(0, "not an XML VTK file (no elements)");
 }
 
@@ -695,7 +691,7 @@ Mesh VtuReader::read() {
 long VtuReader::count_attribute(const XmlElement& e, std::string_view key, std::size_t min_bytes_each) const {
   long n = 0;
   if (!parse_integer(e.attribute(key), n) || n < 0) fail(e, "<" + e.name + "> needs a count " + std::string(key));
-  if (static_cast<unsigned long long>(n) * min_bytes_each > in_.data().size())
+  if (static_cast<std::size_t>(n) > in_.data().size() / min_bytes_each)
     fail(e, std::string(key) + "=" + std::to_string(n) + " is more than the file (" + std::to_string(in_.data().size()) +
                 " bytes) can hold: truncated file or bad count");
   return in_.checked_count(static_cast<unsigned long long>(n), key, 0, where(e));
