@@ -17,6 +17,7 @@ int demo_command(const Arguments& args);
 int run_command(const Arguments& args);
 int beam_command(const Arguments& args);
 int mesh_info_command(const Arguments& args);
+int render_command(const Arguments& args);
 
 }  // namespace tensormass::cli
 

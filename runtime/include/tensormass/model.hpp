@@ -57,7 +57,20 @@ class Model {
   const std::vector<std::string>& law_names() const { return law_names_; }
   /// Replaces a cell's kernel by the same element and split under `law`
   /// (O(1) when the constants layout is shared, else recomputed once).
+  /// Switching back to the cell's initial law restores its initial kernel
+  /// exactly (its constants are never overwritten by a switch).
   void set_law(int cell, const std::string& law);
+  const tm_kernel& initial_kernel(int cell) const { return *initial_kernels_[cell]; }
+
+  /// Smooth law transitions: while a cell blends, its force and stiffness
+  /// are w * (current kernel) + (1 - w) * (`from` kernel), on the same
+  /// constants. start_blend sets w = 0 (no jump at the switch).
+  void start_blend(int cell, const tm_kernel* from);
+  /// Sets w; w >= 1 ends the blend.
+  void set_blend_weight(int cell, double weight);
+  /// The kernel blended from, or nullptr when the cell is not blending.
+  const tm_kernel* blend_from(int cell) const { return blend_from_.empty() ? nullptr : blend_from_[cell]; }
+  double blend_weight(int cell) const { return blend_from_.empty() ? 1.0 : blend_weight_[cell]; }
   int material(int cell) const { return cell_material_[cell]; }
 
   /// dof_count(): lumped mass (row sum for first-order, HRZ for quadratic).
@@ -94,7 +107,9 @@ class Model {
   int dim_;
   std::vector<int> cell_offsets_;        ///< cell_count()+1
   std::vector<int> cell_connectivity_;   ///< nodes of every cell, concatenated
-  std::vector<const tm_kernel*> kernels_;
+  std::vector<const tm_kernel*> kernels_, initial_kernels_;
+  std::vector<const tm_kernel*> blend_from_;  ///< empty until the first blend
+  std::vector<double> blend_weight_;
   std::vector<std::size_t> consts_offsets_;
   std::vector<double> consts_;
   std::vector<int> cell_material_;

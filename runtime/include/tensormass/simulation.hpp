@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "tensormass/adaptivity.hpp"
 #include "tensormass/integrators.hpp"
 #include "tensormass/scene.hpp"
 
@@ -33,6 +34,12 @@ struct RunReport {
   std::string linear_solver;
   double max_displacement = 0;
   int max_displacement_node = -1;
+  // adaptive model (zeros and empty without `adaptivity`)
+  double criteria_seconds = 0;
+  int switches = 0;
+  std::vector<AdaptivityRecord> adaptivity;
+  /// Per finished step: milliseconds in assembly, solve and criteria.
+  std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
 };
 
 RunReport run_scene(const Scene& scene, const RunOptions& options = {});

@@ -7,7 +7,28 @@ namespace tensormass {
 namespace {
 constexpr int kMaxDofs = 81;  // hex20 in 3D is 60; 27 nodes by 3 leaves room
 constexpr int kParallelCells = 4096;
+
+
+/// g = w g_new + (1 - w) g_old (and the same for K) for a blending cell.
+void blend_cell(const Model& model, int cell, const double* u, double* g, double* K, double* old_g,
+                std::vector<double>& old_K) {
+  const tm_kernel& now = model.kernel(cell);
+  const tm_kernel& before = *model.blend_from(cell);
+  const double w = model.blend_weight(cell);
+  const int dofs = now.dofs;
+  if (K) {
+    old_K.resize(static_cast<std::size_t>(dofs) * dofs);
+    now.gradient_hessian(u, model.consts(cell), g, K);
+    before.gradient_hessian(u, model.consts(cell), old_g, old_K.data());
+    for (int e = 0; e < dofs * dofs; ++e) K[e] = w * K[e] + (1 - w) * old_K[e];
+  } else {
+    now.gradient(u, model.consts(cell), g);
+    before.gradient(u, model.consts(cell), old_g);
+  }
+  for (int i = 0; i < dofs; ++i) g[i] = w * g[i] + (1 - w) * old_g[i];
 }
+
+}  // namespace
 
 Assembler::Assembler(const Model& model) : model_(&model) {
   build_pattern();
@@ -105,22 +126,26 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
   const int colours = colour_count();
 #pragma omp parallel if (model.cell_count() >= kParallelCells)
   {
-    double local_u[kMaxDofs], local_g[kMaxDofs];
-    std::vector<double> local_k(stiffness ? kMaxDofs * kMaxDofs : 0);
+    double local_u[kMaxDofs], local_g[kMaxDofs], blend_g[kMaxDofs];
+    std::vector<double> local_k(stiffness ? kMaxDofs * kMaxDofs : 0), blend_k;
     for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(static)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
         const int cell = coloured_cells_[k];
         const tm_kernel& kernel = model.kernel(cell);
         model.gather(cell, u, local_u);
-        if (stiffness) {
+        if (model.blend_from(cell)) {
+          blend_cell(model, cell, local_u, local_g, stiffness ? local_k.data() : nullptr, blend_g, blend_k);
+        } else if (stiffness) {
           kernel.gradient_hessian(local_u, model.consts(cell), local_g, local_k.data());
+        } else {
+          kernel.gradient(local_u, model.consts(cell), local_g);
+        }
+        if (stiffness) {
           const int* scatter = scatter_.data() + scatter_offsets_[cell];
           const int dofs2 = kernel.dofs * kernel.dofs;
           for (int e = 0; e < dofs2; ++e)
             if (scatter[e] >= 0) stiffness->values[scatter[e]] += local_k[e];
-        } else {
-          kernel.gradient(local_u, model.consts(cell), local_g);
         }
         const auto cn = model.cell_nodes(cell);
         for (int j = 0; j < static_cast<int>(cn.size()); ++j)

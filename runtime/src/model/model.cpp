@@ -80,6 +80,7 @@ void Model::bind_kernels(const Scene& scene) {
   consts_offsets_[cells] = total;
   consts_.assign(total, 0.0);
   for (int cell = 0; cell < cells; ++cell) precompute(cell);
+  initial_kernels_ = kernels_;
 }
 
 void Model::precompute(int cell) {
@@ -104,6 +105,10 @@ int Model::law_id(int cell) const {
 void Model::set_law(int cell, const std::string& law) {
   const tm_kernel& current = *kernels_[cell];
   if (law == current.law) return;
+  if (law == initial_kernels_[cell]->law) {
+    kernels_[cell] = initial_kernels_[cell];
+    return;
+  }
   const Registry& registry = Registry::instance();
   // The tensor split's constants extend the quadrature layout that `whole`
   // reads, so a tensor cell can switch to `whole` of another law in place.
@@ -116,6 +121,25 @@ void Model::set_law(int cell, const std::string& law) {
   const bool same_prefix = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
   kernels_[cell] = next;
   if (!same_prefix) precompute(cell);
+}
+
+void Model::start_blend(int cell, const tm_kernel* from) {
+  if (blend_from_.empty()) {
+    blend_from_.assign(cell_count(), nullptr);
+    blend_weight_.assign(cell_count(), 1.0);
+  }
+  blend_from_[cell] = from;
+  blend_weight_[cell] = 0.0;
+}
+
+void Model::set_blend_weight(int cell, double weight) {
+  if (blend_from_.empty()) return;
+  if (weight >= 1.0) {
+    blend_from_[cell] = nullptr;
+    blend_weight_[cell] = 1.0;
+  } else {
+    blend_weight_[cell] = weight;
+  }
 }
 
 void Model::gather(int cell, std::span<const double> u, double* local) const {

@@ -40,12 +40,18 @@ std::string format_report(const Scene& scene, const RunReport& report) {
   if (scene.solver.type == "explicit") text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
   text << format("  time      %.3f s; per step mean %.4g ms, median %.4g ms\n", report.wall_seconds, mean, median);
   text << format("  phases    assembly %.3f s, solve %.3f s", s.assembly_seconds, s.solve_seconds)
-       << format(", output %.3f s\n", report.output_seconds);
+       << format(", criteria %.3f s, output %.3f s\n", report.criteria_seconds, report.output_seconds);
   if (scene.solver.type != "explicit") {
     text << "  newton    " << s.newton_iterations << " iterations";
     if (!s.newton_per_step.empty())
       text << format(" (%.2f per step)", static_cast<double>(s.newton_iterations) / s.newton_per_step.size());
     text << "; linear iterations " << s.linear_iterations << "\n";
+  }
+  if (scene.adaptivity.enabled) {
+    text << "  adapt     ";
+    for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
+      text << (i ? ", " : "") << scene.adaptivity.criteria[i].name << " " << scene.adaptivity.criteria[i].threshold;
+    text << ": " << report.switches << " switches" << format(", criteria %.3f s\n", report.criteria_seconds);
   }
   if (dynamic) {
     double stepping = 0;

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Point displacement (and velocity) with 3 components, and per-cell fields.
-void write_state(const std::string& path, const Model& model, const State& state) {
+void write_state(const std::string& path, const Model& model, const State& state, const Adaptivity* adaptivity) {
   const Mesh& mesh = model.mesh();
   const int d = model.dim(), nodes = mesh.node_count();
   std::vector<double> displacement(3 * static_cast<std::size_t>(nodes), 0.0);
@@ -48,7 +49,10 @@ void write_state(const std::string& path, const Model& model, const State& state
     }
   // The deformed shape is displacement applied to the rest positions: keep
   // the points at rest so ParaView's "Warp By Vector" shows the motion.
-  io::write_vtu(path, mesh, {}, {point_displacement, velocity}, {law, type, material});
+  std::vector<io::Field> cell_data{law, type, material};
+  if (adaptivity)
+    for (io::Field& field : adaptivity->cell_fields()) cell_data.push_back(std::move(field));
+  io::write_vtu(path, mesh, {}, {point_displacement, velocity}, cell_data);
 }
 
 void locate_max_displacement(const Model& model, const State& state, RunReport& report) {
@@ -62,6 +66,13 @@ void locate_max_displacement(const Model& model, const State& state, RunReport& 
       report.max_displacement_node = i;
     }
   }
+}
+
+void collect_adaptivity(const Adaptivity* adaptivity, RunReport& report) {
+  if (!adaptivity) return;
+  report.criteria_seconds = adaptivity->criteria_seconds();
+  report.switches = adaptivity->total_switches();
+  report.adaptivity = adaptivity->records();
 }
 
 void count_cells(const Model& model, RunReport& report) {
@@ -84,8 +95,15 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const Mesh mesh = read_mesh(scene.mesh);
   check_groups(scene, mesh);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  const Model model(mesh, scene);
+  Model model(mesh, scene);
   const Assembler assembler(model);
+  const bool dynamic = scene.solver.type != "static";
+  std::unique_ptr<Adaptivity> adaptivity;
+  if (scene.adaptivity.enabled) {
+    AdaptivitySpec spec = scene.adaptivity;
+    if (!dynamic) spec.blend_steps = 0;  // a static solve has no steps to blend over
+    adaptivity = std::make_unique<Adaptivity>(spec, model, assembler);
+  }
   std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
   if (scene.solver.type == "explicit" && scene.solver.damping_stiffness != 0.0)
     throw InputError(scene.path + ": solver.damping.stiffness is not supported by the explicit solver (use damping.mass)");
@@ -109,13 +127,34 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   std::vector<io::SeriesEntry> series;
   detail::Progress progress(total_steps(scene), scene.solver.type, options.progress);
   auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
+  std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
+  int resolves = 0;  // static: repeats of the current load step after switches
+  constexpr int kMaxResolves = 20;
   const StepObserver observer = [&](const State& state) {
+    if (adaptivity) {
+      if (dynamic) adaptivity->advance_blends();
+      const int switches = adaptivity->update(state.displacement, state.step);
+      if (!dynamic && switches > 0 && resolves < kMaxResolves) {
+        ++resolves;
+        return true;  // solve this load step again with the new laws
+      }
+      if (!dynamic && switches > 0)
+        statistics.warnings.push_back("load step " + std::to_string(state.step) + ": laws still switching after " +
+                                      std::to_string(kMaxResolves) + " re-solves");
+    }
+    resolves = 0;
     last_good = state;
+    // Per-step phase times, from the running totals.
+    const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
+    report.step_assembly_ms.push_back(1e3 * (statistics.assembly_seconds - phase_marks[0]));
+    report.step_solve_ms.push_back(1e3 * (statistics.solve_seconds - phase_marks[1]));
+    report.step_criteria_ms.push_back(1e3 * (criteria_now - phase_marks[2]));
+    phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, criteria_now};
     if (scene.output.every > 0 && state.step % scene.output.every == 0) {
       detail::PhaseTimer timer(report.output_seconds);
       char name[32];
       std::snprintf(name, sizeof name, "frame_%06d.vtu", state.step);
-      write_state(output_path(name), model, state);
+      write_state(output_path(name), model, state, adaptivity.get());
       series.push_back({state.time, name});
       io::write_pvd(output_path("series.pvd"), series);
     }
@@ -135,11 +174,12 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     else throw InputError(scene.path + ": unknown solver type '" + scene.solver.type + "'");
   } catch (const NumericalError& failure) {
     progress.finish();
-    write_state(output_path("last_good.vtu"), model, last_good);
+    write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());
     report.files.push_back("last_good.vtu");
     report.state = last_good;
     report.wall_seconds = detail::seconds_since(start);
     count_cells(model, report);
+    collect_adaptivity(adaptivity.get(), report);
     locate_max_displacement(model, last_good, report);
     detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
     throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
@@ -148,12 +188,13 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   progress.finish();
   {
     detail::PhaseTimer timer(report.output_seconds);
-    write_state(output_path("final.vtu"), model, state);
+    write_state(output_path("final.vtu"), model, state, adaptivity.get());
   }
   report.files.push_back("final.vtu");
   if (!series.empty()) report.files.push_back("series.pvd");
   report.state = std::move(state);
   count_cells(model, report);
+  collect_adaptivity(adaptivity.get(), report);
   locate_max_displacement(model, report.state, report);
   report.wall_seconds = detail::seconds_since(start);
   report.files.push_back("summary.json");

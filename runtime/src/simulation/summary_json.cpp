@@ -56,7 +56,8 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   const auto [mean, median] = mean_and_median(s.step_ms);
   double steps_total_s = 0;
   for (double x : s.step_ms) steps_total_s += x / 1e3;
-  const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds);
+  const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds -
+                                         report.criteria_seconds);
   const bool dynamic = scene.solver.type != "static";
   std::ostringstream j;
   j << "{\n";
@@ -72,12 +73,26 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     << ", \"free_dofs\": " << report.free_dofs << ",\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";
   j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";
-  j << "  \"time_per_phase_s\": {\"criteria\": 0, \"assembly\": " << number(s.assembly_seconds)
+  j << "  \"time_per_phase_s\": {\"criteria\": " << number(report.criteria_seconds) << ", \"assembly\": " << number(s.assembly_seconds)
     << ", \"solve\": " << number(s.solve_seconds) << ", \"output\": " << number(report.output_seconds)
     << ", \"other\": " << number(other) << ", \"total\": " << number(report.wall_seconds) << "},\n";
   j << "  \"newton_iterations\": {\"total\": " << s.newton_iterations << ", \"per_step\": [";
   for (std::size_t i = 0; i < s.newton_per_step.size(); ++i) j << (i ? ", " : "") << s.newton_per_step[i];
   j << "]},\n";
+  auto series = [&](const char* name, const std::vector<double>& values) {
+    j << "\"" << name << "\": [";
+    for (std::size_t i = 0; i < values.size(); ++i) j << (i ? ", " : "") << number(values[i]);
+    j << "]";
+  };
+  j << "  \"per_step_ms\": {";
+  series("total", s.step_ms);
+  j << ", ";
+  series("assembly", report.step_assembly_ms);
+  j << ", ";
+  series("solve", report.step_solve_ms);
+  j << ", ";
+  series("criteria", report.step_criteria_ms);
+  j << "},\n";
   j << "  \"linear_iterations\": " << s.linear_iterations << ",\n";
   j << "  \"elements_per_law\": {";
   for (std::size_t i = 0; i < report.cells_per_law.size(); ++i)
@@ -85,7 +100,24 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   j << "},\n  \"elements_per_type\": {";
   for (std::size_t i = 0; i < report.cells_per_type.size(); ++i)
     j << (i ? ", " : "") << quoted(report.cells_per_type[i].first) << ": " << report.cells_per_type[i].second;
-  j << "},\n  \"switches\": 0,\n  \"law_ids\": {";
+  j << "},\n  \"switches\": " << report.switches << ",\n";
+  if (scene.adaptivity.enabled) {
+    j << "  \"adaptivity\": {\"criteria\": [";
+    for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
+      j << (i ? ", " : "") << "{\"name\": " << quoted(scene.adaptivity.criteria[i].name)
+        << ", \"threshold\": " << number(scene.adaptivity.criteria[i].threshold) << "}";
+    j << "], \"per_step\": [";
+    for (std::size_t i = 0; i < report.adaptivity.size(); ++i) {
+      const AdaptivityRecord& r = report.adaptivity[i];
+      j << (i ? ",\n    " : "\n    ") << "{\"step\": " << r.step << ", \"upgrades\": " << r.upgrades
+        << ", \"downgrades\": " << r.downgrades << ", \"elements_per_law\": {";
+      for (std::size_t k = 0; k < r.cells_per_law.size(); ++k)
+        j << (k ? ", " : "") << quoted(r.cells_per_law[k].first) << ": " << r.cells_per_law[k].second;
+      j << "}}";
+    }
+    j << "]},\n";
+  }
+  j << "  \"law_ids\": {";
   for (std::size_t i = 0; i < model.law_names().size(); ++i)
     j << (i ? ", " : "") << quoted(std::to_string(i)) << ": " << quoted(model.law_names()[i]);
   j << "},\n";

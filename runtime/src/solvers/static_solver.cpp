@@ -106,6 +106,10 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
   const int steps = run.scene.solver.load_steps;
   state.displacement.assign(model.dof_count(), 0.0);
   state.velocity.assign(model.dof_count(), 0.0);
+  // A load step solved again (the observer switched laws) counts once, with
+  // the time and iterations of all its solves.
+  double carried_ms = 0;
+  int carried_iterations = 0;
   for (int step = 1; step <= steps;) {
     const auto start = std::chrono::steady_clock::now();
     const double factor = static_cast<double>(step) / steps;
@@ -115,14 +119,21 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
     const int iterations = newton(run, u, external_force(model, factor), where);
     detail::require_no_inversion(model, u, where);
     run.statistics.newton_iterations += iterations;
-    run.statistics.newton_per_step.push_back(iterations);
-    run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
+    run.statistics.newton_per_step.push_back(carried_iterations + iterations);
+    run.statistics.step_ms.push_back(carried_ms + 1e3 * detail::seconds_since(start));
     State next{u, state.velocity, factor, step};
     const bool repeat = observer && observer(next);
     state = std::move(next);
-    // When the observer changed laws, this load step is solved again from
-    // here, so the final state is in equilibrium for the final laws.
-    if (!repeat) ++step;
+    if (repeat) {
+      carried_ms = run.statistics.step_ms.back();
+      carried_iterations = run.statistics.newton_per_step.back();
+      run.statistics.step_ms.pop_back();
+      run.statistics.newton_per_step.pop_back();
+      continue;  // solve this load step again, from here, with the new laws
+    }
+    carried_ms = 0;
+    carried_iterations = 0;
+    ++step;
   }
 }
 

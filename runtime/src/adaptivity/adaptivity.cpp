@@ -1,0 +1,146 @@
+#include "tensormass/adaptivity.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "tensormass/errors.hpp"
+
+namespace tensormass {
+
+namespace {
+constexpr const char* kLinearLaw = "hooke";
+constexpr const char* kNonlinearLaw = "stvk";
+constexpr int kMaxDofs = 81;
+}  // namespace
+
+Adaptivity::Adaptivity(const AdaptivitySpec& spec, Model& model, const Assembler& assembler)
+    : spec_(spec), model_(&model), assembler_(&assembler) {
+  if (spec.action != "upgrade") throw InputError("adaptivity.action: unknown action '" + spec.action + "' (known: upgrade)");
+  for (const CriterionSpec& criterion : spec.criteria) {
+    try {
+      criteria_.push_back(make_criterion(criterion.name));
+    } catch (const std::invalid_argument& error) {
+      throw InputError("adaptivity.criteria: " + std::string(error.what()));
+    }
+    thresholds_.push_back(criterion.threshold);
+    names_.push_back(criterion.name);
+    needs_force_ = needs_force_ || criteria_.back()->needs_force();
+  }
+  values_.assign(criteria_.size(), std::vector<double>(model.cell_count(), 0.0));
+  calm_evaluations_.assign(model.cell_count(), 0);
+}
+
+void Adaptivity::advance_blends() {
+  if (spec_.blend_steps <= 0) return;
+  const double increment = 1.0 / spec_.blend_steps;
+  for (int cell = 0; cell < model_->cell_count(); ++cell)
+    if (model_->blend_from(cell)) model_->set_blend_weight(cell, model_->blend_weight(cell) + increment);
+}
+
+void Adaptivity::evaluate(std::span<const double> u) {
+  const Model& model = *model_;
+  const Mesh& mesh = model.mesh();
+  const int d = model.dim();
+  double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
+  if (needs_force_) {
+    nodal_forces_.resize(model.dof_count());
+    assembler_->assemble(u, nodal_forces_, nullptr);
+  }
+  for (const ElementBlock& block : mesh.blocks) {
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      const auto nodes = model.cell_nodes(cell);
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
+      model.gather(cell, u, local_u);
+      const tm_kernel& kernel = model.kernel(cell);
+      if (needs_force_) model.gather(cell, nodal_forces_, force);
+      const ElementView view{*block.element, kernel, model.consts(cell), rest, local_u, force, d};
+      for (std::size_t c = 0; c < criteria_.size(); ++c) values_[c][cell] = criteria_[c]->evaluate(view);
+    }
+  }
+}
+
+bool Adaptivity::cell_fails(int cell) const {
+  for (std::size_t c = 0; c < criteria_.size(); ++c)
+    if (criteria_[c]->fails(values_[c][cell], thresholds_[c])) return true;
+  return false;
+}
+
+bool Adaptivity::cell_is_calm(int cell) const {
+  // Within threshold x hysteresis (quality criteria: above threshold / hysteresis).
+  for (std::size_t c = 0; c < criteria_.size(); ++c) {
+    const double value = values_[c][cell];
+    const bool calm = criteria_[c]->is_quality() ? value >= thresholds_[c] / spec_.hysteresis
+                                                 : value <= thresholds_[c] * spec_.hysteresis;
+    if (!calm) return false;
+  }
+  return true;
+}
+
+void Adaptivity::switch_law(int cell, const std::string& law) {
+  const tm_kernel* before = &model_->kernel(cell);
+  model_->set_law(cell, law);
+  if (spec_.blend_steps > 0) model_->start_blend(cell, before);
+  ++total_switches_;
+}
+
+int Adaptivity::update(std::span<const double> u, int step) {
+  if (criteria_.empty() || step % spec_.every != 0) return 0;
+  const auto start = std::chrono::steady_clock::now();
+  evaluate(u);
+  AdaptivityRecord record;
+  record.step = step;
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    const std::string law = model_->kernel(cell).law;
+    const bool initial = &model_->kernel(cell) == &model_->initial_kernel(cell);
+    if (law == kLinearLaw && initial) {
+      if (cell_fails(cell)) {
+        switch_law(cell, kNonlinearLaw);
+        calm_evaluations_[cell] = 0;
+        ++record.upgrades;
+      }
+    } else if (spec_.downgrade && !initial && std::string(model_->initial_kernel(cell).law) == kLinearLaw) {
+      calm_evaluations_[cell] = cell_is_calm(cell) ? calm_evaluations_[cell] + 1 : 0;
+      if (calm_evaluations_[cell] >= spec_.calm_steps) {
+        switch_law(cell, kLinearLaw);
+        calm_evaluations_[cell] = 0;
+        ++record.downgrades;
+      }
+    }
+  }
+  std::map<std::string, int> per_law;
+  for (int cell = 0; cell < model_->cell_count(); ++cell) ++per_law[model_->kernel(cell).law];
+  record.cells_per_law.assign(per_law.begin(), per_law.end());
+  records_.push_back(record);
+  criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return record.upgrades + record.downgrades;
+}
+
+std::vector<io::Field> Adaptivity::cell_fields() const {
+  std::vector<io::Field> fields;
+  for (std::size_t c = 0; c < criteria_.size(); ++c) fields.push_back({names_[c], 1, values_[c]});
+  io::Field state{"state", 1, std::vector<double>(model_->cell_count(), 0.0)};
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    if (&model_->kernel(cell) != &model_->initial_kernel(cell)) {
+      state.values[cell] = 2.0;
+      continue;
+    }
+    double worst = 0.0;
+    for (std::size_t c = 0; c < criteria_.size(); ++c) {
+      const double value = values_[c][cell], threshold = thresholds_[c];
+      double ratio;
+      if (criteria_[c]->is_quality()) ratio = value > 0 ? threshold / value : 1.0;
+      else ratio = threshold > 0 ? value / threshold : (value > 0 ? 1.0 : 0.0);
+      worst = std::max(worst, std::min(ratio, 1.0));
+    }
+    state.values[cell] = worst;
+  }
+  fields.push_back(std::move(state));
+  return fields;
+}
+
+}  // namespace tensormass

@@ -1,0 +1,278 @@
+/// \file criteria.cpp
+/// The six criteria of criteria.hpp. Every evaluation reads the element's
+/// constants (per quadrature point: w_q det(J0_q), then G^T, see
+/// kernel_abi.h), its rest positions and displacements, and allocates
+/// nothing: the only arrays are D by D matrices on the stack. The dimension
+/// is a template parameter (2 or 3); the node count is read at run time.
+#include "tensormass/criteria.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace tensormass {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// --- Element geometry --------------------------------------------------------
+
+/// The per-point block of the constants: weight w_q det(J0_q), then G^T.
+struct QuadraturePoints {
+  const double* first;
+  int count;
+  int stride;
+  int nodes;
+
+  explicit QuadraturePoints(const ElementView& view)
+      : first(view.consts + view.kernel.derived_params),
+        count(view.kernel.quadrature_points),
+        stride(1 + view.dim * view.kernel.nodes),
+        nodes(view.kernel.nodes) {}
+
+  double weight(int q) const { return first[q * stride]; }
+  const double* gradients_t(int q) const { return first + q * stride + 1; }
+};
+
+/// H[a][c] = sum_j u[j*D + a] GT[c*nodes + j], the displacement gradient.
+template <int D>
+void displacement_gradient(const double* u, const double* GT, int nodes, double (&H)[D][D]) {
+  for (int a = 0; a < D; ++a)
+    for (int c = 0; c < D; ++c) {
+      double sum = 0.0;
+      for (int j = 0; j < nodes; ++j) sum += u[j * D + a] * GT[c * nodes + j];
+      H[a][c] = sum;
+    }
+}
+
+/// det(I + H).
+template <int D>
+double deformation_determinant(const double (&H)[D][D]) {
+  if constexpr (D == 2) {
+    return (1.0 + H[0][0]) * (1.0 + H[1][1]) - H[0][1] * H[1][0];
+  } else {
+    const double f00 = 1.0 + H[0][0], f11 = 1.0 + H[1][1], f22 = 1.0 + H[2][2];
+    return f00 * (f11 * f22 - H[1][2] * H[2][1]) - H[0][1] * (H[1][0] * f22 - H[1][2] * H[2][0]) +
+           H[0][2] * (H[1][0] * H[2][1] - f11 * H[2][0]);
+  }
+}
+
+/// v0 = sum_q w_q det(J0_q) (area in 2D).
+double rest_volume(const ElementView& view) {
+  const QuadraturePoints points(view);
+  double volume = 0.0;
+  for (int q = 0; q < points.count; ++q) volume += points.weight(q);
+  return volume;
+}
+
+/// v = sum_q w_q det(J0_q) det(F_q) (area in 2D).
+template <int D>
+double deformed_volume(const ElementView& view) {
+  const QuadraturePoints points(view);
+  double volume = 0.0;
+  for (int q = 0; q < points.count; ++q) {
+    double H[D][D];
+    displacement_gradient<D>(view.u, points.gradients_t(q), points.nodes, H);
+    volume += points.weight(q) * deformation_determinant<D>(H);
+  }
+  return volume;
+}
+
+/// Length of the segment between nodes a and b of `positions` (+ `u` when given).
+template <int D>
+double distance(const double* positions, const double* u, int a, int b) {
+  double squared = 0.0;
+  for (int c = 0; c < D; ++c) {
+    double delta = positions[b * D + c] - positions[a * D + c];
+    if (u != nullptr) delta += u[b * D + c] - u[a * D + c];
+    squared += delta * delta;
+  }
+  return std::sqrt(squared);
+}
+
+/// The end corners of edge e.
+struct EdgeEnds {
+  int a;
+  int b;
+};
+
+EdgeEnds edge_ends(const tm_element_info& element, int e) {
+  const int* edge = element.edges + e * element.edge_size;
+  return {edge[0], edge[1]};
+}
+
+/// Arithmetic and harmonic means of the deformed edge lengths.
+struct EdgeMeans {
+  double mean;
+  double harmonic;
+};
+
+template <int D>
+EdgeMeans deformed_edge_means(const ElementView& view) {
+  const int count = view.element.edge_count;
+  double sum = 0.0, inverse_sum = 0.0;
+  for (int e = 0; e < count; ++e) {
+    const auto [a, b] = edge_ends(view.element, e);
+    const double length = distance<D>(view.rest, view.u, a, b);
+    sum += length;
+    inverse_sum += length > 0.0 ? 1.0 / length : kInfinity;
+  }
+  return {sum / count, count / inverse_sum};
+}
+
+// --- The criteria --------------------------------------------------------------
+
+/// Calls Self::value<2> or Self::value<3> on the view's dimension.
+template <typename Self>
+double by_dimension(const ElementView& view) {
+  assert(view.dim == 2 || view.dim == 3);
+  return view.dim == 2 ? Self::template value<2>(view) : Self::template value<3>(view);
+}
+
+/// R_EL = max over edges |l - l0| / l0.
+class EdgeLengthCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_EL"; }
+  double evaluate(const ElementView& view) const override { return by_dimension<EdgeLengthCriterion>(view); }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    double largest = 0.0;
+    for (int e = 0; e < view.element.edge_count; ++e) {
+      const auto [a, b] = edge_ends(view.element, e);
+      const double rest = distance<D>(view.rest, nullptr, a, b);
+      const double deformed = distance<D>(view.rest, view.u, a, b);
+      largest = std::fmax(largest, std::fabs(deformed - rest) / rest);
+    }
+    return largest;
+  }
+};
+
+/// R_V = |v - v0| / v0.
+class VolumeCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_V"; }
+  double evaluate(const ElementView& view) const override { return by_dimension<VolumeCriterion>(view); }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    const double rest = rest_volume(view);
+    return std::fabs(deformed_volume<D>(view) - rest) / rest;
+  }
+};
+
+/// R_VL = v / mean_edge^D.
+class VolumeLengthCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_VL"; }
+  bool is_quality() const override { return true; }
+  double evaluate(const ElementView& view) const override { return by_dimension<VolumeLengthCriterion>(view); }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    const double mean = deformed_edge_means<D>(view).mean;
+    if (!(mean > 0.0)) return 0.0;
+    return deformed_volume<D>(view) / (D == 2 ? mean * mean : mean * mean * mean);
+  }
+};
+
+/// R_VLX = 6 sqrt(2) v l_harm / mean^4 (3D), (4 / sqrt 3) a l_harm / mean^3 (2D).
+class VolumeLengthHarmonicCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_VLX"; }
+  bool is_quality() const override { return true; }
+  double evaluate(const ElementView& view) const override {
+    return by_dimension<VolumeLengthHarmonicCriterion>(view);
+  }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    const EdgeMeans means = deformed_edge_means<D>(view);
+    if (!(means.mean > 0.0)) return 0.0;
+    const double volume = deformed_volume<D>(view);
+    if constexpr (D == 2)
+      return 4.0 / std::sqrt(3.0) * volume * means.harmonic / (means.mean * means.mean * means.mean);
+    else
+      return 6.0 * std::sqrt(2.0) * volume * means.harmonic / (means.mean * means.mean * means.mean * means.mean);
+  }
+};
+
+/// R_S = |(1/v) sum_q w_q det(J0_q) sum_j N_j(q) f_j|; infinite for v <= 0.
+class StressCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_S"; }
+  bool needs_force() const override { return true; }
+  double evaluate(const ElementView& view) const override { return by_dimension<StressCriterion>(view); }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    const QuadraturePoints points(view);
+    assert(view.element.quadrature_points == points.count && view.element.nodes == points.nodes);
+    double s[D] = {};
+    for (int q = 0; q < points.count; ++q) {
+      const double* N = view.element.shape_values + q * points.nodes;
+      for (int j = 0; j < points.nodes; ++j) {
+        const double weight = points.weight(q) * N[j];
+        for (int c = 0; c < D; ++c) s[c] += weight * view.force[j * D + c];
+      }
+    }
+    const double volume = deformed_volume<D>(view);
+    if (!(volume > 0.0)) return kInfinity;
+    double squared = 0.0;
+    for (int c = 0; c < D; ++c) squared += s[c] * s[c];
+    return std::sqrt(squared) / volume;
+  }
+};
+
+/// R_NL = max over points of |1/2 H^T H|_F.
+class NonlinearStrainCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_NL"; }
+  double evaluate(const ElementView& view) const override { return by_dimension<NonlinearStrainCriterion>(view); }
+
+  template <int D>
+  static double value(const ElementView& view) {
+    const QuadraturePoints points(view);
+    double largest_squared = 0.0;
+    for (int q = 0; q < points.count; ++q) {
+      double H[D][D];
+      displacement_gradient<D>(view.u, points.gradients_t(q), points.nodes, H);
+      largest_squared = std::fmax(largest_squared, quadratic_strain_squared_norm<D>(H));
+    }
+    return 0.5 * std::sqrt(largest_squared);
+  }
+
+ private:
+  /// |H^T H|_F^2.
+  template <int D>
+  static double quadratic_strain_squared_norm(const double (&H)[D][D]) {
+    double squared = 0.0;
+    for (int c = 0; c < D; ++c)
+      for (int e = 0; e < D; ++e) {
+        double entry = 0.0;
+        for (int a = 0; a < D; ++a) entry += H[a][c] * H[a][e];
+        squared += entry * entry;
+      }
+    return squared;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Criterion> make_criterion(const std::string& name) {
+  if (name == "R_EL") return std::make_unique<EdgeLengthCriterion>();
+  if (name == "R_V") return std::make_unique<VolumeCriterion>();
+  if (name == "R_VL") return std::make_unique<VolumeLengthCriterion>();
+  if (name == "R_VLX") return std::make_unique<VolumeLengthHarmonicCriterion>();
+  if (name == "R_S") return std::make_unique<StressCriterion>();
+  if (name == "R_NL") return std::make_unique<NonlinearStrainCriterion>();
+  throw std::invalid_argument("unknown criterion '" + name + "' (known: R_EL, R_V, R_VL, R_VLX, R_S, R_NL)");
+}
+
+const std::vector<std::string>& criterion_names() {
+  static const std::vector<std::string> names{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
+  return names;
+}
+
+}  // namespace tensormass
