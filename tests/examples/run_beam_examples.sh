@@ -11,7 +11,8 @@ cp "$source_dir"/examples/beam/*.yaml "$work"/
 "$binary" run "$work/static.yaml" --quiet
 "$binary" run "$work/implicit.yaml" --quiet --set solver.steps=20
 "$binary" run "$work/explicit.yaml" --quiet --set solver.steps=500
-for out in out-static out-implicit out-explicit; do
+"$binary" run "$work/adaptive.yaml" --quiet
+for out in out-static out-implicit out-explicit out-adaptive; do
   for file in final.vtu series.pvd summary.json; do
     test -s "$work/$out/$file" || { echo "missing $out/$file"; exit 1; }
   done
