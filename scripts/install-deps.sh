@@ -10,4 +10,4 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   python3 python3-sympy python3-jinja2 python3-pytest python3-numpy \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  python3-meshio python3-gmsh gmsh calculix-ccx
+  python3-meshio python3-matplotlib python3-gmsh gmsh calculix-ccx

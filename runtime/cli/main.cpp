@@ -7,6 +7,7 @@
 #include "tensormass/errors.hpp"
 #ifdef TENSORMASS_WITH_BENCH
 #include "kernel_bench.hpp"
+#include "runtime_bench.hpp"
 #endif
 
 namespace {
@@ -23,6 +24,7 @@ constexpr const char* kUsage =
     "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
     "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
     "  mesh-info FILE                   element counts per type, quality, inverted elements\n"
+    "  render FRAME.vtu -o IMAGE.png    draw a result coloured by criterion state or law\n"
     "  help                             this text\n";
 
 int usage_error(const std::string& message) {
@@ -46,10 +48,12 @@ int main(int argc, char** argv) {
     if (command == "run") return tensormass::cli::run_command(args);
     if (command == "beam") return tensormass::cli::beam_command(args);
     if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
+    if (command == "render") return tensormass::cli::render_command(args);
     if (command == "bench") {
 #ifdef TENSORMASS_WITH_BENCH
       if (!args.empty() && args[0] == "kernels") return tensormass::bench::kernels_command({args.begin() + 1, args.end()});
-      return usage_error("bench: expected 'kernels'");
+      if (!args.empty() && args[0] == "runtime") return tensormass::bench::runtime_command({args.begin() + 1, args.end()});
+      return usage_error("bench: expected 'kernels' or 'runtime'");
 #else
       return usage_error("bench: this build has no benchmarks (TENSORMASS_BUILD_BENCH=OFF)");
 #endif

@@ -1,0 +1,825 @@
+// `tensormass bench runtime`: see runtime_bench.hpp and docs/results/runtime.md.
+//
+// Method. Every figure is a median over repetitions taken in this process;
+// configurations that are compared (tensormass vs ccx, Hooke vs StVK) are
+// run alternately, so slow drifts of a shared machine hit them alike.
+// Dynamic runs take one extra first step that is not counted (CHOLMOD's
+// symbolic analysis, CG's cold start, first touch of the memory); its
+// duration is reported separately.
+#include "runtime_bench.hpp"
+
+#include <dlfcn.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "calculix_runner.hpp"
+#include "tensormass/assembler.hpp"
+#include "tensormass/beam.hpp"
+#include "tensormass/integrators.hpp"
+#include "tensormass/linear_solver.hpp"
+#include "tensormass/model.hpp"
+#include "tensormass/scene.hpp"
+#include "tensormass/sparse_matrix.hpp"
+
+#ifndef TENSORMASS_BENCH_BUILD_INFO
+#define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"
+#endif
+
+namespace tensormass::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kUsage =
+    "usage: tensormass bench runtime [--quick] [--json FILE] [--only NAME] [--threads N] [--ccx PATH] [--keep-ccx]\n"
+    "  --quick        smaller problems and fewer repetitions (CI smoke test, well under a minute)\n"
+    "  --json FILE    also write the results as JSON to FILE (atomically)\n"
+    "  --only NAME    run one part: ccx, implicit or quad\n"
+    "  --threads N    threads of tensormass AND ccx (OMP_NUM_THREADS) in the ccx comparison (default 1)\n"
+    "  --ccx PATH     the CalculiX executable (default: $TENSORMASS_CCX, else ccx in PATH)\n"
+    "  --keep-ccx     keep CalculiX's work directory (deck, .dat, .sta, log) and print where\n";
+
+struct Options {
+  bool quick = false;
+  std::string json, only, ccx;  // ccx: "" = $TENSORMASS_CCX, else ccx in PATH
+  int threads = 1;
+  bool keep_ccx = false;
+};
+
+// Material of every run: soft solid, SI units.
+constexpr double kPoisson = 0.3;
+constexpr double kDensity = 1000.0;
+
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+}
+
+std::string cpu_model() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown CPU";
+}
+
+/// The first three fields of /proc/loadavg (1, 5, 15 minutes): how busy the machine was.
+std::string load_average() {
+  std::ifstream file("/proc/loadavg");
+  std::string one, five, fifteen;
+  if (!(file >> one >> five >> fifteen)) return "unknown";
+  return one + " " + five + " " + fifteen;
+}
+
+/// OpenBLAS's thread control when the BLAS that CHOLMOD loaded is OpenBLAS.
+struct BlasThreads {
+  void (*set)(int) = nullptr;
+  int (*get)() = nullptr;
+  BlasThreads() {
+    set = reinterpret_cast<void (*)(int)>(::dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    get = reinterpret_cast<int (*)()>(::dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (get == nullptr) set = nullptr;
+  }
+};
+
+/// Sets the OpenMP (and OpenBLAS, when loaded) thread count for its lifetime.
+class Threads {
+ public:
+  explicit Threads(int count) : previous_(omp_get_max_threads()) {
+    omp_set_num_threads(count);
+    static const BlasThreads blas;
+    blas_ = &blas;
+    if (blas_->set) {
+      previous_blas_ = blas_->get();
+      blas_->set(count);
+    }
+  }
+  ~Threads() {
+    omp_set_num_threads(previous_);
+    if (blas_->set) blas_->set(previous_blas_);
+  }
+  Threads(const Threads&) = delete;
+  Threads& operator=(const Threads&) = delete;
+
+ private:
+  int previous_, previous_blas_ = 1;
+  const BlasThreads* blas_ = nullptr;
+};
+
+/// The BLAS libraries mapped into this process (CHOLMOD's supernodal
+/// factorisation runs in BLAS: its speed decides the CHOLMOD figures).
+std::string loaded_blas() {
+  std::ifstream maps("/proc/self/maps");
+  std::string line, found;
+  std::map<std::string, bool> seen;
+  while (std::getline(maps, line)) {
+    const auto slash = line.find('/');
+    if (slash == std::string::npos) continue;
+    const std::string path = line.substr(slash);
+    const std::string name = path.substr(path.rfind('/') + 1);
+    if (name.find("blas") == std::string::npos || seen[path]) continue;
+    seen[path] = true;
+    std::string canonical = path;
+    if (char* real = ::realpath(path.c_str(), nullptr)) {
+      canonical = real;
+      std::free(real);
+    }
+    found += (found.empty() ? "" : ", ") + canonical;
+  }
+  if (found.empty()) return "none loaded";
+  if (found.find("openblas") != std::string::npos) return found + " (OpenBLAS)";
+  if (found.find("/blas/libblas") != std::string::npos) return found + " (reference BLAS, unoptimised)";
+  return found;
+}
+
+// --- JSON ---------------------------------------------------------------------
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char ch : text) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    if (ch == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += ch;
+  }
+  return out + "\"";
+}
+
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char text[40];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+/// A JSON object built field by field.
+class JsonObject {
+ public:
+  JsonObject& add(const std::string& key, double value) { return raw(key, json_number(value)); }
+  JsonObject& add(const std::string& key, int value) { return raw(key, std::to_string(value)); }
+  JsonObject& add(const std::string& key, long value) { return raw(key, std::to_string(value)); }
+  JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
+  JsonObject& add(const std::string& key, const std::string& value) { return raw(key, json_string(value)); }
+  JsonObject& add(const std::string& key, const char* value) { return raw(key, json_string(value)); }
+  JsonObject& add(const std::string& key, const JsonObject& value) { return raw(key, value.str()); }
+  JsonObject& add(const std::string& key, const std::vector<JsonObject>& values) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + values[i].str();
+    return raw(key, text + "]");
+  }
+  JsonObject& add(const std::string& key, const std::vector<double>& values) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + json_number(values[i]);
+    return raw(key, text + "]");
+  }
+  JsonObject& raw(const std::string& key, const std::string& text) {
+    fields_.emplace_back(key, text);
+    return *this;
+  }
+  std::string str() const {
+    std::string text = "{";
+    for (std::size_t i = 0; i < fields_.size(); ++i)
+      text += (i ? ", " : "") + json_string(fields_[i].first) + ": " + fields_[i].second;
+    return text + "}";
+  }
+
+ private:
+  std::vector<std::pair<std::string, std::string>> fields_;
+};
+
+bool write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "w");
+  if (file == nullptr) return false;
+  const bool written = std::fputs(text.c_str(), file) >= 0 && std::fflush(file) == 0 && !std::ferror(file);
+  if (std::fclose(file) != 0 || !written || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    return false;
+  }
+  return true;
+}
+
+// --- Targets ------------------------------------------------------------------
+
+struct Target {
+  std::string name;
+  double value = NAN;
+  std::string relation;  // "<=" or ">="
+  double goal = 0;
+  bool measured = false;
+  bool pass() const { return measured && (relation == "<=" ? value <= goal : value >= goal); }
+};
+
+// --- Scenes and meshes ----------------------------------------------------------
+
+Mesh beam_mesh(int dim, const std::string& cut, std::array<int, 3> cells, std::array<double, 3> size) {
+  BeamSpec spec;
+  spec.dim = dim;
+  spec.cells = cells;
+  spec.size = size;
+  spec.phases = {{cut, 1.0}};
+  return make_beam(spec);
+}
+
+/// A cantilever clamped at x = 0 under gravity along -y, one material everywhere.
+Scene cantilever(const std::string& law, double young, double gravity, const std::string& type) {
+  Scene scene;
+  scene.path = "bench-runtime.yaml";
+  scene.mesh = "bench-runtime-beam";
+  MaterialSpec material;
+  material.law = law;
+  material.young = young;
+  material.poisson = kPoisson;
+  material.density = kDensity;
+  scene.materials = {material};
+  scene.fixed = {"clamp"};
+  scene.loads.gravity = {0.0, -gravity, 0.0};
+  scene.solver.type = type;
+  return scene;
+}
+
+/// Mean y displacement of the tip group's nodes.
+double tip_deflection(const Mesh& mesh, const Model& model, const std::vector<double>& u) {
+  const Group* tip = mesh.group("tip");
+  if (tip == nullptr || tip->nodes.empty()) return NAN;
+  double sum = 0.0;
+  for (const int node : tip->nodes) sum += u[static_cast<std::size_t>(node) * model.dim() + 1];
+  return sum / static_cast<double>(tip->nodes.size());
+}
+
+/// Statistics of the steps after the first (warm-up) one of a dynamic run.
+struct StepFigures {
+  int steps = 0;                 // counted steps
+  double step_ms_mean = 0, step_ms_median = 0;
+  double assembly_ms = 0, solve_ms = 0, rest_ms = 0;  // per counted step
+  double linear_iterations = 0;                       // per counted step
+  double first_step_ms = 0;                           // the warm-up step
+};
+
+/// Runs `steps` + 1 implicit steps and returns the figures of the last `steps`.
+StepFigures run_implicit(const Model& model, const Assembler& assembler, const Scene& scene, State& state) {
+  auto linear = make_linear_solver(scene.solver.linear);
+  SolveStatistics statistics;
+  Integration run{model, assembler, *linear, scene, statistics};
+  SolveStatistics warm;  // statistics after the warm-up step
+  const StepObserver observer = [&](const State& s) {
+    if (s.step == 1) warm = statistics;
+    return false;
+  };
+  solve_implicit(run, state, observer);
+  StepFigures f;
+  const std::vector<double> counted(statistics.step_ms.begin() + 1, statistics.step_ms.end());
+  f.steps = static_cast<int>(counted.size());
+  f.first_step_ms = statistics.step_ms.front();
+  f.step_ms_mean = mean(counted);
+  f.step_ms_median = median(counted);
+  f.assembly_ms = 1e3 * (statistics.assembly_seconds - warm.assembly_seconds) / f.steps;
+  f.solve_ms = 1e3 * (statistics.solve_seconds - warm.solve_seconds) / f.steps;
+  f.rest_ms = f.step_ms_mean - f.assembly_ms - f.solve_ms;
+  f.linear_iterations = static_cast<double>(statistics.linear_iterations - warm.linear_iterations) / f.steps;
+  return f;
+}
+
+/// Median seconds of `repetitions` calls of `work`.
+double time_median(int repetitions, const std::function<void()>& work) {
+  std::vector<double> samples;
+  for (int r = 0; r < repetitions; ++r) {
+    const auto start = Clock::now();
+    work();
+    samples.push_back(since(start));
+  }
+  return median(samples);
+}
+
+// --- 1. CalculiX comparison -----------------------------------------------------
+
+struct CcxSettings {
+  std::array<int, 3> cells;
+  int increments;
+  int repetitions;
+};
+constexpr CcxSettings kCcxFull{{25, 10, 10}, 10, 3};
+constexpr CcxSettings kCcxQuick{{10, 5, 5}, 10, 3};
+constexpr std::array<double, 3> kCcxSize{2.5, 1.0, 1.0};
+constexpr double kCcxYoung = 1.0e6;
+constexpr double kCcxGravity = 4.0;  // m/s^2: tip deflection about 10 % of L (see the output)
+constexpr double kAgreementFailure = 1e-4;  // beyond this the bench fails (exit 1)
+
+bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Target>& targets) {
+  const CcxSettings settings = options.quick ? kCcxQuick : kCcxFull;
+  const int threads = std::max(1, options.threads);
+  std::printf("\n== 1. Static StVK cantilever: tensormass vs CalculiX (NLGEOM) ==\n");
+  const Mesh mesh = beam_mesh(3, "tet6", settings.cells, kCcxSize);
+  Scene scene = cantilever("stvk", kCcxYoung, kCcxGravity, "static");
+  scene.solver.load_steps = settings.increments;
+  scene.solver.tolerance = 1e-10;
+  scene.solver.max_iterations = 50;
+  scene.solver.linear.type = "cholmod";
+  std::printf("beam %d x %d x %d cubes x 6 tets (tet6, Kuhn) = %d tet4, %d nodes; L x H x W = %g x %g x %g m\n",
+              settings.cells[0], settings.cells[1], settings.cells[2], mesh.cell_count(), mesh.node_count(),
+              kCcxSize[0], kCcxSize[1], kCcxSize[2]);
+  std::printf("StVK E = %g Pa, nu = %g, rho = %g kg/m^3, gravity %g m/s^2 (-y), clamped at x = 0; %d load steps / "
+              "fixed increments; tensormass Newton tol 1e-10 (relative residual), CHOLMOD; ccx C3D4 NLGEOM, "
+              "*STATIC DIRECT, tight *CONTROLS; %d thread(s) each (OMP_NUM_THREADS=%d for ccx)\n",
+              kCcxYoung, kPoisson, kDensity, kCcxGravity, settings.increments, threads, threads);
+  json.add("tets", mesh.cell_count()).add("nodes", mesh.node_count()).add("increments", settings.increments);
+  json.add("threads", threads).add("gravity", kCcxGravity).add("young", kCcxYoung);
+
+  const std::string ccx = find_calculix(options.ccx);
+  if (ccx.empty()) {
+    std::printf("SKIPPED: CalculiX (%s) not found (install calculix-ccx, or give --ccx PATH or TENSORMASS_CCX)\n",
+                options.ccx.empty() ? "ccx" : options.ccx.c_str());
+    json.add("skipped", "ccx not found");
+    return true;
+  }
+  CalculixOptions ccx_options;
+  ccx_options.executable = ccx;
+  ccx_options.increments = settings.increments;
+  ccx_options.threads = threads;
+  ccx_options.keep_directory = options.keep_ccx;
+
+  Threads scope(threads);
+  std::vector<double> tm_setup, tm_solve, tm_total, tm_assembly, tm_linear, ccx_wall, ccx_reported;
+  int newton = 0, ccx_iterations = 0;
+  std::vector<double> u_tm, u_ccx;
+  for (int rep = 0; rep < settings.repetitions; ++rep) {
+    {
+      const auto start = Clock::now();
+      Model model(mesh, scene);
+      Assembler assembler(model);
+      auto linear = make_linear_solver(scene.solver.linear);
+      const double setup = since(start);
+      SolveStatistics statistics;
+      Integration run{model, assembler, *linear, scene, statistics};
+      State state;
+      const auto solve_start = Clock::now();
+      solve_static(run, state, nullptr);
+      const double solve = since(solve_start);
+      tm_setup.push_back(setup);
+      tm_solve.push_back(solve);
+      tm_total.push_back(setup + solve);
+      tm_assembly.push_back(statistics.assembly_seconds);
+      tm_linear.push_back(statistics.solve_seconds);
+      newton = statistics.newton_iterations;
+      u_tm = state.displacement;
+    }
+    const CalculixResult result = run_calculix(mesh, scene, ccx_options);
+    if (options.keep_ccx) std::printf("ccx work directory: %s\n", result.directory.c_str());
+    ccx_wall.push_back(result.wall_seconds);
+    ccx_reported.push_back(result.reported_seconds);
+    ccx_iterations = result.iterations;
+    u_ccx = result.displacement;
+  }
+
+  // Agreement: max nodal |u_tm - u_ccx| / max nodal |u_ccx| (3D: dof = node * 3 + a).
+  double difference = 0.0, largest = 0.0;
+  for (int node = 0; node < mesh.node_count(); ++node) {
+    double d2 = 0.0, u2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double tm = u_tm[static_cast<std::size_t>(node) * 3 + a], cx = u_ccx[static_cast<std::size_t>(node) * 3 + a];
+      d2 += (tm - cx) * (tm - cx);
+      u2 += cx * cx;
+    }
+    difference = std::max(difference, std::sqrt(d2));
+    largest = std::max(largest, std::sqrt(u2));
+  }
+  const double agreement = largest > 0.0 ? difference / largest : difference;
+  double tip = 0.0;
+  if (const Group* group = mesh.group("tip"))
+    for (const int node : group->nodes) tip += u_ccx[static_cast<std::size_t>(node) * 3 + 1] / group->nodes.size();
+  const double ratio = median(ccx_wall) / median(tm_total);
+  const double ratio_solve = median(ccx_wall) / median(tm_solve);
+
+  const std::string heading = "median of " + std::to_string(settings.repetitions) + " runs";
+  std::printf("\n%-34s %12s %12s\n", heading.c_str(), "tensormass", "ccx");
+  std::printf("%-34s %12.3f %12.3f\n", "wall time (s)", median(tm_total), median(ccx_wall));
+  std::printf("%-34s %12.3f %12s\n", "  model + assembler setup (s)", median(tm_setup), "");
+  std::printf("%-34s %12.3f %12.3f\n", "  solve (s) / ccx's own total (s)", median(tm_solve), median(ccx_reported));
+  std::printf("%-34s %12.3f %12s\n", "    assembly (s)", median(tm_assembly), "");
+  std::printf("%-34s %12.3f %12s\n", "    factorise + solve (s)", median(tm_linear), "");
+  std::printf("%-34s %12d %12d\n", "Newton iterations (all steps)", newton, ccx_iterations);
+  std::printf("tip deflection %.4f m = %.1f %% of L (ccx); max |u| %.4f m\n", -tip, -100.0 * tip / kCcxSize[0],
+              largest);
+  std::printf("agreement: max nodal |u_tm - u_ccx| / max |u_ccx| = %.2e (ccx prints 7 significant digits)\n",
+              agreement);
+  std::printf("time ratio ccx / tensormass = %.2f (setup + solve), %.2f (solve only)\n", ratio, ratio_solve);
+
+  json.add("tip_deflection", -tip).add("max_displacement", largest).add("agreement", agreement);
+  json.add("tensormass_total_s", median(tm_total)).add("tensormass_setup_s", median(tm_setup));
+  json.add("tensormass_solve_s", median(tm_solve)).add("tensormass_assembly_s", median(tm_assembly));
+  json.add("tensormass_linear_s", median(tm_linear)).add("tensormass_newton_iterations", newton);
+  json.add("ccx_wall_s", median(ccx_wall)).add("ccx_reported_s", median(ccx_reported));
+  json.add("ccx_iterations", ccx_iterations).add("ratio_ccx_over_tensormass", ratio);
+  json.add("ratio_ccx_over_tensormass_solve_only", ratio_solve);
+  json.add("tensormass_total_samples_s", tm_total).add("ccx_wall_samples_s", ccx_wall);
+
+  targets.push_back({"ccx wall / tensormass wall, " + std::to_string(mesh.cell_count()) + " tets", ratio, ">=", 5.0,
+                     true});
+  targets.push_back({"displacement agreement with ccx (relative)", agreement, "<=", 1e-5, true});
+  if (!(agreement <= kAgreementFailure)) {
+    std::fprintf(stderr, "tensormass bench runtime: tensormass and CalculiX disagree (%.3e > %.0e)\n", agreement,
+                 kAgreementFailure);
+    return false;
+  }
+  return true;
+}
+
+// --- 2. Implicit steps ------------------------------------------------------------
+
+struct ImplicitCase {
+  const char* label;
+  std::array<int, 3> cells;
+  int cg_steps;       // counted steps per run
+  int cholmod_steps;  // (a 100k-tet factorisation takes seconds with reference BLAS)
+  int repetitions;
+};
+constexpr ImplicitCase kImplicitFull[] = {{"10k", {35, 8, 6}, 10, 10, 3}, {"100k", {70, 16, 15}, 3, 1, 3}};
+constexpr ImplicitCase kImplicitQuick[] = {{"10k", {35, 8, 6}, 3, 3, 3}};
+constexpr double kImplicitYoung = 1.0e6;
+constexpr double kImplicitDt = 0.01;
+constexpr double kCgTolerance = 1e-8;
+
+bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+  std::printf("\n== 2. Implicit Euler steps, StVK tet4 beams (tet6 cut), 1 Newton iteration per step ==\n");
+  std::printf("E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), dt = %g s, clamped; CG: Jacobi, tolerance %g, "
+              "warm-started; one uncounted warm-up step per run\n",
+              kImplicitYoung, kPoisson, kDensity, kImplicitDt, kCgTolerance);
+  std::printf("reference = one assembly (gradient + Hessian) + N_cg x one K.multiply, timed in the same process at "
+              "the final state\n\n");
+  std::printf("%-5s %7s %7s %-8s %3s %9s %9s %9s %9s %9s %7s %9s %9s %7s %9s\n", "mesh", "tets", "dofs", "solver",
+              "thr", "step ms", "median", "assembly", "solve", "rest", "N_lin", "asm ref", "spmv ms", "ratio",
+              "1st step");
+  const std::vector<int> thread_counts = options.quick ? std::vector<int>{1} : std::vector<int>{1, 2};
+  const auto* begin = options.quick ? std::begin(kImplicitQuick) : std::begin(kImplicitFull);
+  const auto* end = options.quick ? std::end(kImplicitQuick) : std::end(kImplicitFull);
+  for (const ImplicitCase* c = begin; c != end; ++c) {
+    const std::array<double, 3> size{double(c->cells[0]) / c->cells[1], 1.0, double(c->cells[2]) / c->cells[1]};
+    const Mesh mesh = beam_mesh(3, "tet6", c->cells, size);
+    for (const std::string solver : {"cholmod", "cg"})
+      for (const int threads : thread_counts) {
+        Threads scope(threads);
+        Scene scene = cantilever("stvk", kImplicitYoung, 9.81, "implicit");
+        scene.solver.dt = kImplicitDt;
+        const int steps = solver == "cg" ? c->cg_steps : c->cholmod_steps;
+        scene.solver.steps = steps + 1;
+        scene.solver.newton_iterations = 1;
+        scene.solver.linear.type = solver;
+        scene.solver.linear.tolerance = kCgTolerance;
+        const Model model(mesh, scene);
+        const Assembler assembler(model);
+        std::vector<double> step_mean, step_median, assembly, solve, rest, iterations, first, asm_ref, spmv, ratio;
+        for (int rep = 0; rep < c->repetitions; ++rep) {
+          State state;
+          const StepFigures f = run_implicit(model, assembler, scene, state);
+          // The reference, at the final state, same threads.
+          SparseMatrix K = assembler.pattern();
+          std::vector<double> g(model.dof_count());
+          const double t_assembly = time_median(c->repetitions >= 3 ? 5 : 3, [&] {
+            assembler.assemble(state.displacement, g, &K);
+          });
+          std::vector<double> x(K.rows), y(K.rows);
+          for (int i = 0; i < K.rows; ++i) x[i] = 1.0 + 1e-3 * (i % 7);
+          constexpr int kBatch = 20;
+          const double t_spmv = time_median(5, [&] {
+                                  for (int b = 0; b < kBatch; ++b) K.multiply(x, y);
+                                }) / kBatch;
+          const double reference_ms = 1e3 * (t_assembly + f.linear_iterations * t_spmv);
+          step_mean.push_back(f.step_ms_mean);
+          step_median.push_back(f.step_ms_median);
+          assembly.push_back(f.assembly_ms);
+          solve.push_back(f.solve_ms);
+          rest.push_back(f.rest_ms);
+          iterations.push_back(f.linear_iterations);
+          first.push_back(f.first_step_ms);
+          asm_ref.push_back(1e3 * t_assembly);
+          spmv.push_back(1e3 * t_spmv);
+          ratio.push_back(f.step_ms_mean / reference_ms);
+        }
+        const bool cg = solver == "cg";
+        char ratio_text[32];
+        std::snprintf(ratio_text, sizeof ratio_text, "%.2f", median(ratio));
+        std::printf("%-5s %7d %7d %-8s %3d %9.2f %9.2f %9.2f %9.2f %9.2f %7.1f %9.2f %9.3f %7s %9.1f\n", c->label,
+                    mesh.cell_count(), model.free_dof_count(), solver.c_str(), threads, median(step_mean),
+                    median(step_median), median(assembly), median(solve), median(rest), median(iterations),
+                    median(asm_ref), median(spmv), cg ? ratio_text : "-", median(first));
+        std::fflush(stdout);
+        JsonObject row;
+        row.add("mesh", c->label).add("tets", mesh.cell_count()).add("free_dofs", model.free_dof_count());
+        row.add("nonzeros", assembler.pattern().nonzeros()).add("solver", solver).add("threads", threads);
+        row.add("steps", steps).add("repetitions", c->repetitions);
+        row.add("step_ms", median(step_mean)).add("step_ms_median", median(step_median));
+        row.add("assembly_ms", median(assembly)).add("solve_ms", median(solve)).add("rest_ms", median(rest));
+        row.add("linear_iterations_per_step", median(iterations)).add("first_step_ms", median(first));
+        row.add("reference_assembly_ms", median(asm_ref)).add("spmv_ms", median(spmv));
+        if (cg) row.add("ratio_step_over_reference", median(ratio));
+        json.push_back(row);
+        if (cg && threads == 1 && std::string(c->label) == "10k")
+          targets.push_back({"CG step / (assembly + N_cg spmv), " + std::to_string(mesh.cell_count()) +
+                                 " tets, 1 thread",
+                             median(ratio), "<=", 1.5, true});
+      }
+  }
+  std::printf("(step ms: mean of the counted steps; assembly/solve/rest: per counted step, rest = step - assembly - "
+              "solve; N_lin: linear iterations per step; ratio: CG only)\n");
+  return true;
+}
+
+// --- 3. The origin report's 600-quad beam ------------------------------------------
+
+constexpr double kQuadYoung = 1.0e7;  // as examples/beam
+
+/// Figures of every counted step of a dynamic run (after one warm-up step).
+struct LawRun {
+  std::string law;
+  std::unique_ptr<Model> model;
+  std::unique_ptr<Assembler> assembler;
+  Scene scene;
+  std::vector<double> mean_ms, median_ms, assembly_ms, solve_ms;
+  double tip = 0;
+};
+
+/// Runs Hooke and StVK alternately `repetitions` times with `integrator`.
+void run_laws(const Mesh& mesh, std::vector<LawRun>& runs, int repetitions,
+              const std::function<StepFigures(LawRun&, State&)>& integrator) {
+  for (int rep = 0; rep < repetitions; ++rep)
+    for (LawRun& r : runs) {
+      State state;
+      const StepFigures f = integrator(r, state);
+      r.mean_ms.push_back(f.step_ms_mean);
+      r.median_ms.push_back(f.step_ms_median);
+      r.assembly_ms.push_back(f.assembly_ms);
+      r.solve_ms.push_back(f.solve_ms);
+      r.tip = tip_deflection(mesh, *r.model, state.displacement);
+    }
+}
+
+std::vector<LawRun> make_law_runs(const Mesh& mesh, const std::function<void(Scene&)>& configure) {
+  std::vector<LawRun> runs(2);
+  runs[0].law = "hooke";
+  runs[1].law = "stvk";
+  for (LawRun& r : runs) {
+    r.scene = cantilever(r.law, kQuadYoung, 9.81, "implicit");
+    configure(r.scene);
+    r.model = std::make_unique<Model>(mesh, r.scene);
+    r.assembler = std::make_unique<Assembler>(*r.model);
+  }
+  return runs;
+}
+
+/// Prints the rows of one integrator and returns its JSON; `ratio` gets stvk/hooke of the medians.
+JsonObject report_laws(const char* integrator, const std::vector<LawRun>& runs, double& ratio, double& ratio_mean) {
+  std::printf("\n%-9s %-7s %11s %11s %12s %10s %14s   %s\n", "", "law", "mean ms", "median ms", "assembly ms",
+              "solve ms", "tip defl. (m)", "origin report (mean ms)");
+  const char* origin[2] = {"0.102", "16.273"};
+  std::vector<JsonObject> rows;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const LawRun& r = runs[i];
+    std::printf("%-9s %-7s %11.4f %11.4f %12.4f %10.4f %14.4f   %s\n", i == 0 ? integrator : "", r.law.c_str(),
+                median(r.mean_ms), median(r.median_ms), median(r.assembly_ms), median(r.solve_ms), -r.tip,
+                origin[i]);
+    JsonObject row;
+    row.add("law", r.law).add("step_ms_mean", median(r.mean_ms)).add("step_ms_median", median(r.median_ms));
+    row.add("assembly_ms", median(r.assembly_ms)).add("solve_ms", median(r.solve_ms)).add("tip_deflection", -r.tip);
+    row.add("step_ms_mean_samples", r.mean_ms).add("step_ms_median_samples", r.median_ms);
+    rows.push_back(row);
+  }
+  ratio = median(runs[1].median_ms) / median(runs[0].median_ms);
+  ratio_mean = median(runs[1].mean_ms) / median(runs[0].mean_ms);
+  const double ratio_assembly = median(runs[1].assembly_ms) / median(runs[0].assembly_ms);
+  std::printf("%-9s stvk / hooke: %.2f (median ms per step), %.2f (mean), assembly alone %.2f; origin report %.0fx\n",
+              "", ratio, ratio_mean, ratio_assembly, 16.273 / 0.102);
+  JsonObject json;
+  json.add("laws", rows).add("ratio_stvk_over_hooke", ratio).add("ratio_stvk_over_hooke_mean", ratio_mean);
+  json.add("ratio_assembly", ratio_assembly);
+  return json;
+}
+
+bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>& targets) {
+  const int steps = options.quick ? 20 : 100;
+  const int explicit_steps = options.quick ? 200 : 1000;
+  const int repetitions = options.quick ? 3 : 5;
+  std::printf("\n== 3. The origin report's 2D beam: 60 x 10 quad4 (600 elements), one core ==\n");
+  const Mesh mesh = beam_mesh(2, "quad4", {60, 10, 1}, {6.0, 1.0, 1.0});
+  Threads scope(1);
+  std::printf("L x H = 6 x 1 m, plane strain, E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), clamped at x = 0; "
+              "median of %d runs, Hooke and StVK alternating; each run has one uncounted warm-up step\n",
+              kQuadYoung, kPoisson, kDensity, repetitions);
+  std::printf("implicit: backward Euler, dt = 0.01 s, %d counted steps, 1 Newton iteration per step, CHOLMOD\n", steps);
+
+  std::vector<LawRun> implicit_runs = make_law_runs(mesh, [&](Scene& scene) {
+    scene.solver.type = "implicit";
+    scene.solver.dt = 0.01;
+    scene.solver.steps = steps + 1;
+    scene.solver.newton_iterations = 1;
+    scene.solver.linear.type = "cholmod";
+  });
+  run_laws(mesh, implicit_runs, repetitions, [](LawRun& r, State& state) {
+    return run_implicit(*r.model, *r.assembler, r.scene, state);
+  });
+
+  // Explicit (symplectic Euler, lumped mass): no linear solve, so the law's
+  // cost shows fully. dt = half the estimated stable step at rest.
+  const double stable = estimate_stable_time_step(*implicit_runs[0].model, *implicit_runs[0].assembler);
+  const double explicit_dt = 0.5 * stable;
+  std::printf("explicit: symplectic Euler, dt = %.3g s (half the estimated stable %.3g s), %d counted steps\n",
+              explicit_dt, stable, explicit_steps);
+  std::vector<LawRun> explicit_runs = make_law_runs(mesh, [&](Scene& scene) {
+    scene.solver.type = "explicit";
+    scene.solver.dt = explicit_dt;
+    scene.solver.steps = explicit_steps + 1;
+  });
+  run_laws(mesh, explicit_runs, repetitions, [](LawRun& r, State& state) {
+    auto linear = make_linear_solver(r.scene.solver.linear);
+    SolveStatistics statistics;
+    Integration run{*r.model, *r.assembler, *linear, r.scene, statistics};
+    SolveStatistics warm;
+    solve_explicit(run, state, [&](const State& s) {
+      if (s.step == 1) warm = statistics;
+      return false;
+    });
+    StepFigures f;
+    const std::vector<double> counted(statistics.step_ms.begin() + 1, statistics.step_ms.end());
+    f.steps = static_cast<int>(counted.size());
+    f.step_ms_mean = mean(counted);
+    f.step_ms_median = median(counted);
+    f.assembly_ms = 1e3 * (statistics.assembly_seconds - warm.assembly_seconds) / f.steps;
+    return f;
+  });
+
+  double ratio = 0, ratio_mean = 0, explicit_ratio = 0, explicit_ratio_mean = 0;
+  JsonObject implicit_json = report_laws("implicit", implicit_runs, ratio, ratio_mean);
+  JsonObject explicit_json = report_laws("explicit", explicit_runs, explicit_ratio, explicit_ratio_mean);
+  implicit_json.add("dt", 0.01).add("steps", steps);
+  explicit_json.add("dt", explicit_dt).add("steps", explicit_steps);
+  json.add("elements", mesh.cell_count()).add("repetitions", repetitions).add("young", kQuadYoung);
+  json.add("implicit", implicit_json).add("explicit", explicit_json);
+  targets.push_back({"600-quad beam, implicit: stvk / hooke median ms per step", ratio, "<=", 2.5, true});
+  return true;
+}
+
+bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
+  auto value = [&](std::size_t& i, const char* what) -> const std::string* {
+    if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1].rfind("--", 0) == 0) {
+      std::fprintf(stderr, "tensormass bench runtime: %s needs a value\n%s", what, kUsage);
+      return nullptr;
+    }
+    return &args[++i];
+  };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--quick") {
+      options.quick = true;
+    } else if (a == "--keep-ccx") {
+      options.keep_ccx = true;
+    } else if (a == "--json" || a == "--only" || a == "--ccx" || a == "--threads") {
+      const std::string* v = value(i, a.c_str());
+      if (v == nullptr) {
+        exit_code = 2;
+        return false;
+      }
+      if (a == "--json") options.json = *v;
+      if (a == "--ccx") options.ccx = *v;
+      if (a == "--only") {
+        if (*v != "ccx" && *v != "implicit" && *v != "quad") {
+          std::fprintf(stderr, "tensormass bench runtime: --only expects ccx, implicit or quad, not '%s'\n%s",
+                       v->c_str(), kUsage);
+          exit_code = 2;
+          return false;
+        }
+        options.only = *v;
+      }
+      if (a == "--threads") {
+        char* stop = nullptr;
+        const long n = std::strtol(v->c_str(), &stop, 10);
+        if (stop == v->c_str() || *stop != '\0' || n < 1 || n > 1024) {
+          std::fprintf(stderr, "tensormass bench runtime: --threads expects a positive integer\n%s", kUsage);
+          exit_code = 2;
+          return false;
+        }
+        options.threads = static_cast<int>(n);
+      }
+    } else if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      exit_code = 0;
+      return false;
+    } else {
+      std::fprintf(stderr, "tensormass bench runtime: unknown argument '%s'\n%s", a.c_str(), kUsage);
+      exit_code = 2;
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int runtime_command(const std::vector<std::string>& args) {
+  Options options;
+  int exit_code = 0;
+  if (!parse(args, options, exit_code)) return exit_code;
+  if (!options.json.empty()) {  // fail now rather than after the run
+    const std::string temporary = options.json + ".tmp";
+    std::FILE* probe = std::fopen(temporary.c_str(), "w");
+    if (probe == nullptr) {
+      std::fprintf(stderr, "tensormass bench runtime: cannot write '%s'\n", temporary.c_str());
+      return 2;
+    }
+    std::fclose(probe);
+    std::remove(temporary.c_str());
+  }
+  const auto started = Clock::now();
+  std::printf("tensormass bench runtime%s: wall-clock medians over repetitions in this process\n",
+              options.quick ? " (quick)" : "");
+  std::printf("cpu: %s, %d OpenMP threads available; build: %s\n", cpu_model().c_str(), omp_get_num_procs(),
+              TENSORMASS_BENCH_BUILD_INFO);
+  const std::string blas = loaded_blas();
+  std::printf("BLAS (CHOLMOD's supernodal kernels): %s\n", blas.c_str());
+  const std::string load_start = load_average();
+  std::printf("load average at start: %s (other processes share these cores: timings are noisy)\n",
+              load_start.c_str());
+
+  std::vector<Target> targets;
+  JsonObject report;
+  report.add("benchmark", "runtime").add("quick", options.quick).add("cpu", cpu_model());
+  report.add("build", TENSORMASS_BENCH_BUILD_INFO).add("processors", omp_get_num_procs()).add("blas", blas);
+  bool ok = true;
+  auto guarded = [&](const char* name, const std::function<bool()>& part) {
+    if (!options.only.empty() && options.only != name) return;
+    try {
+      ok = part() && ok;
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "tensormass bench runtime: %s failed: %s\n", name, error.what());
+      std::printf("%s: FAILED (%s)\n", name, error.what());
+      ok = false;
+    }
+    std::fflush(stdout);
+  };
+  JsonObject ccx_json, quad_json;
+  std::vector<JsonObject> implicit_json;
+  guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
+  guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
+  guarded("quad", [&] { return run_quad_beam(options, quad_json, targets); });
+  if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
+  if (options.only.empty() || options.only == "implicit") report.add("implicit", implicit_json);
+  if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
+
+  std::printf("\ntargets\n");
+  int pass = 0, miss = 0;
+  std::vector<JsonObject> target_json;
+  for (const Target& t : targets) {
+    std::printf("  %-58s %10.3g  (target %s %g)  %s\n", t.name.c_str(), t.value, t.relation.c_str(), t.goal,
+                t.pass() ? "PASS" : "MISS");
+    ++(t.pass() ? pass : miss);
+    JsonObject j;
+    j.add("name", t.name).add("value", t.value).add("relation", t.relation).add("goal", t.goal);
+    j.add("pass", t.pass());
+    target_json.push_back(j);
+  }
+  std::printf("targets: %d PASS, %d MISS\n", pass, miss);
+  const double seconds = since(started);
+  const std::string load_end = load_average();
+  std::printf("done in %.1f s%s; load average at the end: %s\n", seconds, ok ? "" : " (with FAILURES)",
+              load_end.c_str());
+  report.add("targets", target_json).add("seconds", seconds).add("ok", ok);
+  report.add("load_average_start", load_start).add("load_average_end", load_end);
+  if (!options.json.empty()) {
+    if (!write_file_atomically(options.json, report.str() + "\n")) {
+      std::fprintf(stderr, "tensormass bench runtime: cannot write '%s'\n", options.json.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", options.json.c_str());
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace tensormass::bench
