@@ -49,6 +49,8 @@ class Adaptivity {
 
   int total_switches() const { return total_switches_; }
   double criteria_seconds() const { return criteria_seconds_; }
+  /// Running time of each criterion (same order as criterion_names()).
+  const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
   const std::vector<AdaptivityRecord>& records() const { return records_; }
   const std::vector<std::string>& criterion_names() const { return names_; }
 
@@ -70,6 +72,7 @@ class Adaptivity {
   bool needs_force_ = false;
   int total_switches_ = 0;
   double criteria_seconds_ = 0;
+  std::vector<double> criterion_seconds_;
   std::vector<AdaptivityRecord> records_;
 };
 

@@ -36,6 +36,7 @@ struct RunReport {
   int max_displacement_node = -1;
   // adaptive model (zeros and empty without `adaptivity`)
   double criteria_seconds = 0;
+  std::vector<double> criterion_seconds;  ///< per scene criterion
   int switches = 0;
   std::vector<AdaptivityRecord> adaptivity;
   /// Per finished step: milliseconds in assembly, solve and criteria.

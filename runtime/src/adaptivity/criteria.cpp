@@ -3,9 +3,12 @@
 /// constants (per quadrature point: w_q det(J0_q), then G^T, see
 /// kernel_abi.h), its rest positions and displacements, and allocates
 /// nothing: the only arrays are D by D matrices on the stack. The dimension
-/// is a template parameter (2 or 3); the node count is read at run time.
+/// (2 or 3) and, for the node counts of the registry's elements, the number
+/// of nodes N are template parameters so that the loops unroll; N = 0 reads
+/// the node count at run time.
 #include "tensormass/criteria.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -19,29 +22,31 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // --- Element geometry --------------------------------------------------------
 
 /// The per-point block of the constants: weight w_q det(J0_q), then G^T.
+template <int D, int N>
 struct QuadraturePoints {
   const double* first;
   int count;
-  int stride;
   int nodes;
+  int stride;
 
   explicit QuadraturePoints(const ElementView& view)
       : first(view.consts + view.kernel.derived_params),
         count(view.kernel.quadrature_points),
-        stride(1 + view.dim * view.kernel.nodes),
-        nodes(view.kernel.nodes) {}
+        nodes(N > 0 ? N : view.kernel.nodes),
+        stride(1 + D * nodes) {}
 
   double weight(int q) const { return first[q * stride]; }
   const double* gradients_t(int q) const { return first + q * stride + 1; }
 };
 
 /// H[a][c] = sum_j u[j*D + a] GT[c*nodes + j], the displacement gradient.
-template <int D>
+template <int D, int N>
 void displacement_gradient(const double* u, const double* GT, int nodes, double (&H)[D][D]) {
+  const int n = N > 0 ? N : nodes;
   for (int a = 0; a < D; ++a)
     for (int c = 0; c < D; ++c) {
       double sum = 0.0;
-      for (int j = 0; j < nodes; ++j) sum += u[j * D + a] * GT[c * nodes + j];
+      for (int j = 0; j < n; ++j) sum += u[j * D + a] * GT[c * n + j];
       H[a][c] = sum;
     }
 }
@@ -59,36 +64,37 @@ double deformation_determinant(const double (&H)[D][D]) {
 }
 
 /// v0 = sum_q w_q det(J0_q) (area in 2D).
+template <int D, int N>
 double rest_volume(const ElementView& view) {
-  const QuadraturePoints points(view);
+  const QuadraturePoints<D, N> points(view);
   double volume = 0.0;
   for (int q = 0; q < points.count; ++q) volume += points.weight(q);
   return volume;
 }
 
 /// v = sum_q w_q det(J0_q) det(F_q) (area in 2D).
-template <int D>
+template <int D, int N>
 double deformed_volume(const ElementView& view) {
-  const QuadraturePoints points(view);
+  const QuadraturePoints<D, N> points(view);
   double volume = 0.0;
   for (int q = 0; q < points.count; ++q) {
     double H[D][D];
-    displacement_gradient<D>(view.u, points.gradients_t(q), points.nodes, H);
+    displacement_gradient<D, N>(view.u, points.gradients_t(q), points.nodes, H);
     volume += points.weight(q) * deformation_determinant<D>(H);
   }
   return volume;
 }
 
-/// Length of the segment between nodes a and b of `positions` (+ `u` when given).
+/// Squared length of the segment between nodes a and b of `positions` (+ `u` when given).
 template <int D>
-double distance(const double* positions, const double* u, int a, int b) {
+double squared_distance(const double* positions, const double* u, int a, int b) {
   double squared = 0.0;
   for (int c = 0; c < D; ++c) {
     double delta = positions[b * D + c] - positions[a * D + c];
     if (u != nullptr) delta += u[b * D + c] - u[a * D + c];
     squared += delta * delta;
   }
-  return std::sqrt(squared);
+  return squared;
 }
 
 /// The end corners of edge e.
@@ -100,6 +106,17 @@ struct EdgeEnds {
 EdgeEnds edge_ends(const tm_element_info& element, int e) {
   const int* edge = element.edges + e * element.edge_size;
   return {edge[0], edge[1]};
+}
+
+/// Mean of the deformed edge lengths.
+template <int D>
+double deformed_mean_edge(const ElementView& view) {
+  double sum = 0.0;
+  for (int e = 0; e < view.element.edge_count; ++e) {
+    const auto [a, b] = edge_ends(view.element, e);
+    sum += std::sqrt(squared_distance<D>(view.rest, view.u, a, b));
+  }
+  return sum / view.element.edge_count;
 }
 
 /// Arithmetic and harmonic means of the deformed edge lengths.
@@ -114,7 +131,7 @@ EdgeMeans deformed_edge_means(const ElementView& view) {
   double sum = 0.0, inverse_sum = 0.0;
   for (int e = 0; e < count; ++e) {
     const auto [a, b] = edge_ends(view.element, e);
-    const double length = distance<D>(view.rest, view.u, a, b);
+    const double length = std::sqrt(squared_distance<D>(view.rest, view.u, a, b));
     sum += length;
     inverse_sum += length > 0.0 ? 1.0 / length : kInfinity;
   }
@@ -130,7 +147,28 @@ double by_dimension(const ElementView& view) {
   return view.dim == 2 ? Self::template value<2>(view) : Self::template value<3>(view);
 }
 
-/// R_EL = max over edges |l - l0| / l0.
+/// Calls Self::value<D, N> with the view's dimension D and, for the node
+/// counts of the registry's elements, its node count N (else N = 0).
+template <typename Self>
+double by_shape(const ElementView& view) {
+  assert(view.dim == 2 || view.dim == 3);
+  switch (view.dim * 100 + view.kernel.nodes) {
+    case 203: return Self::template value<2, 3>(view);
+    case 204: return Self::template value<2, 4>(view);
+    case 206: return Self::template value<2, 6>(view);
+    case 208: return Self::template value<2, 8>(view);
+    case 304: return Self::template value<3, 4>(view);
+    case 305: return Self::template value<3, 5>(view);
+    case 306: return Self::template value<3, 6>(view);
+    case 308: return Self::template value<3, 8>(view);
+    case 310: return Self::template value<3, 10>(view);
+    case 320: return Self::template value<3, 20>(view);
+    default: return view.dim == 2 ? Self::template value<2, 0>(view) : Self::template value<3, 0>(view);
+  }
+}
+
+/// R_EL = max over edges |l - l0| / l0 = |sqrt(r) - 1| with r = l^2 / l0^2,
+/// largest at the smallest or the largest r (two square roots per element).
 class EdgeLengthCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_EL"; }
@@ -138,14 +176,14 @@ class EdgeLengthCriterion final : public Criterion {
 
   template <int D>
   static double value(const ElementView& view) {
-    double largest = 0.0;
+    double smallest = 1.0, largest = 1.0;
     for (int e = 0; e < view.element.edge_count; ++e) {
       const auto [a, b] = edge_ends(view.element, e);
-      const double rest = distance<D>(view.rest, nullptr, a, b);
-      const double deformed = distance<D>(view.rest, view.u, a, b);
-      largest = std::fmax(largest, std::fabs(deformed - rest) / rest);
+      const double r = squared_distance<D>(view.rest, view.u, a, b) / squared_distance<D>(view.rest, nullptr, a, b);
+      smallest = std::min(smallest, r);
+      largest = std::max(largest, r);
     }
-    return largest;
+    return std::max(1.0 - std::sqrt(smallest), std::sqrt(largest) - 1.0);
   }
 };
 
@@ -153,12 +191,12 @@ class EdgeLengthCriterion final : public Criterion {
 class VolumeCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_V"; }
-  double evaluate(const ElementView& view) const override { return by_dimension<VolumeCriterion>(view); }
+  double evaluate(const ElementView& view) const override { return by_shape<VolumeCriterion>(view); }
 
-  template <int D>
+  template <int D, int N>
   static double value(const ElementView& view) {
-    const double rest = rest_volume(view);
-    return std::fabs(deformed_volume<D>(view) - rest) / rest;
+    const double rest = rest_volume<D, N>(view);
+    return std::fabs(deformed_volume<D, N>(view) - rest) / rest;
   }
 };
 
@@ -167,13 +205,13 @@ class VolumeLengthCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_VL"; }
   bool is_quality() const override { return true; }
-  double evaluate(const ElementView& view) const override { return by_dimension<VolumeLengthCriterion>(view); }
+  double evaluate(const ElementView& view) const override { return by_shape<VolumeLengthCriterion>(view); }
 
-  template <int D>
+  template <int D, int N>
   static double value(const ElementView& view) {
-    const double mean = deformed_edge_means<D>(view).mean;
+    const double mean = deformed_mean_edge<D>(view);
     if (!(mean > 0.0)) return 0.0;
-    return deformed_volume<D>(view) / (D == 2 ? mean * mean : mean * mean * mean);
+    return deformed_volume<D, N>(view) / (D == 2 ? mean * mean : mean * mean * mean);
   }
 };
 
@@ -183,14 +221,14 @@ class VolumeLengthHarmonicCriterion final : public Criterion {
   std::string name() const override { return "R_VLX"; }
   bool is_quality() const override { return true; }
   double evaluate(const ElementView& view) const override {
-    return by_dimension<VolumeLengthHarmonicCriterion>(view);
+    return by_shape<VolumeLengthHarmonicCriterion>(view);
   }
 
-  template <int D>
+  template <int D, int N>
   static double value(const ElementView& view) {
     const EdgeMeans means = deformed_edge_means<D>(view);
     if (!(means.mean > 0.0)) return 0.0;
-    const double volume = deformed_volume<D>(view);
+    const double volume = deformed_volume<D, N>(view);
     if constexpr (D == 2)
       return 4.0 / std::sqrt(3.0) * volume * means.harmonic / (means.mean * means.mean * means.mean);
     else
@@ -203,21 +241,21 @@ class StressCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_S"; }
   bool needs_force() const override { return true; }
-  double evaluate(const ElementView& view) const override { return by_dimension<StressCriterion>(view); }
+  double evaluate(const ElementView& view) const override { return by_shape<StressCriterion>(view); }
 
-  template <int D>
+  template <int D, int N>
   static double value(const ElementView& view) {
-    const QuadraturePoints points(view);
+    const QuadraturePoints<D, N> points(view);
     assert(view.element.quadrature_points == points.count && view.element.nodes == points.nodes);
     double s[D] = {};
     for (int q = 0; q < points.count; ++q) {
-      const double* N = view.element.shape_values + q * points.nodes;
+      const double* shape = view.element.shape_values + q * points.nodes;
       for (int j = 0; j < points.nodes; ++j) {
-        const double weight = points.weight(q) * N[j];
+        const double weight = points.weight(q) * shape[j];
         for (int c = 0; c < D; ++c) s[c] += weight * view.force[j * D + c];
       }
     }
-    const double volume = deformed_volume<D>(view);
+    const double volume = deformed_volume<D, N>(view);
     if (!(volume > 0.0)) return kInfinity;
     double squared = 0.0;
     for (int c = 0; c < D; ++c) squared += s[c] * s[c];
@@ -229,16 +267,16 @@ class StressCriterion final : public Criterion {
 class NonlinearStrainCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_NL"; }
-  double evaluate(const ElementView& view) const override { return by_dimension<NonlinearStrainCriterion>(view); }
+  double evaluate(const ElementView& view) const override { return by_shape<NonlinearStrainCriterion>(view); }
 
-  template <int D>
+  template <int D, int N>
   static double value(const ElementView& view) {
-    const QuadraturePoints points(view);
+    const QuadraturePoints<D, N> points(view);
     double largest_squared = 0.0;
     for (int q = 0; q < points.count; ++q) {
       double H[D][D];
-      displacement_gradient<D>(view.u, points.gradients_t(q), points.nodes, H);
-      largest_squared = std::fmax(largest_squared, quadratic_strain_squared_norm<D>(H));
+      displacement_gradient<D, N>(view.u, points.gradients_t(q), points.nodes, H);
+      largest_squared = std::max(largest_squared, quadratic_strain_squared_norm<D>(H));
     }
     return 0.5 * std::sqrt(largest_squared);
   }

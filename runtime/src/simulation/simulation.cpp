@@ -71,6 +71,7 @@ void locate_max_displacement(const Model& model, const State& state, RunReport& 
 void collect_adaptivity(const Adaptivity* adaptivity, RunReport& report) {
   if (!adaptivity) return;
   report.criteria_seconds = adaptivity->criteria_seconds();
+  report.criterion_seconds = adaptivity->criterion_seconds();
   report.switches = adaptivity->total_switches();
   report.adaptivity = adaptivity->records();
 }

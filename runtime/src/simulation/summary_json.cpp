@@ -105,7 +105,8 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     j << "  \"adaptivity\": {\"criteria\": [";
     for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
       j << (i ? ", " : "") << "{\"name\": " << quoted(scene.adaptivity.criteria[i].name)
-        << ", \"threshold\": " << number(scene.adaptivity.criteria[i].threshold) << "}";
+        << ", \"threshold\": " << number(scene.adaptivity.criteria[i].threshold) << ", \"seconds\": "
+        << number(i < report.criterion_seconds.size() ? report.criterion_seconds[i] : 0.0) << "}";
     j << "], \"per_step\": [";
     for (std::size_t i = 0; i < report.adaptivity.size(); ++i) {
       const AdaptivityRecord& r = report.adaptivity[i];
