@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "solvers/solver_test_support.hpp"
 #include "tensormass/adaptivity.hpp"
 #include "tensormass/assembler.hpp"
 #include "tensormass/beam.hpp"
@@ -31,19 +32,11 @@ class AdaptiveBeam : public ::testing::Test {
 
   /// The origin's experiment: a soft cantilever sagging about a third of its length.
   static Scene scene(const std::string& law, const std::string& criterion = "", double threshold = 0) {
-    Scene s;
+    Scene s = test::cantilever(law);
     s.path = (directory_ / "scene.yaml").string();
     s.mesh = (directory_ / "beam.msh").string();
-    MaterialSpec material;
-    material.law = law;
-    material.young = 1e7;
-    material.poisson = 0.3;
-    material.density = 1000;
-    s.materials = {material};
-    s.fixed = {"clamp"};
-    s.loads.gravity = {0, -9.81, 0};
+    s.materials[0].young = 1e7;
     s.solver.load_steps = 4;
-    s.solver.tolerance = 1e-10;
     s.output.directory = (directory_ / ("out-" + law + criterion + std::to_string(threshold))).string();
     if (!criterion.empty()) {
       s.adaptivity.enabled = true;
