@@ -52,6 +52,19 @@ std::string format_report(const Scene& scene, const RunReport& report) {
     for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
       text << (i ? ", " : "") << scene.adaptivity.criteria[i].name << " " << scene.adaptivity.criteria[i].threshold;
     text << ": " << report.switches << " switches" << format(", criteria %.3f s\n", report.criteria_seconds);
+    // The checks that switched something (per-step records are in summary.json).
+    int shown = 0, hidden = 0;
+    std::ostringstream steps;
+    for (const AdaptivityRecord& record : report.adaptivity) {
+      if (record.upgrades + record.downgrades == 0) continue;
+      if (shown == 6) {
+        ++hidden;
+        continue;
+      }
+      steps << (shown++ ? ", " : "") << "step " << record.step << " +" << record.upgrades;
+      if (record.downgrades) steps << " -" << record.downgrades;
+    }
+    if (shown) text << "  switched  " << steps.str() << (hidden ? " and " + std::to_string(hidden) + " more" : "") << "\n";
   }
   if (dynamic) {
     double stepping = 0;
