@@ -7,6 +7,7 @@
 #include "tensormass/errors.hpp"
 #ifdef TENSORMASS_WITH_BENCH
 #include "kernel_bench.hpp"
+#include "paper_bench.hpp"
 #include "runtime_bench.hpp"
 #endif
 
@@ -20,6 +21,8 @@ constexpr const char* kUsage =
     "  demo [LAW [ELEMENT [SPLIT]]]     evaluate one element's energy, force and stiffness\n"
     "  bench kernels [--json FILE] [--quick]\n"
     "                                   time every kernel (median ns per element)\n"
+    "  bench paper [--quick | --smoke] [--json FILE] [--out DIR]\n"
+    "                                   the origin report's Table 1 and Figure 12 (docs/results/paper.md)\n"
     "  run SCENE.yaml [--set a.b=VALUE ...]\n"
     "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
     "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
@@ -53,7 +56,8 @@ int main(int argc, char** argv) {
 #ifdef TENSORMASS_WITH_BENCH
       if (!args.empty() && args[0] == "kernels") return tensormass::bench::kernels_command({args.begin() + 1, args.end()});
       if (!args.empty() && args[0] == "runtime") return tensormass::bench::runtime_command({args.begin() + 1, args.end()});
-      return usage_error("bench: expected 'kernels' or 'runtime'");
+      if (!args.empty() && args[0] == "paper") return tensormass::bench::paper_command({args.begin() + 1, args.end()});
+      return usage_error("bench: expected 'kernels', 'runtime' or 'paper'");
 #else
       return usage_error("bench: this build has no benchmarks (TENSORMASS_BUILD_BENCH=OFF)");
 #endif
