@@ -5,8 +5,8 @@
 namespace tensormass {
 
 namespace {
-constexpr int kMaxDofs = 81;  // hex20 in 3D is 60; 27 nodes by 3 leaves room
 constexpr int kParallelCells = 4096;
+constexpr int kChunkCells = 128;  // fixed: the summation order must not depend on the thread count
 
 
 /// g = w g_new + (1 - w) g_old (and the same for K) for a blending cell.
@@ -87,38 +87,48 @@ void Assembler::build_pattern() {
 }
 
 void Assembler::build_colours() {
-  // Greedy colouring: no two cells of a colour share a node.
+  // Cells are cut into chunks of consecutive cells (neighbours in a
+  // well-numbered mesh), and the chunks are coloured so that no two chunks
+  // of a colour share a node. A thread assembles whole chunks in cell order:
+  // memory is visited in order, there are few colours (few barriers), and
+  // since the chunk size does not depend on the thread count, neither does
+  // the order in which any entry is summed.
   const Model& model = *model_;
   const int cells = model.cell_count();
-  std::vector<std::vector<int>> node_cells(model.mesh().node_count());
+  const int chunks = (cells + kChunkCells - 1) / kChunkCells;
+  std::vector<std::vector<int>> node_chunks(model.mesh().node_count());
   for (int cell = 0; cell < cells; ++cell)
-    for (int node : model.cell_nodes(cell)) node_cells[node].push_back(cell);
-  std::vector<int> colour(cells, -1);
-  std::vector<int> used_by;  // used_by[c] == cell: colour c is taken by a neighbour of cell
+    for (int node : model.cell_nodes(cell)) {
+      auto& list = node_chunks[node];
+      if (list.empty() || list.back() != cell / kChunkCells) list.push_back(cell / kChunkCells);
+    }
+  std::vector<int> colour(chunks, -1);
+  std::vector<int> used_by;  // used_by[c] == chunk: colour c is taken by a neighbour of chunk
   int colours = 0;
-  for (int cell = 0; cell < cells; ++cell) {
-    for (int node : model.cell_nodes(cell))
-      for (int other : node_cells[node])
-        if (colour[other] >= 0) used_by[colour[other]] = cell;
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    const int end = std::min(cells, (chunk + 1) * kChunkCells);
+    for (int cell = chunk * kChunkCells; cell < end; ++cell)
+      for (int node : model.cell_nodes(cell))
+        for (int other : node_chunks[node])
+          if (colour[other] >= 0) used_by[colour[other]] = chunk;
     int c = 0;
-    while (c < colours && used_by[c] == cell) ++c;
+    while (c < colours && used_by[c] == chunk) ++c;
     if (c == colours) {
       ++colours;
       used_by.push_back(-1);
     }
-    colour[cell] = c;
+    colour[chunk] = c;
   }
   colour_start_.assign(colours + 1, 0);
-  for (int cell = 0; cell < cells; ++cell) ++colour_start_[colour[cell] + 1];
+  for (int chunk = 0; chunk < chunks; ++chunk) ++colour_start_[colour[chunk] + 1];
   for (int c = 0; c < colours; ++c) colour_start_[c + 1] += colour_start_[c];
-  coloured_cells_.resize(cells);
+  coloured_chunks_.resize(chunks);
   std::vector<int> next(colour_start_.begin(), colour_start_.end() - 1);
-  for (int cell = 0; cell < cells; ++cell) coloured_cells_[next[colour[cell]]++] = cell;
+  for (int chunk = 0; chunk < chunks; ++chunk) coloured_chunks_[next[colour[chunk]]++] = chunk;
 }
 
 void Assembler::assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {
   const Model& model = *model_;
-  const int d = model.dim();
   std::fill(gradient.begin(), gradient.end(), 0.0);
   if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
   // One parallel region for all colours; small meshes stay on one thread,
@@ -126,33 +136,41 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
   const int colours = colour_count();
 #pragma omp parallel if (model.cell_count() >= kParallelCells)
   {
-    double local_u[kMaxDofs], local_g[kMaxDofs], blend_g[kMaxDofs];
-    std::vector<double> local_k(stiffness ? kMaxDofs * kMaxDofs : 0), blend_k;
+    CellBuffers buffers(stiffness != nullptr);
     for (int c = 0; c < colours; ++c) {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
-        const int cell = coloured_cells_[k];
-        const tm_kernel& kernel = model.kernel(cell);
-        model.gather(cell, u, local_u);
-        if (model.blend_from(cell)) {
-          blend_cell(model, cell, local_u, local_g, stiffness ? local_k.data() : nullptr, blend_g, blend_k);
-        } else if (stiffness) {
-          kernel.gradient_hessian(local_u, model.consts(cell), local_g, local_k.data());
-        } else {
-          kernel.gradient(local_u, model.consts(cell), local_g);
-        }
-        if (stiffness) {
-          const int* scatter = scatter_.data() + scatter_offsets_[cell];
-          const int dofs2 = kernel.dofs * kernel.dofs;
-          for (int e = 0; e < dofs2; ++e)
-            if (scatter[e] >= 0) stiffness->values[scatter[e]] += local_k[e];
-        }
-        const auto cn = model.cell_nodes(cell);
-        for (int j = 0; j < static_cast<int>(cn.size()); ++j)
-          for (int a = 0; a < d; ++a) gradient[static_cast<std::size_t>(cn[j]) * d + a] += local_g[j * d + a];
+        const int first = coloured_chunks_[k] * kChunkCells;
+        const int last = std::min(model.cell_count(), first + kChunkCells);
+        for (int cell = first; cell < last; ++cell) assemble_cell(cell, u, gradient, stiffness, buffers);
       }
     }
   }
+}
+
+void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient,
+                              SparseMatrix* stiffness, CellBuffers& buffers) const {
+  const Model& model = *model_;
+  const int d = model.dim();
+  const tm_kernel& kernel = model.kernel(cell);
+  double* local_k = stiffness ? buffers.k.data() : nullptr;
+  model.gather(cell, u, buffers.u);
+  if (model.blend_from(cell)) {
+    blend_cell(model, cell, buffers.u, buffers.g, local_k, buffers.blend_g, buffers.blend_k);
+  } else if (stiffness) {
+    kernel.gradient_hessian(buffers.u, model.consts(cell), buffers.g, local_k);
+  } else {
+    kernel.gradient(buffers.u, model.consts(cell), buffers.g);
+  }
+  if (stiffness) {
+    const int* scatter = scatter_.data() + scatter_offsets_[cell];
+    const int dofs2 = kernel.dofs * kernel.dofs;
+    for (int e = 0; e < dofs2; ++e)
+      if (scatter[e] >= 0) stiffness->values[scatter[e]] += local_k[e];
+  }
+  const auto cn = model.cell_nodes(cell);
+  for (int j = 0; j < static_cast<int>(cn.size()); ++j)
+    for (int a = 0; a < d; ++a) gradient[static_cast<std::size_t>(cn[j]) * d + a] += buffers.g[j * d + a];
 }
 
 }  // namespace tensormass

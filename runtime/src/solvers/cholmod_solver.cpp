@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "tensormass/errors.hpp"
 #include "tensormass/linear_solver.hpp"
@@ -36,9 +37,13 @@ class CholmodSolver final : public LinearSolver {
     view.dtype = CHOLMOD_DOUBLE;
     view.sorted = 1;
     view.packed = 1;
-    if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) analyse(view, CHOLMOD_AUTO);
+    const bool same_pattern = factor_ && rows_ == A.rows && nonzeros_ == A.nonzeros();
+    // An unchanged matrix (Hooke's implicit step, a constant tangent) keeps its factor.
+    if (same_pattern && factorized_values_ == A.values) return;
+    if (!same_pattern) analyse(view, CHOLMOD_AUTO);
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
+    factorized_values_.clear();
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF && !simplicial_) {
       // Not positive definite (buckling, compressed StVK): LDL^T without
@@ -51,6 +56,7 @@ class CholmodSolver final : public LinearSolver {
       throw NumericalError("sparse Cholesky failed: the stiffness matrix is singular (column " +
                            std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
                            "); is the body constrained?");
+    factorized_values_ = A.values;
   }
 
   int solve(std::span<const double> b, std::span<double> x) override {
@@ -81,6 +87,7 @@ class CholmodSolver final : public LinearSolver {
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
   int rows_ = -1, nonzeros_ = -1;
+  std::vector<double> factorized_values_;
   bool simplicial_ = false;
 };
 
