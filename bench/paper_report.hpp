@@ -46,6 +46,8 @@ struct PaperRow {
   double error = 0;                  ///< trajectory_error against the pure StVK run
   int upgraded = 0;                  ///< elements under StVK at the end (pure stvk: all; hooke: 0)
   double criteria_ms = 0;            ///< criteria time per step (median over repetitions)
+  double assembly_ms = 0;            ///< assembly time per step (median over repetitions)
+  double solve_ms = 0;               ///< factorisation + solve time per step (median over repetitions)
   std::vector<double> samples;       ///< mean ms per step of each repetition
 };
 
@@ -56,7 +58,7 @@ std::string json_number(double value);
 
 /// The rows as a JSON array, one object per row with the keys beam,
 /// elements, mode, threshold (null for pure runs), ms_per_step,
-/// ms_per_step_median, error, upgraded, criteria_ms, samples.
+/// ms_per_step_median, error, upgraded, criteria_ms, assembly_ms, solve_ms, samples.
 std::string rows_json(const std::vector<PaperRow>& rows);
 
 /// The origin report's Table 1 (mean ms per step; thresholds in the

@@ -1,0 +1,155 @@
+// The untimed logic of `tensormass bench paper` (bench/paper_report.hpp):
+// the error metric of the origin's Figure 12, the threshold calibration
+// helper, the JSON rows and the markdown tables, on hand-made data.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "paper_report.hpp"
+
+namespace tensormass::bench {
+namespace {
+
+TEST(PaperError, NodalDistanceIsEuclideanPerNode) {
+  // Two 2D nodes: displacements differ by (3, 4) at node 1 -> distance 5.
+  const std::vector<double> a{0, 0, 1, 1}, b{0, 0, 4, 5};
+  EXPECT_DOUBLE_EQ(max_nodal_distance(a, b, 2), 5.0);
+  // Read as 1D nodes the same data gives the largest component (4).
+  EXPECT_DOUBLE_EQ(max_nodal_distance(a, b, 1), 4.0);
+  // 3D: one node.
+  const std::vector<double> c{1, 2, 2}, d{0, 0, 0};
+  EXPECT_DOUBLE_EQ(max_nodal_distance(c, d, 3), 3.0);
+  EXPECT_DOUBLE_EQ(max_nodal_distance(c, c, 3), 0.0);
+}
+
+TEST(PaperError, NodalDistanceRejectsMismatchAndKeepsNan) {
+  const std::vector<double> a{0, 0, 0, 0}, b{0, 0, 0};
+  EXPECT_THROW(max_nodal_distance(a, b, 2), std::invalid_argument);
+  EXPECT_THROW(max_nodal_distance(b, b, 2), std::invalid_argument);
+  const std::vector<double> nan{0, 0, std::numeric_limits<double>::quiet_NaN(), 0};
+  EXPECT_TRUE(std::isnan(max_nodal_distance(nan, a, 2)));
+}
+
+TEST(PaperError, TrajectoryErrorIsTheWorstStepOverLength) {
+  const Trajectory reference{{0, 0}, {0, 0}, {0, 0}};
+  const Trajectory run{{0, 1}, {0, 3}, {0, 2}};  // one 2D node; worst distance 3 at step 2
+  EXPECT_DOUBLE_EQ(trajectory_error(run, reference, 2, 6.0), 0.5);
+  EXPECT_DOUBLE_EQ(trajectory_error(reference, reference, 2, 6.0), 0.0);
+  // A run that stopped early is not comparable.
+  const Trajectory shorter{{0, 1}};
+  EXPECT_THROW(trajectory_error(shorter, reference, 2, 6.0), std::invalid_argument);
+  EXPECT_THROW(trajectory_error(run, reference, 2, 0.0), std::invalid_argument);
+}
+
+TEST(PaperError, UpgradeThresholdLeavesTheShareAbove) {
+  std::vector<double> values;
+  for (int i = 1; i <= 100; ++i) values.push_back(i);
+  auto above = [&](double t) {
+    int n = 0;
+    for (double v : values) n += v > t;
+    return n;
+  };
+  EXPECT_EQ(above(upgrade_threshold(values, 0.5)), 50);
+  EXPECT_EQ(above(upgrade_threshold(values, 0.2)), 20);
+  EXPECT_EQ(above(upgrade_threshold(values, 0.05)), 5);
+  EXPECT_EQ(above(upgrade_threshold(values, 0.001)), 1);  // at least one element
+  EXPECT_THROW(upgrade_threshold({}, 0.5), std::invalid_argument);
+  EXPECT_THROW(upgrade_threshold(values, 1.0), std::invalid_argument);
+}
+
+TEST(PaperStatistics, MedianAndMean) {
+  EXPECT_DOUBLE_EQ(median({3, 1, 2}), 2.0);
+  EXPECT_DOUBLE_EQ(median({4, 1, 2, 3}), 2.5);
+  EXPECT_DOUBLE_EQ(mean({1, 2, 3, 6}), 3.0);
+  EXPECT_TRUE(std::isnan(median({})));
+}
+
+std::vector<PaperRow> sample_rows() {
+  auto row = [](std::string mode, std::optional<double> threshold, double ms, double error, int upgraded) {
+    PaperRow r;
+    r.beam = "quad 60x10";
+    r.elements = 600;
+    r.mode = std::move(mode);
+    r.threshold = threshold;
+    r.ms_per_step = ms;
+    r.ms_per_step_median = ms * 0.9;
+    r.error = error;
+    r.upgraded = upgraded;
+    r.samples = {ms, ms * 1.1};
+    return r;
+  };
+  return {row("hooke", std::nullopt, 1.0, 0.04, 0),   row("stvk", std::nullopt, 1.2, 0.0, 600),
+          row("R_EL", 0.06, 1.05, 0.03, 100),         row("R_EL", 0.015, 1.15, 0.01, 500),
+          row("R_EL", 0.03, 1.1, 0.02, 300),          row("R_NL", 0.03, 1.1, 0.015, 400)};
+}
+
+TEST(PaperJson, RowsHaveTheSchemaKeys) {
+  const std::string json = rows_json(sample_rows());
+  for (const char* key : {"\"beam\": \"quad 60x10\"", "\"elements\": 600", "\"mode\": \"hooke\"", "\"threshold\": null",
+                          "\"threshold\": 0.015", "\"ms_per_step\": 1.15", "\"error\": 0.01", "\"upgraded\": 500",
+                          "\"samples\": [1, 1.1]", "\"ms_per_step_median\":", "\"criteria_ms\": 0"})
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  EXPECT_EQ(json.front(), '[');
+  EXPECT_EQ(json.back(), ']');
+  // One object per row.
+  std::size_t objects = 0;
+  for (std::size_t at = json.find("{\"beam\""); at != std::string::npos; at = json.find("{\"beam\"", at + 1)) ++objects;
+  EXPECT_EQ(objects, sample_rows().size());
+  EXPECT_EQ(rows_json({}), "[]");
+}
+
+TEST(PaperJson, StringsAndNumbersAreValidJson) {
+  EXPECT_EQ(json_string("a\"b\\c\n"), "\"a\\\"b\\\\c\\n\"");
+  EXPECT_EQ(json_string(std::string(1, '\x01')), "\"\\u0001\"");
+  EXPECT_EQ(json_number(0.015), "0.015");
+  EXPECT_EQ(json_number(600), "600");
+  EXPECT_EQ(json_number(std::numeric_limits<double>::quiet_NaN()), "null");
+  EXPECT_EQ(json_number(std::numeric_limits<double>::infinity()), "null");
+}
+
+TEST(PaperTable, OriginLayoutWithOurCellsAndTheOrigins) {
+  const std::string table = markdown_table(sample_rows(), "quad 60x10", 600);
+  // Rows in the origin's order, thresholds sorted within a row.
+  const auto hooke = table.find("| Hooke |"), el = table.find("| R_EL |"), stvk = table.find("| StVK |");
+  ASSERT_NE(hooke, std::string::npos);
+  ASSERT_NE(el, std::string::npos);
+  ASSERT_NE(stvk, std::string::npos);
+  EXPECT_LT(hooke, el);
+  EXPECT_LT(el, stvk);
+  const auto t1 = table.find("(0.015;"), t2 = table.find("(0.03;"), t3 = table.find("(0.06;");
+  EXPECT_LT(t1, t2);
+  EXPECT_LT(t2, t3);
+  EXPECT_NE(table.find("**1.15** (0.015; 0.01; 500)"), std::string::npos) << table;
+  // The origin's numbers beside ours.
+  EXPECT_NE(table.find("16.273"), std::string::npos);
+  EXPECT_NE(table.find("2.690 | 0.561 | 0.125"), std::string::npos);
+  // R_V has no run here but keeps the origin's row; R_NL has no origin value.
+  EXPECT_NE(table.find("| R_V |"), std::string::npos);
+  EXPECT_NE(table.find("| R_NL | **1.10**"), std::string::npos) << table;
+  // Without the origin: no origin columns.
+  EXPECT_EQ(markdown_table(sample_rows(), "quad 60x10", 0).find("16.273"), std::string::npos);
+}
+
+TEST(PaperTable, RatiosAgainstStvkAndHooke) {
+  const std::string ratios = markdown_ratios(sample_rows(), "quad 60x10");
+  // StVK / Hooke = 1.2; R_EL 0.015: 1.15 / 1.2 = 0.96, position (1.15 - 1) / 0.2 = 0.75, error / Hooke's = 0.25.
+  EXPECT_NE(ratios.find("StVK / Hooke (ms per step): **1.20**"), std::string::npos) << ratios;
+  EXPECT_NE(ratios.find("| R_EL | 0.015 | 1.15 | 0.96 | 0.75 | 0.01 | 0.25 | 500 / 600 |"), std::string::npos)
+      << ratios;
+  EXPECT_EQ(markdown_ratios(sample_rows(), "no such beam"), "");
+}
+
+TEST(PaperTable, FindRowByModeAndThreshold) {
+  const auto rows = sample_rows();
+  ASSERT_NE(find_row(rows, "quad 60x10", "R_EL", 0.03), nullptr);
+  EXPECT_EQ(find_row(rows, "quad 60x10", "R_EL", 0.03)->upgraded, 300);
+  EXPECT_EQ(find_row(rows, "quad 60x10", "R_V"), nullptr);
+  EXPECT_EQ(find_row(rows, "quad 60x10", "stvk")->upgraded, 600);
+}
+
+}  // namespace
+}  // namespace tensormass::bench
