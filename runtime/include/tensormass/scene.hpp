@@ -72,6 +72,9 @@ struct LinearSolverSpec {
   std::string type = "cholmod";   ///< cholmod | cg
   double tolerance = 1e-10;       ///< cg: relative residual
   int max_iterations = 10000;     ///< cg
+  /// cholmod: when the matrix changed, first try at most this many CG
+  /// iterations preconditioned by the previous factor (0 = always refactorise)
+  int reuse_iterations = 12;
 };
 
 struct SolverSpec {

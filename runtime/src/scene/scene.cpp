@@ -41,7 +41,7 @@ const KeyTable& scene_keys() {
        {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "damping", "linear",
         "threads"}},
       {"solver.damping", {"mass", "stiffness"}},
-      {"solver.linear", {"type", "tolerance", "max_iterations"}},
+      {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations"}},
       {"adaptivity", {"criteria", "action", "every", "blend_steps", "downgrade"}},
       {"adaptivity.criteria[]", {"name", "threshold"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
@@ -230,6 +230,7 @@ LinearSolverSpec read_linear(const Value& section) {
   read_optional(section, "type", linear.type, [](const Value& v) { return one_of(v, kLinearTypes, "linear solver"); });
   read_optional(section, "tolerance", linear.tolerance, open_fraction);
   read_optional(section, "max_iterations", linear.max_iterations, at_least(1));
+  read_optional(section, "reuse_iterations", linear.reuse_iterations, at_least(0));
   return linear;
 }
 

@@ -1,10 +1,13 @@
-// Sparse Cholesky through the CHOLMOD C API (SuiteSparse).
+// Sparse Cholesky through the CHOLMOD C API (SuiteSparse), with the
+// previous factor reused as a CG preconditioner while the matrix changes
+// little (a Newton or implicit step's tangent drifts slowly).
 #include <cholmod.h>
 
 #include <algorithm>
 #include <cstring>
 #include <vector>
 
+#include "preconditioned_cg.hpp"
 #include "tensormass/errors.hpp"
 #include "tensormass/linear_solver.hpp"
 
@@ -12,9 +15,31 @@ namespace tensormass {
 
 namespace {
 
+/// A's lower triangle as CHOLMOD reads it. A stores both triangles; as
+/// compressed columns it is the same (symmetric) matrix, and stype = -1
+/// makes CHOLMOD ignore the upper part.
+cholmod_sparse view_of(const SparseMatrix& A) {
+  cholmod_sparse view{};
+  view.nrow = view.ncol = static_cast<std::size_t>(A.rows);
+  view.nzmax = A.values.size();
+  view.p = const_cast<int*>(A.row_start.data());
+  view.i = const_cast<int*>(A.columns.data());
+  view.x = const_cast<double*>(A.values.data());
+  view.stype = -1;
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  return view;
+}
+
 class CholmodSolver final : public LinearSolver {
  public:
-  CholmodSolver() { cholmod_start(&common_); common_.print = 0; }
+  explicit CholmodSolver(const LinearSolverSpec& spec) : spec_(spec) {
+    cholmod_start(&common_);
+    common_.print = 0;
+  }
   ~CholmodSolver() override {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_finish(&common_);
@@ -23,27 +48,41 @@ class CholmodSolver final : public LinearSolver {
   CholmodSolver& operator=(const CholmodSolver&) = delete;
 
   void factorize(const SparseMatrix& A) override {
-    // A is stored with both triangles; as compressed columns it is the same
-    // matrix (symmetric), and stype = -1 makes CHOLMOD read only its lower part.
-    cholmod_sparse view{};
-    view.nrow = view.ncol = static_cast<std::size_t>(A.rows);
-    view.nzmax = A.values.size();
-    view.p = const_cast<int*>(A.row_start.data());
-    view.i = const_cast<int*>(A.columns.data());
-    view.x = const_cast<double*>(A.values.data());
-    view.stype = -1;
-    view.itype = CHOLMOD_INT;
-    view.xtype = CHOLMOD_REAL;
-    view.dtype = CHOLMOD_DOUBLE;
-    view.sorted = 1;
-    view.packed = 1;
+    current_ = &A;
     const bool same_pattern = factor_ && rows_ == A.rows && nonzeros_ == A.nonzeros();
+    lagged_ = false;
     // An unchanged matrix (Hooke's implicit step, a constant tangent) keeps its factor.
     if (same_pattern && factorized_values_ == A.values) return;
-    if (!same_pattern) analyse(view, CHOLMOD_AUTO);
+    // A changed one first tries CG preconditioned by the old factor (solve()).
+    if (same_pattern && spec_.reuse_iterations > 0) {
+      lagged_ = true;
+      return;
+    }
+    factorize_now(A);
+  }
+
+  int solve(std::span<const double> b, std::span<double> x) override {
+    if (lagged_) {
+      const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
+      const detail::PcgResult result = detail::preconditioned_cg(*current_, b, x, old_factor, spec_.tolerance,
+                                                                 spec_.reuse_iterations, workspace_);
+      if (result.converged) return result.iterations;
+      factorize_now(*current_);  // drifted too far: a fresh factor
+    }
+    direct_solve(b, x);
+    return 1;
+  }
+
+  std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
+
+ private:
+  void factorize_now(const SparseMatrix& A) {
+    cholmod_sparse view = view_of(A);
+    if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) analyse(view, CHOLMOD_AUTO);
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
     factorized_values_.clear();
+    lagged_ = false;
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF && !simplicial_) {
       // Not positive definite (buckling, compressed StVK): LDL^T without
@@ -59,7 +98,7 @@ class CholmodSolver final : public LinearSolver {
     factorized_values_ = A.values;
   }
 
-  int solve(std::span<const double> b, std::span<double> x) override {
+  void direct_solve(std::span<const double> b, std::span<double> x) {
     cholmod_dense rhs{};
     rhs.nrow = rhs.nzmax = rhs.d = b.size();
     rhs.ncol = 1;
@@ -70,12 +109,8 @@ class CholmodSolver final : public LinearSolver {
     if (!solution) throw NumericalError("sparse Cholesky solve failed");
     std::memcpy(x.data(), solution->x, sizeof(double) * x.size());
     cholmod_free_dense(&solution, &common_);
-    return 1;
   }
 
-  std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
-
- private:
   void analyse(cholmod_sparse& view, int supernodal) {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     common_.supernodal = supernodal;
@@ -84,15 +119,20 @@ class CholmodSolver final : public LinearSolver {
     if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
   }
 
+  LinearSolverSpec spec_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
+  const SparseMatrix* current_ = nullptr;
   int rows_ = -1, nonzeros_ = -1;
   std::vector<double> factorized_values_;
-  bool simplicial_ = false;
+  bool simplicial_ = false, lagged_ = false;
+  detail::PcgWorkspace workspace_;
 };
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodSolver>(); }
+std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSpec& spec) {
+  return std::make_unique<CholmodSolver>(spec);
+}
 
 }  // namespace tensormass
