@@ -11,7 +11,8 @@
 ///   R_S    |(1/v) sum_q w_q det(J0_q) sum_j N_j(q) f_j|, f_j the internal
 ///          force at node j assembled over all elements (the origin's F_j,
 ///          "the force applied at the vertex"; an element's own forces sum
-///          to zero); force per volume
+///          to zero); a force (N): the shape-weighted average of the
+///          nodal forces over the element
 ///   R_NL   max over quadrature points of |1/2 H^T H|_F, the quadratic part
 ///          of the Green-Lagrange strain that the linear law drops
 ///
