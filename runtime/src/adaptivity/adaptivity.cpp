@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string_view>
 
 #include "tensormass/errors.hpp"
 
@@ -101,7 +102,7 @@ int Adaptivity::update(std::span<const double> u, int step) {
   AdaptivityRecord record;
   record.step = step;
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
-    const std::string law = model_->kernel(cell).law;
+    const std::string_view law = model_->kernel(cell).law;
     const bool initial = &model_->kernel(cell) == &model_->initial_kernel(cell);
     if (law == kLinearLaw && initial) {
       if (cell_fails(cell)) {
@@ -109,7 +110,7 @@ int Adaptivity::update(std::span<const double> u, int step) {
         calm_evaluations_[cell] = 0;
         ++record.upgrades;
       }
-    } else if (spec_.downgrade && !initial && std::string(model_->initial_kernel(cell).law) == kLinearLaw) {
+    } else if (spec_.downgrade && !initial && std::string_view(model_->initial_kernel(cell).law) == kLinearLaw) {
       calm_evaluations_[cell] = cell_is_calm(cell) ? calm_evaluations_[cell] + 1 : 0;
       if (calm_evaluations_[cell] >= spec_.calm_steps) {
         switch_law(cell, kLinearLaw);

@@ -129,6 +129,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   detail::Progress progress(total_steps(scene), scene.solver.type, options.progress);
   auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
+  std::size_t counted_steps = 0;
+  double stepping_ms = 0;
   int resolves = 0;  // static: repeats of the current load step after switches
   constexpr int kMaxResolves = 20;
   const StepObserver observer = [&](const State& state) {
@@ -159,10 +161,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
       series.push_back({state.time, name});
       io::write_pvd(output_path("series.pvd"), series);
     }
-    const auto& ms = statistics.step_ms;
-    double mean = 0;
-    for (double x : ms) mean += x / ms.size();
-    progress.update(state.step, mean);
+    // Running sum of the finished steps (a repeated static step is popped
+    // before it is ever counted here).
+    for (; counted_steps < statistics.step_ms.size(); ++counted_steps) stepping_ms += statistics.step_ms[counted_steps];
+    progress.update(state.step, counted_steps ? stepping_ms / counted_steps : 0.0);
     return false;
   };
   State state;
