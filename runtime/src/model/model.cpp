@@ -158,23 +158,66 @@ double Model::strain_energy(std::span<const double> u) const {
   return total;
 }
 
+namespace {
+
+/// True when det(I + grad u) <= 0 (or NaN) at a quadrature point of the
+/// cell; D, N fixed so that the loops unroll (this runs every step).
+template <int D, int N>
+bool inverted_at_a_point(const double* u, const double* consts, int derived, int points) {
+  for (int q = 0; q < points; ++q) {
+    const double* GT = consts + derived + q * (1 + D * N) + 1;
+    double F[D][D];
+    for (int a = 0; a < D; ++a)
+      for (int c = 0; c < D; ++c) {
+        double sum = a == c ? 1.0 : 0.0;
+        for (int j = 0; j < N; ++j) sum += u[j * D + a] * GT[c * N + j];
+        F[a][c] = sum;
+      }
+    double det;
+    if constexpr (D == 2) {
+      det = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+    } else {
+      det = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+            F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+    }
+    if (!(det > 0.0)) return true;
+  }
+  return false;
+}
+
+using InversionCheck = bool (*)(const double*, const double*, int, int);
+
+InversionCheck inversion_check(int dim, int nodes) {
+  if (dim == 2) {
+    switch (nodes) {
+      case 3: return inverted_at_a_point<2, 3>;
+      case 4: return inverted_at_a_point<2, 4>;
+      case 6: return inverted_at_a_point<2, 6>;
+      case 8: return inverted_at_a_point<2, 8>;
+    }
+  } else {
+    switch (nodes) {
+      case 4: return inverted_at_a_point<3, 4>;
+      case 5: return inverted_at_a_point<3, 5>;
+      case 6: return inverted_at_a_point<3, 6>;
+      case 8: return inverted_at_a_point<3, 8>;
+      case 10: return inverted_at_a_point<3, 10>;
+      case 20: return inverted_at_a_point<3, 20>;
+    }
+  }
+  throw std::logic_error("no inversion check for " + std::to_string(nodes) + "-node elements");
+}
+
+}  // namespace
+
 int Model::first_inverted_cell(std::span<const double> u) const {
   double local[81];
-  for (int cell = 0; cell < cell_count(); ++cell) {
-    const tm_kernel& kernel = *kernels_[cell];
-    const int n = kernel.nodes, d = dim_;
-    gather(cell, u, local);
-    for (int q = 0; q < kernel.quadrature_points; ++q) {
-      const double* GT = consts(cell) + kernel.derived_params + q * (1 + d * n) + 1;
-      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c)
-          for (int j = 0; j < n; ++j) F[a][c] += local[j * d + a] * GT[c * n + j];
-      const double det = d == 2 ? F[0][0] * F[1][1] - F[0][1] * F[1][0]
-                                : F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
-                                      F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
-                                      F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-      if (!(det > 0.0)) return cell;
+  for (const ElementBlock& block : mesh_->blocks) {
+    const InversionCheck inverted = inversion_check(dim_, block.element->nodes);
+    for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
+      const tm_kernel& kernel = *kernels_[cell];
+      gather(cell, u, local);
+      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) return cell;
     }
   }
   return -1;
