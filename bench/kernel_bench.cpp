@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "handwritten_stvk.hpp"
+#include "machine_info.hpp"
 #include "tensormass/registry.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
@@ -342,16 +343,6 @@ std::vector<std::string> cross_check(const std::vector<Row*>& rows, const Geomet
   return warnings;
 }
 
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  return "unknown CPU";
-}
 
 double gflops(long flops, double ns) { return ns > 0.0 ? static_cast<double>(flops) / ns : 0.0; }
 

@@ -8,6 +8,7 @@
 // (solve + criteria + switches), on one thread; the first step (CHOLMOD's
 // symbolic analysis, first touch) is not counted. Displacements are
 // recorded in the first repetition only (all repetitions are identical).
+#include "machine_info.hpp"
 #include "paper_bench.hpp"
 
 #include <dlfcn.h>
@@ -107,23 +108,7 @@ struct RunResult {
 
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  return "unknown CPU";
-}
 
-std::string load_average() {
-  std::ifstream file("/proc/loadavg");
-  std::string one, five, fifteen;
-  if (!(file >> one >> five >> fifteen)) return "unknown";
-  return one + " " + five + " " + fifteen;
-}
 
 /// One thread for OpenMP and, when CHOLMOD loaded OpenBLAS, for BLAS too.
 void single_thread() {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "calculix_runner.hpp"
+#include "machine_info.hpp"
 #include "tensormass/assembler.hpp"
 #include "tensormass/beam.hpp"
 #include "tensormass/integrators.hpp"
@@ -80,24 +81,7 @@ double mean(const std::vector<double>& values) {
   return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
 }
 
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  return "unknown CPU";
-}
 
-/// The first three fields of /proc/loadavg (1, 5, 15 minutes): how busy the machine was.
-std::string load_average() {
-  std::ifstream file("/proc/loadavg");
-  std::string one, five, fifteen;
-  if (!(file >> one >> five >> fifteen)) return "unknown";
-  return one + " " + five + " " + fifteen;
-}
 
 /// OpenBLAS's thread control when the BLAS that CHOLMOD loaded is OpenBLAS.
 struct BlasThreads {
