@@ -8,7 +8,6 @@
 // (solve + criteria + switches), on one thread; the first step (CHOLMOD's
 // symbolic analysis, first touch) is not counted. Displacements are
 // recorded in the first repetition only (all repetitions are identical).
-#include "machine_info.hpp"
 #include "paper_bench.hpp"
 
 #include <dlfcn.h>
@@ -29,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "machine_info.hpp"
 #include "paper_report.hpp"
 #include "tensormass/adaptivity.hpp"
 #include "tensormass/assembler.hpp"
