@@ -113,6 +113,9 @@ struct AdaptivitySpec {
 struct OutputSpec {
   std::string directory = "out";  ///< resolved relative to the scene file (absolute paths kept)
   int every = 0;                  ///< 0 = final state only
+  /// Groups (with cells) whose centroid is written to track_<group>.csv every step (track.hpp).
+  std::vector<std::string> track;
+  std::vector<int> track_lines;   ///< 1-based line of each `track` entry (0: from --set), for messages
 };
 
 struct Scene {

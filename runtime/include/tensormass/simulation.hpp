@@ -28,6 +28,19 @@ struct RunReport {
   SolveStatistics statistics;
   double wall_seconds = 0;
   double output_seconds = 0;
+  /// Dynamic runs (0 for static ones): completed steps * dt.
+  double simulated_seconds = 0;
+  /// Dynamic runs: wall seconds of the time loop, summed over the completed
+  /// steps: the integrator's step (loads, constraints, assembly, linear
+  /// solves, finiteness and inversion checks) plus the adaptive model's work
+  /// after it (blends, criteria, switches). Not timed: reading the mesh,
+  /// building the model and solver, the explicit stable-step estimate, frame
+  /// and track output, the progress display and summary.json.
+  double loop_seconds = 0;
+  /// simulated_seconds / loop_seconds (0 when nothing was timed).
+  double real_time_factor() const { return loop_seconds > 0 ? simulated_seconds / loop_seconds : 0.0; }
+  /// Tracked groups and their files (relative to output_directory), in scene order.
+  std::vector<std::pair<std::string, std::string>> tracks;
   int nodes = 0, cells = 0, dofs = 0, free_dofs = 0;
   std::vector<std::pair<std::string, int>> cells_per_law;
   std::vector<std::pair<std::string, int>> cells_per_type;

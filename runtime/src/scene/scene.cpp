@@ -9,6 +9,7 @@
 
 #include "tensormass/errors.hpp"
 #include "tensormass/registry.hpp"
+#include "tensormass/track.hpp"
 #include "yaml_reader.hpp"
 
 namespace tensormass {
@@ -45,7 +46,7 @@ const KeyTable& scene_keys() {
       {"adaptivity", {"criteria", "action", "every", "blend_steps", "downgrade"}},
       {"adaptivity.criteria[]", {"name", "threshold"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
-      {"output", {"directory", "every"}},
+      {"output", {"directory", "every", "track"}},
   };
   return table;
 }
@@ -298,12 +299,29 @@ AdaptivitySpec read_adaptivity(const Value& section) {
   return spec;
 }
 
+/// Group names, each once and each with its own track file name.
+void read_track(const Value& list, OutputSpec& output) {
+  if (!list.present()) return;
+  if (!list.is_list()) list.fail("expected a list of group names, got " + list.describe());
+  for (const Value& item : list.items()) {
+    const std::string name = item.text();
+    for (const std::string& before : output.track) {
+      if (before == name) item.fail("group '" + name + "' is listed twice");
+      if (track_file_name(before) == track_file_name(name))
+        item.fail("groups '" + before + "' and '" + name + "' would both write " + track_file_name(name));
+    }
+    output.track.push_back(name);
+    output.track_lines.push_back(item.line());
+  }
+}
+
 OutputSpec read_output(const Value& section, const fs::path& directory) {
   OutputSpec output;
   if (section.present()) {
     section.expect_map();
     read_optional(section, "directory", output.directory, [](const Value& v) { return v.text(); });
     read_optional(section, "every", output.every, at_least(0));
+    read_track(section.child("track"), output);
   }
   output.directory = resolve_path(directory, output.directory);
   return output;

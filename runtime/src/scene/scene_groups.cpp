@@ -63,6 +63,14 @@ void check_groups(const Scene& scene, const Mesh& mesh) {
                        "' has no boundary facets (elements of dimension " + std::to_string(mesh.dim - 1) + ") in " +
                        mesh_name(mesh) + ", so no pressure can act on it");
   }
+  for (std::size_t i = 0; i < scene.output.track.size(); ++i) {
+    const int line = i < scene.output.track_lines.size() ? scene.output.track_lines[i] : 0;
+    const std::string key = indexed("output.track", i, "");
+    const Group& group = require_group(scene, mesh, scene.output.track[i], line, key);
+    if (group.cells.empty())
+      throw InputError(place(scene, line, key) + "group '" + group.name + "' has no cells (elements of dimension " +
+                       std::to_string(mesh.dim) + ") in " + mesh_name(mesh) + ", so it has no centroid to track");
+  }
 }
 
 }  // namespace tensormass

@@ -66,12 +66,9 @@ std::string format_report(const Scene& scene, const RunReport& report) {
     }
     if (shown) text << "  switched  " << steps.str() << (hidden ? " and " + std::to_string(hidden) + " more" : "") << "\n";
   }
-  if (dynamic) {
-    double stepping = 0;
-    for (double x : s.step_ms) stepping += x / 1e3;
-    text << format("  simulated %.4g s, real-time factor %.3g\n", report.state.time,
-                   stepping > 0 ? report.state.time / stepping : 0.0);
-  }
+  if (dynamic)
+    text << format("  speed     real-time factor %.3g (%.4g s simulated in %.4g s)\n", report.real_time_factor(),
+                   report.simulated_seconds, report.loop_seconds);
   text << format("  result    max displacement %.6g", report.max_displacement) << " at node "
        << report.max_displacement_node << "\n";
   for (const std::string& warning : s.warnings) text << "  warning   " << warning << "\n";

@@ -20,6 +20,7 @@
 #include "tensormass/mesh.hpp"
 #include "tensormass/model.hpp"
 #include "tensormass/registry.hpp"
+#include "tensormass/track.hpp"
 
 namespace tensormass {
 
@@ -88,6 +89,32 @@ int total_steps(const Scene& scene) {
   return scene.solver.type == "static" ? scene.solver.load_steps : scene.solver.steps;
 }
 
+/// One track per `output.track` group (the groups were checked before).
+std::vector<GroupTrack> make_tracks(const Scene& scene, const Mesh& mesh) {
+  std::vector<GroupTrack> tracks;
+  for (const std::string& name : scene.output.track) tracks.emplace_back(mesh, *mesh.group(name));
+  return tracks;
+}
+
+/// Writes every track's CSV and lists it in the report.
+void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& directory, RunReport& report) {
+  detail::PhaseTimer timer(report.output_seconds);
+  for (const GroupTrack& track : tracks) {
+    const std::string name = track_file_name(track.name());
+    track.write_csv((fs::path(directory) / name).string());
+    report.files.push_back(name);
+    report.tracks.push_back({track.name(), name});
+  }
+}
+
+/// Simulated and time-loop seconds of a dynamic run (see RunReport::loop_seconds).
+void time_loop(const Scene& scene, const State& state, double adaptivity_seconds, RunReport& report) {
+  if (scene.solver.type == "static") return;
+  report.simulated_seconds = state.step * scene.solver.dt;
+  report.loop_seconds = adaptivity_seconds;
+  for (double ms : report.statistics.step_ms) report.loop_seconds += ms / 1e3;
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
@@ -106,6 +133,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     adaptivity = std::make_unique<Adaptivity>(spec, model, assembler);
   }
   std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
+  std::vector<GroupTrack> tracks = make_tracks(scene, mesh);
   if (scene.solver.type == "explicit" && scene.solver.damping_stiffness != 0.0)
     throw InputError(scene.path + ": solver.damping.stiffness is not supported by the explicit solver (use damping.mass)");
 
@@ -131,12 +159,17 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
   std::size_t counted_steps = 0;
   double stepping_ms = 0;
+  double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;  // static: repeats of the current load step after switches
   constexpr int kMaxResolves = 20;
   const StepObserver observer = [&](const State& state) {
     if (adaptivity) {
-      if (dynamic) adaptivity->advance_blends();
-      const int switches = adaptivity->update(state.displacement, state.step);
+      int switches = 0;
+      {
+        detail::PhaseTimer timer(adaptivity_seconds);
+        if (dynamic) adaptivity->advance_blends();
+        switches = adaptivity->update(state.displacement, state.step);
+      }
       if (!dynamic && switches > 0 && resolves < kMaxResolves) {
         ++resolves;
         return true;  // solve this load step again with the new laws
@@ -147,6 +180,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     }
     resolves = 0;
     last_good = state;
+    if (!tracks.empty()) {
+      detail::PhaseTimer timer(report.output_seconds);
+      for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+    }
     // Per-step phase times, from the running totals.
     const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
     report.step_assembly_ms.push_back(1e3 * (statistics.assembly_seconds - phase_marks[0]));
@@ -170,6 +207,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   State state;
   state.displacement.assign(model.dof_count(), 0.0);
   state.velocity.assign(model.dof_count(), 0.0);
+  for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
   try {
     if (scene.solver.type == "static") solve_static(run, state, observer);
     else if (scene.solver.type == "implicit") solve_implicit(run, state, observer);
@@ -179,7 +217,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     progress.finish();
     write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());
     report.files.push_back("last_good.vtu");
+    write_tracks(tracks, scene.output.directory, report);
     report.state = last_good;
+    time_loop(scene, last_good, adaptivity_seconds, report);
     report.wall_seconds = detail::seconds_since(start);
     count_cells(model, report);
     collect_adaptivity(adaptivity.get(), report);
@@ -195,6 +235,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   }
   report.files.push_back("final.vtu");
   if (!series.empty()) report.files.push_back("series.pvd");
+  write_tracks(tracks, scene.output.directory, report);
+  time_loop(scene, state, adaptivity_seconds, report);
   report.state = std::move(state);
   count_cells(model, report);
   collect_adaptivity(adaptivity.get(), report);

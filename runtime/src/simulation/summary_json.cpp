@@ -54,8 +54,6 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
                    const std::string& failure) {
   const SolveStatistics& s = report.statistics;
   const auto [mean, median] = mean_and_median(s.step_ms);
-  double steps_total_s = 0;
-  for (double x : s.step_ms) steps_total_s += x / 1e3;
   const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds -
                                          report.criteria_seconds);
   const bool dynamic = scene.solver.type != "static";
@@ -122,16 +120,19 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   for (std::size_t i = 0; i < model.law_names().size(); ++i)
     j << (i ? ", " : "") << quoted(std::to_string(i)) << ": " << quoted(model.law_names()[i]);
   j << "},\n";
-  if (dynamic) {
-    j << "  \"simulated_time_s\": " << number(report.state.time) << ",\n";
-    j << "  \"real_time_factor\": " << number(steps_total_s > 0 ? report.state.time / steps_total_s : 0) << ",\n";
-  }
+  // Real time (RunReport::loop_seconds says what is timed); null for static solves.
+  j << "  \"simulated_seconds\": " << (dynamic ? number(report.simulated_seconds) : "null")
+    << ", \"time_loop_seconds\": " << (dynamic ? number(report.loop_seconds) : "null")
+    << ", \"real_time_factor\": " << (dynamic ? number(report.real_time_factor()) : "null") << ",\n";
   if (scene.solver.type == "explicit") j << "  \"stable_dt_s\": " << number(s.stable_dt) << ",\n";
   j << "  \"max_displacement\": {\"value\": " << number(report.max_displacement) << ", \"node\": "
     << report.max_displacement_node << "},\n";
   j << "  \"warnings\": [";
   for (std::size_t i = 0; i < s.warnings.size(); ++i) j << (i ? ", " : "") << quoted(s.warnings[i]);
-  j << "],\n  \"files\": [";
+  j << "],\n  \"tracks\": {";
+  for (std::size_t i = 0; i < report.tracks.size(); ++i)
+    j << (i ? ", " : "") << quoted(report.tracks[i].first) << ": " << quoted(report.tracks[i].second);
+  j << "},\n  \"files\": [";
   for (std::size_t i = 0; i < report.files.size(); ++i) j << (i ? ", " : "") << quoted(report.files[i]);
   j << "]\n}\n";
   const std::string text = j.str();

@@ -1,0 +1,101 @@
+// Centroid tracks of groups (output.track): fixed node weights from the rest
+// volumes, one row per recorded state, CSV written atomically.
+#include "tensormass/track.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <ostream>
+
+#include "tensormass/errors.hpp"
+#include "tensormass/io/atomic_file.hpp"
+#include "tensormass/mesh_quality.hpp"
+
+namespace tensormass {
+
+GroupTrack::GroupTrack(const Mesh& mesh, const Group& group) : GroupTrack(mesh, group.name, group.cells) {}
+
+GroupTrack::GroupTrack(const Mesh& mesh, std::string name, std::span<const int> cells)
+    : name_(std::move(name)), dim_(mesh.dim) {
+  if (cells.empty()) throw InputError("cannot track group '" + name_ + "': it has no cells");
+  // Per node: sum over its cells of V_c / n_c (divided by the total below).
+  std::vector<double> node_weight(static_cast<std::size_t>(mesh.node_count()), 0.0);
+  std::vector<char> used(node_weight.size(), 0);
+  for (int cell : cells) {
+    const auto [b, local] = mesh.locate(cell);
+    const ElementBlock& block = mesh.blocks[static_cast<std::size_t>(b)];
+    const double volume = cell_volume(*block.element, mesh.dim, cell_coordinates(mesh, block, local));
+    if (!(volume > 0)) throw InputError("cannot track group '" + name_ + "': " + mesh.describe_cell(cell) +
+                                        " has no positive volume at rest");
+    rest_volume_ += volume;
+    for (int node : block.cell_nodes(local)) {
+      node_weight[static_cast<std::size_t>(node)] += volume / block.nodes_per_cell();
+      used[static_cast<std::size_t>(node)] = 1;
+    }
+  }
+  for (int node = 0; node < mesh.node_count(); ++node) {
+    if (!used[static_cast<std::size_t>(node)]) continue;
+    nodes_.push_back(node);
+    weights_.push_back(node_weight[static_cast<std::size_t>(node)] / rest_volume_);
+  }
+  rest_centroid_ = weighted_sum(mesh.rest_positions, 3);
+}
+
+std::array<double, 3> GroupTrack::weighted_sum(std::span<const double> values, int stride) const {
+  // sum_i W_i v_i = v_0 + sum_i W_i (v_i - v_0) as sum_i W_i = 1: exact when
+  // every v_i is the same (a rigid translation), and less cancellation.
+  auto value = [&](std::size_t k, int c) {
+    return values[static_cast<std::size_t>(nodes_[k]) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(c)];
+  };
+  std::array<double, 3> sum{};
+  for (int c = 0; c < std::min(dim_, stride); ++c) {
+    double offset = 0;
+    for (std::size_t k = 0; k < nodes_.size(); ++k) offset += weights_[k] * (value(k, c) - value(0, c));
+    sum[c] = value(0, c) + offset;
+  }
+  return sum;
+}
+
+std::array<double, 3> GroupTrack::weighted_displacement(std::span<const double> u) const {
+  return weighted_sum(u, dim_);
+}
+
+std::array<double, 3> GroupTrack::centroid(std::span<const double> u) const {
+  const std::array<double, 3> shift = weighted_displacement(u);
+  return {rest_centroid_[0] + shift[0], rest_centroid_[1] + shift[1], rest_centroid_[2] + shift[2]};
+}
+
+void GroupTrack::record(double time, std::span<const double> u) {
+  const std::array<double, 3> shift = weighted_displacement(u);
+  if (rows_.empty()) first_ = shift;
+  TrackRow row;
+  row.time = time;
+  for (int c = 0; c < 3; ++c) {
+    row.position[c] = rest_centroid_[c] + shift[c];
+    row.displacement[c] = shift[c] - first_[c];
+  }
+  rows_.push_back(row);
+}
+
+void GroupTrack::write_csv(const std::string& path) const {
+  io::write_atomically(path, [&](std::ostream& out) {
+    out << "time,x,y,z,ux,uy,uz\n";
+    char line[256];
+    for (const TrackRow& r : rows_) {
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r.time, r.position[0],
+                    r.position[1], r.position[2], r.displacement[0], r.displacement[1], r.displacement[2]);
+      out << line;
+    }
+  });
+}
+
+std::string track_file_name(const std::string& group) {
+  std::string name = group;
+  for (char& c : name) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                       c == '-' || c == '_';
+    if (!plain) c = '_';
+  }
+  return "track_" + name + ".csv";
+}
+
+}  // namespace tensormass
