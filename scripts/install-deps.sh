@@ -13,4 +13,4 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libopenblas0-openmp \
-  python3-meshio python3-matplotlib python3-gmsh gmsh calculix-ccx
+  python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx
