@@ -18,6 +18,7 @@ int run_command(const Arguments& args);
 int beam_command(const Arguments& args);
 int mesh_info_command(const Arguments& args);
 int render_command(const Arguments& args);
+int mesh_command(const Arguments& args);
 
 }  // namespace tensormass::cli
 

@@ -26,6 +26,8 @@ constexpr const char* kUsage =
     "  run SCENE.yaml [--set a.b=VALUE ...]\n"
     "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
     "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
+    "  mesh SURFACE --size H [OPTIONS] -o OUT.msh\n"
+    "                                   hex-dominant volume mesh of a closed surface (tensormass mesh --help)\n"
     "  mesh-info FILE                   element counts per type, quality, inverted elements\n"
     "  render FRAME.vtu -o IMAGE.png    draw a result coloured by criterion state or law\n"
     "  help                             this text\n";
@@ -50,6 +52,7 @@ int main(int argc, char** argv) {
     if (command == "demo") return tensormass::cli::demo_command(args);
     if (command == "run") return tensormass::cli::run_command(args);
     if (command == "beam") return tensormass::cli::beam_command(args);
+    if (command == "mesh") return tensormass::cli::mesh_command(args);
     if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
     if (command == "render") return tensormass::cli::render_command(args);
     if (command == "bench") {
