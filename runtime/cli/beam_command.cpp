@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "tensormass/beam.hpp"
 #include "tensormass/errors.hpp"
@@ -47,15 +48,6 @@ struct BeamOptions {
   std::size_t cells_count = 0;  ///< values given to --cells (0: default)
   std::size_t size_count = 0;   ///< values given to --size (0: default)
 };
-
-std::vector<std::string> split_commas(std::string_view text) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t comma; (comma = text.find(',', start)) != std::string_view::npos; start = comma + 1)
-    parts.emplace_back(text.substr(start, comma - start));
-  parts.emplace_back(text.substr(start));
-  return parts;
-}
 
 template <class T>
 T parse_number(const std::string& option, const std::string& text) {

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "tensormass/errors.hpp"
 #include "tensormass/io/msh_writer.hpp"
@@ -52,15 +53,6 @@ struct MeshOptions {
   io::MshFormat format = io::MshFormat::v41;
   bool size_given = false;
 };
-
-std::vector<std::string> split_commas(std::string_view text) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t comma; (comma = text.find(',', start)) != std::string_view::npos; start = comma + 1)
-    parts.emplace_back(text.substr(start, comma - start));
-  parts.emplace_back(text.substr(start));
-  return parts;
-}
 
 double parse_real(const std::string& option, const std::string& text) {
   std::size_t used = 0;

@@ -1,7 +1,7 @@
 // Tetrahedra between the octree core and the input surface, by Gmsh.
 #include "gap_mesher.hpp"
 
-#include <gmsh.h>
+#include "gmsh_session.hpp"
 
 #include <algorithm>
 #include <exception>
@@ -12,23 +12,6 @@
 
 namespace tensormass::detail {
 namespace {
-
-/// A Gmsh session that is always finalised.
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize();
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-  }
-  ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {
-    }
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 /// Compact Gmsh node tags (1..M) for the nodes of the surfaces: Gmsh may
 /// renumber sparse tags when it meshes.
@@ -87,6 +70,7 @@ GapMesh fill_gap(const std::vector<double>& positions, const std::vector<std::ar
   GapMesh gap;
   try {
     GmshSession session;
+    gmsh::option::setNumber("General.Verbosity", 1);
     gmsh::option::setNumber("General.NumThreads", threads);
     gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
     gmsh::option::setNumber("Mesh.Optimize", 1);

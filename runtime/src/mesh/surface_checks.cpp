@@ -13,23 +13,16 @@
 
 #include "tensormass/errors.hpp"
 #include "tensormass/surface.hpp"
+#include "vector3.hpp"
 
 namespace tensormass {
 
 namespace {
 
-inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline void sub(const double* a, const double* b, double* out) {
-  out[0] = a[0] - b[0];
-  out[1] = a[1] - b[1];
-  out[2] = a[2] - b[2];
-}
-inline void cross(const double* a, const double* b, double* out) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-inline double norm(const double* a) { return std::sqrt(dot(a, a)); }
+using detail::cross;
+using detail::dot;
+using detail::sub;
+using detail::norm;
 
 std::string file_of(const TriangleSurface& surface) { return surface.source.empty() ? "surface" : surface.source; }
 

@@ -1,6 +1,6 @@
 // read_surface: triangle surfaces from STL (ASCII or binary), OBJ and Gmsh
 // .msh files; coincident points merged, unused points and patches dropped.
-#include <gmsh.h>
+#include "gmsh_session.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -412,30 +412,8 @@ void read_obj(const std::string& path, std::string_view data, SurfaceBuilder& bu
 
 // ------------------------------------------------------------------ Gmsh
 
-/// Gmsh keeps global state: one reader at a time.
-std::mutex& gmsh_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-  }
-  ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {
-    }
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
 void read_msh_with_gmsh(const std::string& path, SurfaceBuilder& builder) {
-  const std::lock_guard lock(gmsh_mutex());
-  const GmshSession session;
+  const detail::GmshSession session;
   std::string failure;
   try {
     gmsh::open(path);
