@@ -47,8 +47,10 @@ step "surfaces"
 # The region of interest: a ball of twice the tumour's radius around it.
 roi="$("$python" -c 'import json, sys; t = json.load(open(sys.argv[1]))["tumour"]; print(*t["centre"], 2 * t["radius"], sep=",")' thorax.json)"
 
-step "mesh (2 cm hexahedra, 1 cm in the region of interest $roi)"
-"$binary" mesh thorax.stl --size 0.02 --levels 0 --roi "$roi,0.01" \
+# --layer 0.5: prisms 1 cm thick on the surface; the default 0.5 cm ones get
+# inverted where the descending diaphragm shears the fixed rim.
+step "mesh (2 cm hexahedra, 1 cm in the region of interest $roi, 1 cm prism layer)"
+"$binary" mesh thorax.stl --size 0.02 --levels 0 --layer 0.5 --roi "$roi,0.01" \
   --region tumour=tumour.stl --region lung_right=lung_right.stl --region lung_left=lung_left.stl \
   -o thorax.msh
 "$binary" mesh-info thorax.msh

@@ -25,7 +25,7 @@ constexpr const char* kMeshUsage =
     "Fills a closed, outward-oriented triangle surface (.stl ASCII or binary, .obj,\n"
     "or a Gmsh .msh surface) with a hex-dominant mixed mesh: an octree of hexahedra\n"
     "inside, pyramid/tetrahedron transitions where the octree changes level, and\n"
-    "Gmsh tetrahedra between the octree and the surface. The mesh's boundary is the\n"
+    "a layer of prisms on the surface triangles, and Gmsh tetrahedra in between. The mesh's boundary is the\n"
     "input triangulation itself, so surface triangles should be about the size of\n"
     "the cells near the surface (H / 2^levels).\n"
     "\n"
@@ -36,6 +36,8 @@ constexpr const char* kMeshUsage =
     "                             of edge H_ROI or less (default H/2); repeatable\n"
     "  --region NAME=FILE         cells whose centroid lies inside the closed surface\n"
     "                             FILE join the cell group NAME (first match wins); repeatable\n"
+    "  --layer T                  prism layer on the surface, T edges of the cells near the\n"
+    "                             surface thick (default 0.25; 0: none; thinner when needed)\n"
     "  --margin M                 core cells stay M of their edge inside the surface (default 0.35)\n"
     "  --format 4.1|2.2           Gmsh file format (default 4.1)\n"
     "  -o, --output FILE          the .msh file to write (required)\n"
@@ -114,6 +116,8 @@ MeshOptions parse_options(const Arguments& args) {
       if (split == std::string::npos || split == 0 || split + 1 == value.size())
         throw InputError("mesh: --region: expected NAME=FILE, got '" + value + "'");
       options.regions.emplace_back(value.substr(0, split), value.substr(split + 1));
+    } else if (name == "--layer") {
+      options.octree.boundary_layer = parse_real(name, value);
     } else if (name == "--margin") {
       options.octree.margin = parse_real(name, value);
     } else if (name == "--format") {
@@ -152,6 +156,7 @@ void print_report(const MeshOptions& options, const Mesh& mesh, const OctreeMesh
   std::printf("octree          %d leaves, core %d cells (%d hexahedra, %d transitions, %d removed), %d caps, %d gap tets\n",
               report.leaves, report.core_cells, report.core_hexahedra, report.transition_cells,
               report.removed_for_conformity, report.caps, report.gap_tetrahedra);
+  std::printf("boundary layer  %d prisms, %.4g thick\n", report.boundary_prisms, report.boundary_layer_thickness);
   const double error = report.surface_volume != 0 ? (report.mesh_volume - report.surface_volume) / report.surface_volume : 0;
   std::printf("volume          %.9g (surface %.9g, relative difference %.2e)\n", report.mesh_volume,
               report.surface_volume, error);

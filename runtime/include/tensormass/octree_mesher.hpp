@@ -17,10 +17,14 @@
 ///                triangle of its faces (faces with hanging nodes are fanned
 ///                from their centre); each exposed square face gets an
 ///                outward pyramid cap so that the core's boundary is all triangles
-///   6. gap       Gmsh's Delaunay mesher fills the layer between the core's
+///   6. layer     a layer of prisms on the surface's triangles, their tops
+///                the surface offset inward along angle-weighted point normals
+///                (checked: no self-intersection, no flat prism, the core
+///                inside; thinner or left out otherwise)
+///   7. gap       Gmsh's Delaunay mesher fills the layer between the core's
 ///                boundary and the input surface with tetrahedra, keeping
 ///                both triangulations, so the mesh's boundary IS the input surface
-///   7. groups    body (all cells), surface (the input triangles), one facet
+///   8. groups    body (all cells), surface (the input triangles), one facet
 ///                group per named surface patch, one cell group per region
 #ifndef TENSORMASS_OCTREE_MESHER_HPP
 #define TENSORMASS_OCTREE_MESHER_HPP
@@ -55,6 +59,9 @@ struct OctreeMeshOptions {
   std::vector<VolumeRegion> regions;  ///< first match wins
   double margin = 0.35;     ///< core cells stay this fraction of their edge inside the surface
   double cap_height = 0.25; ///< height of the caps on exposed core faces, in cell edges
+  /// Thickness of the layer of prisms on the surface's triangles, in edges
+  /// of the cells near the surface (size / 2^surface_levels); 0: no layer.
+  double boundary_layer = 0.25;
   /// Called with a stage name as each stage starts (progress).
   std::function<void(const std::string&)> on_stage;
 };
@@ -64,6 +71,8 @@ struct OctreeMeshReport {
   int core_cells = 0;          ///< leaves kept in the core
   int removed_for_conformity = 0;  ///< core cells removed by the clean stage
   int core_hexahedra = 0, transition_cells = 0, caps = 0, gap_tetrahedra = 0;
+  int boundary_prisms = 0;              ///< 0 when the layer was left out (see warnings)
+  double boundary_layer_thickness = 0;  ///< as built (halved from the option's when needed)
   double surface_volume = 0;   ///< enclosed by the input surface
   double mesh_volume = 0;      ///< sum of the cells' volumes
   std::vector<std::pair<std::string, double>> stage_seconds;

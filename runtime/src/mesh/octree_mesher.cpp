@@ -16,6 +16,7 @@
 
 #include "gap_mesher.hpp"
 #include "octree.hpp"
+#include "vector3.hpp"
 #include "tensormass/errors.hpp"
 #include "tensormass/mesh_quality.hpp"
 #include "tensormass/registry.hpp"
@@ -32,6 +33,9 @@ using Key = std::uint64_t;
 using Lattice = std::array<std::int64_t, 3>;
 constexpr Key kApexFlag = Key{1} << 63;  ///< node key of a cap apex: its face centre's key with this bit
 constexpr double kHalfDiagonal = 0.8660254037844386;  // sqrt(3) / 2
+/// Largest angle between a point's normal (the prisms' extrusion direction)
+/// and the normal of a triangle around it: cos 60 deg.
+constexpr double kMinimumLayerAlignment = 0.5;
 
 Key key_of(const Lattice& p) { return lattice_key(p[0], p[1], p[2]); }
 Lattice lattice_of(Key key) {
@@ -64,6 +68,12 @@ class CoreMesher {
   int keep_largest_component();
   void cut();
   void fill_gap();
+  std::vector<std::array<int, 3>> add_boundary_layer(const std::vector<std::array<int, 3>>& outer);
+  bool try_boundary_layer(double thickness, const std::vector<double>& normals, std::vector<int>& prisms,
+                          std::vector<double>& offset_points, std::string& failure) const;
+  double layer_thickness() const {
+    return options_.boundary_layer * options_.size / static_cast<double>(1 << options_.surface_levels);
+  }
   Mesh assemble();
 
   // Faces of core cells.
@@ -94,7 +104,7 @@ class CoreMesher {
 
   std::unordered_map<Key, int> node_of_key_;
   std::vector<double> positions_;
-  std::vector<int> hexes_, pyramids_, tets_;
+  std::vector<int> hexes_, pyramids_, tets_, prisms_;
   std::vector<std::array<int, 3>> inner_triangles_;
   int surface_first_node_ = 0;
 };
@@ -218,7 +228,7 @@ void CoreMesher::classify() {
   };
   for (Key leaf : leaves) {
     const OctreeCell cell = cell_of_key(leaf);
-    const double limit = -options_.margin * tree_->cell_size(cell.depth);
+    const double limit = -options_.margin * tree_->cell_size(cell.depth) - layer_thickness();
     bool inside = true;
     sample_points(cell, [&](const Lattice& p) { inside = inside && sd_at(p) <= limit; });
     if (inside) core_.insert(leaf);
@@ -580,6 +590,7 @@ void CoreMesher::fill_gap() {
   for (int t = 0; t < surface_.triangle_count(); ++t)
     outer.push_back({surface_first_node_ + surface_.triangles[3 * t], surface_first_node_ + surface_.triangles[3 * t + 1],
                      surface_first_node_ + surface_.triangles[3 * t + 2]});
+  if (options_.boundary_layer > 0) outer = add_boundary_layer(outer);
   if (inner_triangles_.empty())
     report_.warnings.push_back("no octree cell fits inside " + surface_.source + " at --size " +
                                std::to_string(options_.size) + ": the mesh is all tetrahedra");
@@ -587,6 +598,116 @@ void CoreMesher::fill_gap() {
   positions_.insert(positions_.end(), gap.new_positions.begin(), gap.new_positions.end());
   for (const auto& t : gap.tets) add_tet(t[0], t[1], t[2], t[3]);
   report_.gap_tetrahedra = static_cast<int>(gap.tets.size());
+}
+
+/// Angle-weighted unit normals at the surface's points (#P by 3, outward).
+std::vector<double> point_normals(const TriangleSurface& surface) {
+  std::vector<double> normals(surface.points.size(), 0.0);
+  for (int t = 0; t < surface.triangle_count(); ++t) {
+    const int* c = &surface.triangles[3 * static_cast<std::size_t>(t)];
+    const double* p[3] = {&surface.points[3 * c[0]], &surface.points[3 * c[1]], &surface.points[3 * c[2]]};
+    double e1[3], e2[3], n[3];
+    detail::sub(p[1], p[0], e1);
+    detail::sub(p[2], p[0], e2);
+    detail::cross(e1, e2, n);
+    const double length = detail::norm(n);
+    for (int k = 0; k < 3; ++k) {
+      double a[3], b[3];
+      detail::sub(p[(k + 1) % 3], p[k], a);
+      detail::sub(p[(k + 2) % 3], p[k], b);
+      const double angle = std::acos(std::clamp(detail::dot(a, b) / (detail::norm(a) * detail::norm(b)), -1.0, 1.0));
+      for (int d = 0; d < 3; ++d) normals[3 * c[k] + d] += angle * n[d] / length;
+    }
+  }
+  for (std::size_t v = 0; v < normals.size(); v += 3) {
+    const double length = detail::norm(&normals[v]);
+    for (int d = 0; d < 3; ++d) normals[v + d] /= length;
+  }
+  return normals;
+}
+
+/// Offsets the surface inward by `thickness` along `normals` and checks the
+/// layer: the offset surface closed and free of self-intersection, every
+/// prism well shaped, the core's boundary inside the offset surface.
+bool CoreMesher::try_boundary_layer(double thickness, const std::vector<double>& normals, std::vector<int>& prisms,
+                                    std::vector<double>& offset_points, std::string& failure) const {
+  TriangleSurface offset = surface_;
+  for (std::size_t i = 0; i < offset.points.size(); ++i) offset.points[i] -= thickness * normals[i];
+  offset.source = "the boundary layer's inner surface";
+  try {
+    if (!check_closed_surface(offset).empty()) {
+      failure = "its inner surface turns inside out";
+      return false;
+    }
+  } catch (const InputError& error) {
+    failure = error.what();
+    return false;
+  }
+  const tm_element_info& prism = *Registry::instance().element("prism6");
+  const int first_offset = static_cast<int>(positions_.size() / 3);
+  prisms.clear();
+  for (int t = 0; t < surface_.triangle_count(); ++t) {
+    std::array<double, 18> xyz{};
+    std::array<int, 6> nodes{};
+    for (int k = 0; k < 3; ++k) {
+      const int point = surface_.triangles[3 * t + k];
+      nodes[k] = surface_first_node_ + point;
+      nodes[k + 3] = first_offset + point;
+      for (int d = 0; d < 3; ++d) {
+        xyz[3 * k + d] = surface_.points[3 * point + d];
+        xyz[3 * (k + 3) + d] = offset.points[3 * point + d];
+      }
+    }
+    double e1[3], e2[3], n[3];
+    detail::sub(&xyz[3], &xyz[0], e1);
+    detail::sub(&xyz[6], &xyz[0], e2);
+    detail::cross(e1, e2, n);
+    double alignment = 1;
+    for (int k = 0; k < 3; ++k)
+      alignment = std::min(alignment, detail::dot(n, &normals[3 * surface_.triangles[3 * t + k]]) / detail::norm(n));
+    if (alignment < kMinimumLayerAlignment || scaled_jacobian(prism, 3, xyz) <= 0) {
+      failure = "the surface turns too sharply at " + surface_.describe_triangle(t) +
+                " for a prism (point normals more than 60 degrees from the triangle's)";
+      return false;
+    }
+    prisms.insert(prisms.end(), nodes.begin(), nodes.end());
+  }
+  const SurfaceDistance inner(offset);
+  for (const auto& triangle : inner_triangles_)
+    for (int node : triangle)
+      if (inner.signed_distance(&positions_[3 * static_cast<std::size_t>(node)]) > -0.05 * thickness) {
+        failure = "its inner surface comes too close to the octree core";
+        return false;
+      }
+  offset_points = std::move(offset.points);
+  return true;
+}
+
+/// A layer of prisms on the surface's triangles (their top: the surface
+/// offset inward along the point normals); returns the surface the gap
+/// must then fill up to. Halves the thickness up to twice when the layer
+/// fails its checks, then goes without it (with a warning).
+std::vector<std::array<int, 3>> CoreMesher::add_boundary_layer(const std::vector<std::array<int, 3>>& outer) {
+  const std::vector<double> normals = point_normals(surface_);
+  double thickness = layer_thickness();
+  std::string failure;
+  for (int attempt = 0; attempt < 3; ++attempt, thickness /= 2) {
+    std::vector<int> prisms;
+    std::vector<double> offset_points;
+    if (!try_boundary_layer(thickness, normals, prisms, offset_points, failure)) continue;
+    const int first_offset = static_cast<int>(positions_.size() / 3);
+    positions_.insert(positions_.end(), offset_points.begin(), offset_points.end());
+    prisms_ = std::move(prisms);
+    report_.boundary_prisms = static_cast<int>(prisms_.size() / 6);
+    report_.boundary_layer_thickness = thickness;
+    std::vector<std::array<int, 3>> top;
+    for (int t = 0; t < surface_.triangle_count(); ++t)
+      top.push_back({first_offset + surface_.triangles[3 * t], first_offset + surface_.triangles[3 * t + 1],
+                     first_offset + surface_.triangles[3 * t + 2]});
+    return top;
+  }
+  report_.warnings.push_back("no boundary layer of prisms: " + failure);
+  return outer;
 }
 
 // --- 7. Groups ------------------------------------------------------------------
@@ -618,7 +739,7 @@ Mesh CoreMesher::assemble() {
   mesh.rest_positions = positions_;
   for (int n = 0; n < mesh.node_count(); ++n) mesh.node_source_ids.push_back(n + 1);
   // Registry order: tet4 < pyramid5 < hex8 is whatever the registry says; add in its order.
-  std::map<std::string, std::vector<int>*> lists{{"tet4", &tets_}, {"pyramid5", &pyramids_}, {"hex8", &hexes_}};
+  std::map<std::string, std::vector<int>*> lists{{"tet4", &tets_}, {"pyramid5", &pyramids_}, {"prism6", &prisms_}, {"hex8", &hexes_}};
   for (const tm_element_info* element : Registry::instance().elements()) {
     const auto where = lists.find(element->name);
     if (where != lists.end()) add_block(mesh, element->name, *where->second);
@@ -689,6 +810,8 @@ void check_options(const TriangleSurface& surface, const OctreeMeshOptions& opti
   if (!positive(options.size)) throw InputError("mesh: --size must be a positive number");
   if (options.surface_levels < 0 || options.surface_levels > 8) throw InputError("mesh: --levels must be in 0..8");
   if (!(options.margin >= 0 && options.margin <= 2)) throw InputError("mesh: margin must be in [0, 2]");
+  if (!(options.boundary_layer >= 0 && options.boundary_layer <= 1))
+    throw InputError("mesh: --layer must be in [0, 1]");
   if (!(options.cap_height > 0 && options.cap_height < 0.5)) throw InputError("mesh: cap height must be in (0, 0.5)");
   for (const RegionOfInterest& roi : options.regions_of_interest)
     if (!positive(roi.radius) || !positive(roi.size) || !std::isfinite(roi.centre[0]) ||

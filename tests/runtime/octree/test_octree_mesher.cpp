@@ -84,6 +84,10 @@ TEST_P(MesherShapes, ConformingPositiveAndFillsTheSurface) {
   EXPECT_GT(count_of(mesh, "hex8"), 0);
   EXPECT_GT(count_of(mesh, "pyramid5"), 0);
   EXPECT_GT(count_of(mesh, "tet4"), 0);
+  // The boundary layer: one prism on each surface triangle.
+  EXPECT_EQ(count_of(mesh, "prism6"), surface.triangle_count());
+  EXPECT_EQ(report.boundary_prisms, surface.triangle_count());
+  EXPECT_TRUE(report.warnings.empty());
   double hex_volume = 0;
   for (const ElementTypeQuality& type : quality.types)
     if (std::string(type.element->name) == "hex8") hex_volume = type.volume;
@@ -218,6 +222,39 @@ TEST(OctreeMesher, BadOptionsAreInputErrors) {
   EXPECT_THROW(mesh_surface_volume(surface, options), InputError);
 }
 
+TEST(OctreeMesher, NoLayerWhenAskedNone) {
+  const TriangleSurface surface = load("cut_ball");
+  OctreeMeshOptions options;
+  options.size = 0.3;
+  options.boundary_layer = 0;
+  OctreeMeshReport report;
+  const Mesh mesh = mesh_surface_volume(surface, options, &report);
+  EXPECT_EQ(count_of(mesh, "prism6"), 0);
+  EXPECT_EQ(report.boundary_prisms, 0);
+  EXPECT_EQ(check_conformity(mesh).boundary_faces.size(), static_cast<std::size_t>(surface.triangle_count()));
+}
+
+TEST(OctreeMesher, SharpSurfaceGoesWithoutALayerAndSaysWhy) {
+  // A flat tetrahedron: the normals at its corners lie far more than
+  // 60 degrees from the faces around them, so no prism fits there.
+  TriangleSurface surface;
+  surface.source = "wedge";
+  surface.points = {0, 0, 0, 4, 0, 0, 0, 4, 0, 2, 2, 0.3};
+  surface.triangles = {0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3};
+  surface.patches = {0, 0, 0, 0};
+  surface.patch_names = {""};
+  OctreeMeshOptions options;
+  options.size = 1;
+  OctreeMeshReport report;
+  const Mesh mesh = mesh_surface_volume(surface, options, &report);
+  EXPECT_EQ(report.boundary_prisms, 0);
+  ASSERT_FALSE(report.warnings.empty());
+  bool said = false;
+  for (const std::string& warning : report.warnings) said = said || warning.find("no boundary layer") != std::string::npos;
+  EXPECT_TRUE(said);
+  EXPECT_TRUE(mesh_quality(mesh).inverted_cells.empty());
+}
+
 TEST(OctreeMesher, CoarseSizeGivesAnAllTetMeshWithAWarning) {
   const TriangleSurface surface = load("sphere");
   OctreeMeshOptions options;
@@ -225,7 +262,8 @@ TEST(OctreeMesher, CoarseSizeGivesAnAllTetMeshWithAWarning) {
   options.surface_levels = 0;
   OctreeMeshReport report;
   const Mesh mesh = mesh_surface_volume(surface, options, &report);
-  EXPECT_EQ(mesh.blocks.size(), 1u);
+  EXPECT_EQ(count_of(mesh, "hex8"), 0);
+  EXPECT_EQ(count_of(mesh, "tet4") + count_of(mesh, "prism6"), mesh.cell_count());
   EXPECT_FALSE(report.warnings.empty());
   EXPECT_NEAR(mesh_quality(mesh).volume, enclosed_volume(surface), 1e-9);
 }
