@@ -11,25 +11,14 @@
 
 #include "tensormass/mesh.hpp"
 #include "tensormass/mesh_quality.hpp"
+#include "test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using test_support::Result;
 
-struct Result {
-  int exit_code;
-  std::string output;  ///< stdout and stderr
-};
-
-Result run(const std::string& arguments) {
-  const std::string command = std::string(TENSORMASS_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+Result run(const std::string& arguments) { return test_support::tensormass(arguments); }
 
 std::string surface(const std::string& name) {
   return std::string(TENSORMASS_SOURCE_DIR) + "/tests/data/surfaces/" + name + ".stl";

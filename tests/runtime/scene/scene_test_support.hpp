@@ -13,42 +13,13 @@
 
 #include "tensormass/errors.hpp"
 #include "tensormass/scene.hpp"
+#include "test_support.hpp"
 
 namespace scene_test {
 
 namespace fs = std::filesystem;
 
-/// A fresh directory for the running test, removed at the end.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-    for (char& c : name)
-      if (c == '/') c = '_';
-    path_ = fs::temp_directory_path() / ("tensormass_scene_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  /// Writes `text` to `name` in this directory; returns its path.
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path file = path_ / name;
-    fs::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file.string();
-  }
-
- private:
-  fs::path path_;
-};
+using test_support::TempDir;
 
 /// The message of the InputError that load_scene throws (a test failure when none).
 inline std::string load_error(const std::string& path, const std::vector<std::string>& overrides = {}) {
