@@ -8,7 +8,7 @@
 ///   2. balance   strong 2:1 balance (face, edge and corner neighbours)
 ///   3. classify  a leaf joins the core when its corners, face centres and
 ///                centre lie inside, at least `margin` of its edge from the surface
-///   4. clean     cores cells are removed until every core face meets either
+///   4. clean     core cells are removed until every core face meets either
 ///                core cells on its whole area or none, the core's boundary
 ///                is a 2-manifold and the core is one face-connected piece
 ///   5. cut       each core cell becomes one hexahedron when its faces carry
