@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/mesh.hpp"
-#include "tensormass/scene.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/scene/scene.hpp"
 
 namespace tensormass::bench {
 

@@ -27,7 +27,7 @@
 
 #include "handwritten_stvk.hpp"
 #include "machine_info.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"

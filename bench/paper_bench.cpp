@@ -30,14 +30,14 @@
 
 #include "machine_info.hpp"
 #include "paper_report.hpp"
-#include "tensormass/adaptivity.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/integrators.hpp"
-#include "tensormass/linear_solver.hpp"
-#include "tensormass/model.hpp"
-#include "tensormass/scene.hpp"
+#include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/scene/scene.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"

@@ -28,13 +28,13 @@
 
 #include "calculix_runner.hpp"
 #include "machine_info.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/integrators.hpp"
-#include "tensormass/linear_solver.hpp"
-#include "tensormass/model.hpp"
-#include "tensormass/scene.hpp"
-#include "tensormass/sparse_matrix.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include <tensormass/registry.hpp>
+#include <tensormass/kernels/registry.hpp>
 
 int main() {
   const double L = 0.2, W = 0.05, H = 0.05;               // beam size (m)

@@ -6,8 +6,8 @@
 // coefficient tensors are precomputed per element (64 doubles):
 //   W = 1/2 u.K u
 // Flops per element: energy 144, gradient 128, hessian 0.
-#include "tensormass/kernel_abi.h"
-#include "tensormass/kernel_support.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/kernel_support.hpp"
 
 namespace {
 constexpr int kDim = 2;

@@ -4,8 +4,8 @@
 // Per point: H by loops, the law block (CSE'd, 27 flops for P and A),
 // then g and K as small matrix products. Flops per element: energy 812,
 // gradient 1496, hessian 18792.
-#include "tensormass/kernel_abi.h"
-#include "tensormass/kernel_support.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/kernel_support.hpp"
 
 namespace {
 constexpr int kDim = 3;

@@ -4,8 +4,8 @@
 // Per point: H by loops, the law block (CSE'd, 140 flops for P and A),
 // then g and K as small matrix products. Flops per element: energy 216,
 // gradient 404, hessian 1728.
-#include "tensormass/kernel_abi.h"
-#include "tensormass/kernel_support.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/kernel_support.hpp"
 
 namespace {
 constexpr int kDim = 2;

@@ -6,8 +6,8 @@
 // coefficient tensors are precomputed per element (244 doubles):
 //   W = 1/2 u.K u + sum_l sum_jk s_jk (u_l . V_ljk) + sum_jklm D_jklm s_jk s_lm,  s_jk = u_j . u_k
 // Flops per element: energy 574, gradient 886, hessian 3078.
-#include "tensormass/kernel_abi.h"
-#include "tensormass/kernel_support.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/kernel_support.hpp"
 
 namespace {
 constexpr int kDim = 2;

@@ -4,8 +4,8 @@
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_stvk_quad8_terms_part_N.cpp).
 // Flops per element: energy 846, gradient 2700, hessian 13032.
-#include "tensormass/kernel_abi.h"
-#include "tensormass/kernel_support.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/kernel_support.hpp"
 
 namespace tm_generated {
 void tm_stvk_quad8_terms_gradient_part0(const double* u, const double* consts, double* g);

@@ -8,9 +8,9 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/io/msh_writer.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/gmsh_writer.hpp"
 
 namespace tensormass::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass::cli {
 

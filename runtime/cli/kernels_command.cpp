@@ -3,7 +3,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass::cli {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 #ifdef TENSORMASS_WITH_BENCH
 #include "kernel_bench.hpp"
 #include "paper_bench.hpp"

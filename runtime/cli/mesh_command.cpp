@@ -9,12 +9,13 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/io/msh_writer.hpp"
-#include "tensormass/mesh_conformity.hpp"
-#include "tensormass/mesh_quality.hpp"
-#include "tensormass/octree_mesher.hpp"
-#include "tensormass/surface.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/gmsh_writer.hpp"
+#include "tensormass/io/surface_reader.hpp"
+#include "tensormass/mesh/mesh_conformity.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
+#include "tensormass/meshing/octree_mesher.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace tensormass::cli {
 namespace {

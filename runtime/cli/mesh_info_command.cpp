@@ -8,9 +8,10 @@
 #include <string>
 
 #include "commands.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/mesh.hpp"
-#include "tensormass/mesh_quality.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
 
 namespace tensormass::cli {
 namespace {

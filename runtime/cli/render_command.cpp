@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 
 extern char** environ;
 

@@ -3,9 +3,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/scene.hpp"
-#include "tensormass/simulation.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/simulation/simulation.hpp"
 
 namespace tensormass::cli {
 

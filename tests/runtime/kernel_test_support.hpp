@@ -22,8 +22,8 @@
 #include <utility>
 #include <vector>
 
-#include "tensormass/kernel_abi.h"
-#include "tensormass/registry.hpp"
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tmtest {
 

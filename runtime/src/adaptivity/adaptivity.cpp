@@ -1,4 +1,4 @@
-#include "tensormass/adaptivity.hpp"
+#include "tensormass/adaptivity/adaptivity.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace tensormass {
 

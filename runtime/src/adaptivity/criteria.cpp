@@ -6,7 +6,7 @@
 /// (2 or 3) and, for the node counts of the registry's elements, the number
 /// of nodes N are template parameters so that the loops unroll; N = 0 reads
 /// the node count at run time.
-#include "tensormass/criteria.hpp"
+#include "tensormass/adaptivity/criteria.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "tensormass/assembler.hpp"
+#include "tensormass/assembly/assembler.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "tensormass/sparse_matrix.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
 
 #include <algorithm>
 

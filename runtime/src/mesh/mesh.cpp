@@ -1,10 +1,10 @@
-#include "tensormass/mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace tensormass {
 

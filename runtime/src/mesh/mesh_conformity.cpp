@@ -1,5 +1,5 @@
 // Face matching of a mesh's cells (see mesh_conformity.hpp).
-#include "tensormass/mesh_conformity.hpp"
+#include "tensormass/mesh/mesh_conformity.hpp"
 
 #include <algorithm>
 #include <map>

@@ -1,4 +1,4 @@
-#include "tensormass/mesh_quality.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <string_view>
 
-#include "tensormass/registry.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 

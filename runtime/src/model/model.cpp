@@ -1,11 +1,11 @@
-#include "tensormass/model.hpp"
+#include "tensormass/model/model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 

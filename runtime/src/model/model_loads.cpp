@@ -5,8 +5,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/model.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/model/model.hpp"
 
 namespace tensormass {
 

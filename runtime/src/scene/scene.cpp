@@ -1,16 +1,16 @@
 // Reading and validating a scene file (docs/scene.md is the reference of
 // every key). The tree is read, overrides are applied, unknown keys are
 // rejected, then each section is read into its Spec with typed checks.
-#include "tensormass/scene.hpp"
+#include "tensormass/scene/scene.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <functional>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/registry.hpp"
-#include "tensormass/track.hpp"
-#include "yaml_reader.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
+#include "tensormass/simulation/track.hpp"
+#include "scene/yaml_reader.hpp"
 
 namespace tensormass {
 

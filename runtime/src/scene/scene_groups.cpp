@@ -1,8 +1,8 @@
 // check_groups: every region a scene names must be a group of the mesh.
 #include <string>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/scene.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/scene/scene.hpp"
 
 namespace tensormass {
 

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "tensormass/scene.hpp"
+#include "tensormass/scene/scene.hpp"
 
 namespace tensormass {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <set>
 
-#include "tensormass/errors.hpp"
-#include "yaml_reader.hpp"
+#include "tensormass/common/errors.hpp"
+#include "scene/yaml_reader.hpp"
 
 namespace tensormass::scene_yaml {
 

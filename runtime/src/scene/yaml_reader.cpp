@@ -1,4 +1,4 @@
-#include "yaml_reader.hpp"
+#include "scene/yaml_reader.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <limits>
 
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace tensormass::scene_yaml {
 

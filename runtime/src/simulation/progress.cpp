@@ -1,4 +1,4 @@
-#include "progress.hpp"
+#include "simulation/progress.hpp"
 
 #include <unistd.h>
 

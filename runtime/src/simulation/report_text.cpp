@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "summary_json.hpp"
-#include "tensormass/simulation.hpp"
+#include "simulation/summary_json.hpp"
+#include "tensormass/simulation/simulation.hpp"
 
 namespace tensormass {
 

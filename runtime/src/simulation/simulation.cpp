@@ -1,4 +1,5 @@
-#include "tensormass/simulation.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/simulation/simulation.hpp"
 
 #include <omp.h>
 
@@ -10,17 +11,17 @@
 #include <filesystem>
 #include <map>
 
-#include "../solvers/integration_support.hpp"
-#include "progress.hpp"
-#include "summary_json.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/io/vtu_writer.hpp"
-#include "tensormass/linear_solver.hpp"
-#include "tensormass/mesh.hpp"
-#include "tensormass/model.hpp"
-#include "tensormass/registry.hpp"
-#include "tensormass/track.hpp"
+#include "common/phase_timer.hpp"
+#include "simulation/progress.hpp"
+#include "simulation/summary_json.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/kernels/registry.hpp"
+#include "tensormass/simulation/track.hpp"
 
 namespace tensormass {
 

@@ -1,4 +1,4 @@
-#include "summary_json.hpp"
+#include "simulation/summary_json.hpp"
 
 #include <omp.h>
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "tensormass/model.hpp"
-#include "tensormass/simulation.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/simulation/simulation.hpp"
 
 namespace tensormass::detail {
 

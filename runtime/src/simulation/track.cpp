@@ -1,14 +1,14 @@
 // Centroid tracks of groups (output.track): fixed node weights from the rest
 // volumes, one row per recorded state, CSV written atomically.
-#include "tensormass/track.hpp"
+#include "tensormass/simulation/track.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <ostream>
 
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
-#include "tensormass/mesh_quality.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
 
 namespace tensormass {
 

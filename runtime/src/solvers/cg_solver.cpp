@@ -2,9 +2,9 @@
 #include <cmath>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "preconditioned_cg.hpp"
-#include "tensormass/linear_solver.hpp"
+#include "tensormass/common/errors.hpp"
+#include "solvers/preconditioned_cg.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 

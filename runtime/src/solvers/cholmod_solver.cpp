@@ -7,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
-#include "preconditioned_cg.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/linear_solver.hpp"
+#include "solvers/preconditioned_cg.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 

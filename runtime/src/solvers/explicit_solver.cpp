@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "integration_support.hpp"
+#include "solvers/integration_support.hpp"
 
 namespace tensormass {
 

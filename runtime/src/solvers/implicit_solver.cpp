@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "integration_support.hpp"
+#include "solvers/integration_support.hpp"
 
 namespace tensormass {
 

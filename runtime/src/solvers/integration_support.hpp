@@ -2,33 +2,16 @@
 #ifndef TENSORMASS_SOLVERS_INTEGRATION_SUPPORT_HPP
 #define TENSORMASS_SOLVERS_INTEGRATION_SUPPORT_HPP
 
-#include <chrono>
 #include <cmath>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/integrators.hpp"
+#include "common/phase_timer.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass::detail {
-
-/// Adds the wall time of its lifetime to `seconds`.
-class PhaseTimer {
- public:
-  explicit PhaseTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
-  ~PhaseTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-  PhaseTimer(const PhaseTimer&) = delete;
-  PhaseTimer& operator=(const PhaseTimer&) = delete;
-
- private:
-  double& seconds_;
-  std::chrono::steady_clock::time_point start_;
-};
-
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// Assembles g(u) (and K when given), timed as assembly.
 inline void assemble(Integration& run, std::span<const double> u, std::span<double> g, SparseMatrix* K) {

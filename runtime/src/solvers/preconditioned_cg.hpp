@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/sparse_matrix.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
 
 namespace tensormass::detail {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "integration_support.hpp"
+#include "solvers/integration_support.hpp"
 
 namespace tensormass {
 

@@ -7,11 +7,11 @@
 #include <filesystem>
 
 #include "solvers/solver_test_support.hpp"
-#include "tensormass/adaptivity.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/io/msh_writer.hpp"
-#include "tensormass/simulation.hpp"
+#include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/io/gmsh_writer.hpp"
+#include "tensormass/simulation/simulation.hpp"
 
 namespace tensormass {
 namespace {

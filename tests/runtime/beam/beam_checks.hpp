@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/mesh.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tmtest {
 

@@ -6,8 +6,8 @@
 #include <numeric>
 
 #include "beam_checks.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "io/python_check.hpp"
-#include "tensormass/beam.hpp"
+#include "tensormass/meshing/beam.hpp"
 
 namespace {
 

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/criteria.hpp"
-#include "tensormass/model.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/adaptivity/criteria.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 // Counts every global allocation so that a test can show evaluate() makes none.
 namespace {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 namespace tmtest {
 

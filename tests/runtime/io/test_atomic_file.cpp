@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "python_check.hpp"
-#include "tensormass/errors.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 
 namespace {

@@ -6,9 +6,10 @@
 #include <sstream>
 
 #include "python_check.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/io/msh_writer.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/gmsh_writer.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "python_check.hpp"
-#include "tensormass/beam.hpp"
-#include "tensormass/io/vtu_writer.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/io/vtk_writer.hpp"
 
 namespace {
 

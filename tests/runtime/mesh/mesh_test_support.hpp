@@ -20,8 +20,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/mesh.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 namespace meshtest {
 

@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "mesh_test_support.hpp"
-#include "tensormass/mesh.hpp"
-#include "tensormass/mesh_quality.hpp"
-#include "tensormass/registry.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace {
 

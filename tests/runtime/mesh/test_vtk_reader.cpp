@@ -16,7 +16,8 @@
 #include <vector>
 
 #include "mesh_test_support.hpp"
-#include "tensormass/mesh.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 namespace {
 

@@ -9,8 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "tensormass/mesh.hpp"
-#include "tensormass/mesh_quality.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
 #include "test_support.hpp"
 
 namespace {

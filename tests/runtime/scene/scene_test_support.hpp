@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/scene.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/scene/scene.hpp"
 #include "test_support.hpp"
 
 namespace scene_test {

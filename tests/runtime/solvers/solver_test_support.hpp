@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "tensormass/beam.hpp"
-#include "tensormass/scene.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/scene/scene.hpp"
 
 namespace tensormass::test {
 

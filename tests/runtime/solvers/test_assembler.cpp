@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "solver_test_support.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/model.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/model/model.hpp"
 
 namespace tensormass {
 namespace {

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "solver_test_support.hpp"
-#include "tensormass/assembler.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/integrators.hpp"
-#include "tensormass/linear_solver.hpp"
-#include "tensormass/model.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/model/model.hpp"
 
 namespace tensormass {
 namespace {

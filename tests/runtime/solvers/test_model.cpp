@@ -5,8 +5,8 @@
 #include <numeric>
 
 #include "solver_test_support.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/model.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/model/model.hpp"
 
 namespace tensormass {
 namespace {

@@ -21,8 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/errors.hpp"
-#include "tensormass/surface.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/surface_reader.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace surfacetest {
 

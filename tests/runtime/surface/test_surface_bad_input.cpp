@@ -5,7 +5,7 @@
 #include <string>
 
 #include "surface_test_support.hpp"
-#include "tensormass/surface.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace {
 

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "surface_test_support.hpp"
-#include "tensormass/surface.hpp"
+#include "tensormass/io/surface_reader.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace {
 

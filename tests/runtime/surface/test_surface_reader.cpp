@@ -8,7 +8,8 @@
 #include <string>
 
 #include "surface_test_support.hpp"
-#include "tensormass/surface.hpp"
+#include "tensormass/io/surface_reader.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace {
 

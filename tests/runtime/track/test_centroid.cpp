@@ -7,10 +7,10 @@
 #include <cmath>
 #include <random>
 
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/mesh_quality.hpp"
-#include "tensormass/track.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
+#include "tensormass/simulation/track.hpp"
 #include "track_test_support.hpp"
 
 namespace {

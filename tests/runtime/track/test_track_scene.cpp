@@ -3,10 +3,10 @@
 // refusing such a scene before writing anything.
 #include <gtest/gtest.h>
 
-#include "tensormass/beam.hpp"
-#include "tensormass/errors.hpp"
-#include "tensormass/scene.hpp"
-#include "tensormass/track.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/simulation/track.hpp"
 #include "track_test_support.hpp"
 
 namespace {

@@ -1,0 +1,81 @@
+/// \file adaptivity.hpp
+/// The adaptive model: every `every` steps each element's criteria are
+/// evaluated; an element under Hooke that fails any enabled criterion is
+/// upgraded to StVK by swapping its kernel (O(1)), optionally blended over
+/// `blend_steps` steps; with downgrade on, an upgraded element whose criteria
+/// all stay within threshold x hysteresis for `calm_steps` evaluations
+/// returns to its initial kernel exactly.
+#ifndef TENSORMASS_ADAPTIVITY_HPP
+#define TENSORMASS_ADAPTIVITY_HPP
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/adaptivity/criteria.hpp"
+#include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/model/model.hpp"
+#include "tensormass/scene/scene.hpp"
+
+namespace tensormass {
+
+/// Counts after one evaluation.
+struct AdaptivityRecord {
+  int step = 0;
+  int upgrades = 0;
+  int downgrades = 0;
+  std::vector<std::pair<std::string, int>> cells_per_law;
+};
+
+class Adaptivity {
+ public:
+  /// Throws InputError for an unknown criterion or action.
+  /// The assembler gives R_S its nodal forces.
+  Adaptivity(const AdaptivitySpec& spec, Model& model, const Assembler& assembler);
+
+  /// Moves every blending cell one step towards its new law (call once per
+  /// time step, before the next solve).
+  void advance_blends();
+  /// Evaluates the criteria at displacement u (dof_count) when `step` is a
+  /// multiple of `every`, switches laws, and returns the number of switches.
+  int update(std::span<const double> u, int step);
+
+  /// Cell data for output: one array per criterion (its last values), and
+  /// `state`: the largest criterion / threshold in [0, 1] for a cell under
+  /// its initial law (1 = at the threshold), 2 once switched.
+  std::vector<io::Field> cell_fields() const;
+
+  int total_switches() const { return total_switches_; }
+  double criteria_seconds() const { return criteria_seconds_; }
+  /// Running time of each criterion (same order as criterion_names()).
+  const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
+  const std::vector<AdaptivityRecord>& records() const { return records_; }
+  const std::vector<std::string>& criterion_names() const { return names_; }
+
+ private:
+  void evaluate(std::span<const double> u);
+  bool cell_fails(int cell) const;
+  bool cell_is_calm(int cell) const;
+  void switch_law(int cell, const std::string& law);
+
+  AdaptivitySpec spec_;
+  Model* model_;
+  const Assembler* assembler_;
+  std::vector<double> nodal_forces_;  ///< dof_count, for R_S
+  std::vector<std::unique_ptr<Criterion>> criteria_;
+  std::vector<double> thresholds_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> values_;  ///< per criterion, per cell
+  std::vector<int> calm_evaluations_;        ///< per cell
+  bool needs_force_ = false;
+  int total_switches_ = 0;
+  double criteria_seconds_ = 0;
+  std::vector<double> criterion_seconds_;
+  std::vector<AdaptivityRecord> records_;
+};
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,73 @@
+/// \file criteria.hpp
+/// Per-element criteria of the adaptive model (DESIGN.md; origin report
+/// section 5): each predicts, from one element's nodes, whether the linear
+/// law errs there. Every criterion is O(nodes of the element).
+///
+///   R_EL   max over edges |l - l0| / l0 (edge = its two end corners)
+///   R_V    |v - v0| / v0, v = sum_q w_q det(J0_q) det(F_q) (area in 2D)
+///   R_VL   v / mean_edge^3 (2D: a / mean_edge^2)                       quality
+///   R_VLX  6 sqrt(2) v l_harm / mean_edge^4 (1 for a regular tet;
+///          2D: (4 / sqrt 3) a l_harm / mean_edge^3, 1 for an equilateral triangle)  quality
+///   R_S    |(1/v) sum_q w_q det(J0_q) sum_j N_j(q) f_j|, f_j the internal
+///          force at node j assembled over all elements (the origin's F_j,
+///          "the force applied at the vertex"; an element's own forces sum
+///          to zero); a force (N): the shape-weighted average of the
+///          nodal forces over the element
+///   R_NL   max over quadrature points of |1/2 H^T H|_F, the quadratic part
+///          of the Green-Lagrange strain that the linear law drops
+///
+/// Note on R_S: the forces of ONE element sum to zero (translation
+/// invariance), and a tet4/tri3 (or any affine first-order element) weighs
+/// its nodes equally, so R_S of the element's own gradient is 0 up to
+/// round-off there; pass the nodes' total (assembled) forces, the origin's
+/// "force applied at the vertex", for a meaningful value. R_S is +inf when
+/// v <= 0; R_VL and R_VLX are negative for an inverted element.
+///
+/// Quality criteria (R_VL, R_VLX) fail when their value drops BELOW the
+/// threshold; the others fail above it. Lengths and volumes are measured on
+/// the deformed element (rest + u).
+#ifndef TENSORMASS_CRITERIA_HPP
+#define TENSORMASS_CRITERIA_HPP
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tensormass/model/model.hpp"
+
+namespace tensormass {
+
+/// What a criterion sees of one element.
+struct ElementView {
+  const tm_element_info& element;  ///< reference element (edges, weights, shape values)
+  const tm_kernel& kernel;         ///< current kernel (its consts layout: see kernel_abi.h)
+  const double* consts;            ///< the element's constants
+  const double* rest;              ///< nodes by dim rest positions
+  const double* u;                 ///< nodes by dim displacements
+  const double* force;             ///< nodes by dim assembled internal forces at the element's nodes (only when needs_force())
+  int dim;
+};
+
+class Criterion {
+ public:
+  virtual ~Criterion() = default;
+  virtual std::string name() const = 0;
+  /// The criterion's value on one element.
+  virtual double evaluate(const ElementView& view) const = 0;
+  /// Quality criteria fail below their threshold, the others above it.
+  virtual bool is_quality() const { return false; }
+  /// R_S needs the element's internal force.
+  virtual bool needs_force() const { return false; }
+  bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value > threshold; }
+};
+
+/// The criterion named R_EL, R_V, R_VL, R_VLX, R_S or R_NL; throws
+/// std::invalid_argument for any other name.
+std::unique_ptr<Criterion> make_criterion(const std::string& name);
+
+/// All names, in the order above.
+const std::vector<std::string>& criterion_names();
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,55 @@
+/// \file assembler.hpp
+/// Assembly of the internal forces g(u) = dW/du and the tangent stiffness
+/// K = dg/du over the free dofs. The sparsity pattern and an
+/// element-to-matrix scatter map are built once; chunks of consecutive
+/// cells are coloured so that no two chunks of a colour share a node, each
+/// colour's chunks are assembled in parallel with plain stores (each chunk
+/// in cell order), and colours run in a fixed order: results do not depend
+/// on the number of threads.
+#ifndef TENSORMASS_ASSEMBLER_HPP
+#define TENSORMASS_ASSEMBLER_HPP
+
+#include <span>
+#include <vector>
+
+#include "tensormass/model/model.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
+
+namespace tensormass {
+
+class Assembler {
+ public:
+  explicit Assembler(const Model& model);
+  explicit Assembler(Model&&) = delete;  ///< keeps a reference to the model
+
+  /// An empty matrix with the pattern of K (free dofs by free dofs).
+  const SparseMatrix& pattern() const { return pattern_; }
+  /// gradient (dof_count) = g(u); when `stiffness` is non-null it gets K(u)
+  /// restricted to the free dofs (its pattern must be pattern()).
+  void assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
+  int colour_count() const { return static_cast<int>(colour_start_.size()) - 1; }
+
+ private:
+  /// Per-thread scratch space for one cell.
+  struct CellBuffers {
+    explicit CellBuffers(bool with_stiffness) : k(with_stiffness ? kMaxDofs * kMaxDofs : 0) {}
+    static constexpr int kMaxDofs = 81;  ///< hex20 in 3D is 60
+    double u[kMaxDofs], g[kMaxDofs], blend_g[kMaxDofs];
+    std::vector<double> k, blend_k;
+  };
+  void assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                     CellBuffers& buffers) const;
+  void build_pattern();
+  void build_colours();
+
+  const Model* model_;
+  SparseMatrix pattern_;
+  std::vector<std::size_t> scatter_offsets_;  ///< cell_count+1
+  std::vector<int> scatter_;                  ///< per cell, dofs by dofs: index in values or -1
+  std::vector<int> colour_start_;             ///< colours+1, into coloured_chunks_
+  std::vector<int> coloured_chunks_;          ///< chunk c holds cells [c*S, (c+1)*S)
+};
+
+}  // namespace tensormass
+
+#endif

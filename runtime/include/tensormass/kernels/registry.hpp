@@ -1,0 +1,47 @@
+/// \file registry.hpp
+/// The kernel registry: every generated LES triple (law, element, split),
+/// looked up in O(1). Switching an element's law is replacing the
+/// `const tm_kernel*` it holds.
+#ifndef TENSORMASS_REGISTRY_HPP
+#define TENSORMASS_REGISTRY_HPP
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "tensormass/kernels/kernel_abi.h"
+
+namespace tensormass {
+
+class Registry {
+ public:
+  /// The registry of the generated kernels linked into this program.
+  static const Registry& instance();
+
+  /// The kernel for (law, element, split), or nullptr when there is none.
+  const tm_kernel* find(std::string_view law, std::string_view element, std::string_view split) const;
+  /// Like find, but throws std::invalid_argument naming what exists.
+  const tm_kernel& get(std::string_view law, std::string_view element, std::string_view split) const;
+  /// The reference element named `name`, or nullptr.
+  const tm_element_info* element(std::string_view name) const;
+
+  std::span<const tm_kernel* const> kernels() const { return kernels_; }
+  std::span<const tm_element_info* const> elements() const { return elements_; }
+  /// Distinct law, element and split names, sorted.
+  std::vector<std::string> laws() const;
+  std::vector<std::string> splits() const;
+
+ private:
+  Registry();
+  static std::string key(std::string_view law, std::string_view element, std::string_view split);
+  std::vector<const tm_kernel*> kernels_;
+  std::vector<const tm_element_info*> elements_;
+  std::unordered_map<std::string, const tm_kernel*> by_key_;
+  std::unordered_map<std::string, const tm_element_info*> elements_by_name_;
+};
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,126 @@
+/// \file model.hpp
+/// The discrete model: every cell of a mesh bound to a registry kernel (its
+/// law from the first matching material region), its constants precomputed
+/// once, lumped masses, consistent loads and the constrained degrees of
+/// freedom. Degrees of freedom are node-major: dof = node * dim + component.
+/// 2D meshes are plane strain with unit thickness.
+#ifndef TENSORMASS_MODEL_HPP
+#define TENSORMASS_MODEL_HPP
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/scene/scene.hpp"
+
+namespace tensormass {
+
+/// The split used when a material names none: chosen from the measured
+/// kernel timings (docs/results/kernels.md): `tensor` for Hooke on
+/// first-order elements (its Hessian is a precomputed copy), `whole` otherwise.
+std::string default_split(const std::string& law, const tm_element_info& element);
+
+/// A displacement imposed on one degree of freedom: amplitude * profile(t).
+struct PrescribedDof {
+  int dof;
+  double amplitude;
+  int profile;  ///< index into Model::profiles
+};
+
+class Model {
+ public:
+  /// Binds kernels, precomputes constants and assembles masses and loads.
+  /// Throws InputError (unknown kernel, non-positive Jacobian at rest named
+  /// by element, unknown groups, no constraint in a static scene, ...).
+  Model(const Mesh& mesh, const Scene& scene);
+  /// The model keeps a reference to the mesh: a temporary mesh would dangle.
+  Model(Mesh&&, const Scene&) = delete;
+
+  const Mesh& mesh() const { return *mesh_; }
+  int dim() const { return dim_; }
+  int dof_count() const { return mesh_->node_count() * dim_; }
+  int cell_count() const { return static_cast<int>(kernels_.size()); }
+  int free_dof_count() const { return static_cast<int>(free_dofs_.size()); }
+
+  /// The nodes of mesh-wide cell `cell`, in kernel order.
+  std::span<const int> cell_nodes(int cell) const {
+    return {cell_connectivity_.data() + cell_offsets_[cell],
+            static_cast<std::size_t>(cell_offsets_[cell + 1] - cell_offsets_[cell])};
+  }
+  const tm_kernel& kernel(int cell) const { return *kernels_[cell]; }
+  const double* consts(int cell) const { return consts_.data() + consts_offsets_[cell]; }
+  /// Law index of each cell into `law_names()` (the `law_id` output field).
+  int law_id(int cell) const;
+  /// Every law of the registry, sorted: law_id -> name.
+  const std::vector<std::string>& law_names() const { return law_names_; }
+  /// Replaces a cell's kernel by the same element and split under `law`
+  /// (O(1) when the constants layout is shared, else recomputed once).
+  /// Switching back to the cell's initial law restores its initial kernel
+  /// exactly (its constants are never overwritten by a switch).
+  void set_law(int cell, const std::string& law);
+  const tm_kernel& initial_kernel(int cell) const { return *initial_kernels_[cell]; }
+
+  /// Smooth law transitions: while a cell blends, its force and stiffness
+  /// are w * (current kernel) + (1 - w) * (`from` kernel), on the same
+  /// constants. start_blend sets w = 0 (no jump at the switch).
+  void start_blend(int cell, const tm_kernel* from);
+  /// Sets w; w >= 1 ends the blend.
+  void set_blend_weight(int cell, double weight);
+  /// The kernel blended from, or nullptr when the cell is not blending.
+  const tm_kernel* blend_from(int cell) const { return blend_from_.empty() ? nullptr : blend_from_[cell]; }
+  double blend_weight(int cell) const { return blend_from_.empty() ? 1.0 : blend_weight_[cell]; }
+  int material(int cell) const { return cell_material_[cell]; }
+
+  /// dof_count(): lumped mass (row sum for first-order, HRZ for quadratic).
+  const std::vector<double>& lumped_mass() const { return lumped_mass_; }
+  /// dof_count(): consistent body force rho g integral(N_i).
+  const std::vector<double>& gravity_load() const { return gravity_load_; }
+  /// dof_count(): nodal forces and pressure on the reference configuration.
+  const std::vector<double>& surface_load() const { return surface_load_; }
+  /// dof_count(): index among the free dofs, or -1 for a constrained dof.
+  const std::vector<int>& free_index() const { return free_index_; }
+  const std::vector<int>& free_dofs() const { return free_dofs_; }
+  const std::vector<PrescribedDof>& prescribed() const { return prescribed_; }
+  const std::vector<TimeProfile>& profiles() const { return profiles_; }
+
+  /// Sets every constrained dof of `u` (dof_count) to its value at time `t`;
+  /// the static solver passes the load factor as t with ramp profiles.
+  void apply_constraints(double t, std::span<double> u, bool static_load_factor = false) const;
+  /// Total strain energy at displacement u (dof_count).
+  double strain_energy(std::span<const double> u) const;
+  /// First cell whose deformation gradient has det <= 0 (or NaN) at a
+  /// quadrature point, or -1.
+  int first_inverted_cell(std::span<const double> u) const;
+  /// Gathers the cell's displacements (nodes by dim) from u.
+  void gather(int cell, std::span<const double> u, double* local) const;
+
+ private:
+  void bind_kernels(const Scene& scene);
+  void compute_masses_and_gravity(const Scene& scene);
+  void apply_nodal_forces_and_pressure(const Scene& scene);
+  void collect_constraints(const Scene& scene);
+  void precompute(int cell);
+
+  const Mesh* mesh_;
+  int dim_;
+  std::vector<int> cell_offsets_;        ///< cell_count()+1
+  std::vector<int> cell_connectivity_;   ///< nodes of every cell, concatenated
+  std::vector<const tm_kernel*> kernels_, initial_kernels_;
+  std::vector<const tm_kernel*> blend_from_;  ///< empty until the first blend
+  std::vector<double> blend_weight_;
+  std::vector<std::size_t> consts_offsets_;
+  std::vector<double> consts_;
+  std::vector<int> cell_material_;
+  std::vector<std::array<double, 2>> material_params_;  ///< young, poisson per material
+  std::vector<std::string> law_names_;
+  std::vector<double> lumped_mass_, gravity_load_, surface_load_;
+  std::vector<int> free_index_, free_dofs_;
+  std::vector<PrescribedDof> prescribed_;
+  std::vector<TimeProfile> profiles_;
+};
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,35 @@
+/// \file linear_solver.hpp
+/// Solvers of K x = b for the symmetric matrices of assembly: sparse
+/// Cholesky (SuiteSparse CHOLMOD, supernodal; simplicial LDL^T when K is
+/// not positive definite) and Jacobi-preconditioned conjugate gradients
+/// warm-started from the caller's x.
+#ifndef TENSORMASS_LINEAR_SOLVER_HPP
+#define TENSORMASS_LINEAR_SOLVER_HPP
+
+#include <memory>
+#include <span>
+#include <string>
+
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
+
+namespace tensormass {
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// Prepares for matrices with A's pattern, then factorises A (direct
+  /// solvers) or keeps A (iterative ones). Throws NumericalError when A is singular.
+  virtual void factorize(const SparseMatrix& A) = 0;
+  /// Solves A x = b; x holds the initial guess on entry (used by CG).
+  /// Returns the iterations (1 for a direct solve). Throws NumericalError
+  /// when CG does not reach its tolerance.
+  virtual int solve(std::span<const double> b, std::span<double> x) = 0;
+  virtual std::string name() const = 0;
+};
+
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSpec& spec);
+
+}  // namespace tensormass
+
+#endif

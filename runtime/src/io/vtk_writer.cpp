@@ -1,0 +1,152 @@
+// VTK XML writers: .vtu as version 1.0 with UInt64 block headers and raw
+// appended binary data (exact doubles, compact, read by ParaView and meshio),
+// and .pvd collections.
+#include "tensormass/io/vtk_writer.hpp"
+
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "tensormass/io/atomic_file.hpp"
+
+namespace tensormass::io {
+namespace {
+
+const char* byte_order() { return std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian"; }
+
+std::string xml_escape(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Shortest text that reads back as exactly `value`.
+std::string exact(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+/// The appended-data section: each array is a UInt64 byte count then its bytes.
+class AppendedData {
+ public:
+  /// Appends `values` and returns the array's offset (for the DataArray tag).
+  template <class T>
+  std::size_t add(const std::vector<T>& values) {
+    const std::size_t offset = bytes_.size();
+    const std::uint64_t size = values.size() * sizeof(T);
+    bytes_.append(reinterpret_cast<const char*>(&size), sizeof size);
+    bytes_.append(reinterpret_cast<const char*>(values.data()), size);
+    return offset;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+void data_array(std::ostream& xml, const char* type, const std::string& name, int components, std::size_t offset) {
+  xml << "        <DataArray type=\"" << type << "\" Name=\"" << xml_escape(name) << "\"";
+  if (components > 0) xml << " NumberOfComponents=\"" << components << "\"";
+  xml << " format=\"appended\" offset=\"" << offset << "\"/>\n";
+}
+
+void check_field(const Field& field, int count, const std::string& path, const char* kind) {
+  if (field.components < 1 || field.values.size() != static_cast<std::size_t>(count) * field.components)
+    throw std::invalid_argument(path + ": " + kind + " field '" + field.name + "' has " +
+                                std::to_string(field.values.size()) + " values, expected " + std::to_string(count) +
+                                " by " + std::to_string(field.components));
+}
+
+void write_fields(std::ostream& xml, AppendedData& data, const char* section, const std::vector<Field>& fields) {
+  xml << "      <" << section << ">\n";
+  for (const Field& field : fields) data_array(xml, "Float64", field.name, field.components, data.add(field.values));
+  xml << "      </" << section << ">\n";
+}
+
+std::vector<double> current_positions(const Mesh& mesh, const std::vector<double>& displacement,
+                                      const std::string& path) {
+  std::vector<double> points = mesh.rest_positions;
+  if (displacement.empty()) return points;
+  if (displacement.size() != points.size())
+    throw std::invalid_argument(path + ": displacement has " + std::to_string(displacement.size()) +
+                                " values, expected " + std::to_string(points.size()) + " (nodes by 3)");
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] += displacement[i];
+  return points;
+}
+
+struct CellArrays {
+  std::vector<std::int64_t> connectivity;
+  std::vector<std::int64_t> offsets;
+  std::vector<std::uint8_t> types;
+};
+
+/// Connectivity in VTK node order: the k-th VTK node is our node vtk_order[k].
+CellArrays cell_arrays(const Mesh& mesh) {
+  CellArrays cells;
+  for (const ElementBlock& block : mesh.blocks) {
+    const tm_element_info& element = *block.element;
+    for (int local = 0; local < block.count(); ++local) {
+      const std::span<const int> nodes = block.cell_nodes(local);
+      for (int k = 0; k < element.nodes; ++k) cells.connectivity.push_back(nodes[element.vtk_order[k]]);
+      cells.offsets.push_back(static_cast<std::int64_t>(cells.connectivity.size()));
+      cells.types.push_back(static_cast<std::uint8_t>(element.vtk_type));
+    }
+  }
+  return cells;
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& displacement,
+               const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+  for (const Field& field : point_data) check_field(field, mesh.node_count(), path, "point");
+  for (const Field& field : cell_data) check_field(field, mesh.cell_count(), path, "cell");
+  AppendedData data;
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
+      << "\" header_type=\"UInt64\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << mesh.node_count() << "\" NumberOfCells=\"" << mesh.cell_count() << "\">\n";
+  write_fields(xml, data, "PointData", point_data);
+  write_fields(xml, data, "CellData", cell_data);
+  xml << "      <Points>\n";
+  data_array(xml, "Float64", "Points", 3, data.add(current_positions(mesh, displacement, path)));
+  xml << "      </Points>\n      <Cells>\n";
+  const CellArrays cells = cell_arrays(mesh);
+  data_array(xml, "Int64", "connectivity", 0, data.add(cells.connectivity));
+  data_array(xml, "Int64", "offsets", 0, data.add(cells.offsets));
+  data_array(xml, "UInt8", "types", 0, data.add(cells.types));
+  xml << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  write_atomically(path, [&](std::ostream& out) {
+    out << xml.str();
+    out.write(data.bytes().data(), static_cast<std::streamsize>(data.bytes().size()));
+    out << "\n  </AppendedData>\n</VTKFile>\n";
+  });
+}
+
+void write_pvd(const std::string& path, const std::vector<SeriesEntry>& entries) {
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << byte_order() << "\">\n"
+      << "  <Collection>\n";
+  for (const SeriesEntry& entry : entries)
+    xml << "    <DataSet timestep=\"" << exact(entry.time) << "\" group=\"\" part=\"0\" file=\""
+        << xml_escape(entry.file) << "\"/>\n";
+  xml << "  </Collection>\n</VTKFile>\n";
+  write_atomically(path, [&](std::ostream& out) { out << xml.str(); });
+}
+
+}  // namespace tensormass::io
