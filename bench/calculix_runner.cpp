@@ -64,9 +64,9 @@ std::string quoted(const std::string& text) {  // for /bin/sh
 
 /// Law of each material; every material must use the same one (NLGEOM is per step).
 std::string common_law(const Scene& scene) {
-  if (scene.materials.empty()) throw std::runtime_error("calculix: the scene has no material");
-  const std::string law = scene.materials.front().law;
-  for (const MaterialSpec& m : scene.materials)
+  if (scene.model.materials.empty()) throw std::runtime_error("calculix: the scene has no material");
+  const std::string law = scene.model.materials.front().law;
+  for (const MaterialSpec& m : scene.model.materials)
     if (m.law != law) throw std::runtime_error("calculix: every material must use the same law (found " + law +
                                                " and " + m.law + ")");
   if (law != "stvk" && law != "hooke")
@@ -78,8 +78,8 @@ std::string common_law(const Scene& scene) {
 std::vector<int> cell_materials(const Mesh& mesh, const Scene& scene) {
   const int cells = mesh.cell_count();
   std::vector<int> material(cells, -1);
-  for (int m = static_cast<int>(scene.materials.size()) - 1; m >= 0; --m) {
-    const std::string& region = scene.materials[m].region;
+  for (int m = static_cast<int>(scene.model.materials.size()) - 1; m >= 0; --m) {
+    const std::string& region = scene.model.materials[m].region;
     if (region == "all") {
       std::fill(material.begin(), material.end(), m);
       continue;
@@ -117,8 +117,8 @@ std::string find_calculix(const std::string& name) {
 std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOptions& options) {
   const std::string law = common_law(scene);
   const bool nlgeom = law == "stvk";
-  if (!scene.prescribed.empty()) throw std::runtime_error("calculix: prescribed displacements are not supported");
-  if (!scene.loads.pressures.empty()) throw std::runtime_error("calculix: pressures are not supported");
+  if (!scene.model.prescribed.empty()) throw std::runtime_error("calculix: prescribed displacements are not supported");
+  if (!scene.model.loads.pressures.empty()) throw std::runtime_error("calculix: pressures are not supported");
   if (options.increments < 1) throw std::runtime_error("calculix: increments must be >= 1");
   const int dim = mesh.dim;
 
@@ -149,7 +149,7 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
       }
     }
   }
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+  for (std::size_t m = 0; m < scene.model.materials.size(); ++m) {
     std::vector<long> cells;
     for (int cell = 0; cell < mesh.cell_count(); ++cell)
       if (material[cell] == static_cast<int>(m)) cells.push_back(cell + 1L);
@@ -159,7 +159,7 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
   }
   // Constraints.
   std::set<int> fixed;
-  for (const std::string& name : scene.fixed) {
+  for (const std::string& name : scene.model.fixed) {
     const Group* group = mesh.group(name);
     if (group == nullptr) throw std::runtime_error("calculix: no group '" + name + "' in the mesh");
     fixed.insert(group->nodes.begin(), group->nodes.end());
@@ -171,8 +171,8 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
     write_list(out, ids);
   }
   // Materials and sections.
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-    const MaterialSpec& spec = scene.materials[m];
+  for (std::size_t m = 0; m < scene.model.materials.size(); ++m) {
+    const MaterialSpec& spec = scene.model.materials[m];
     bool used = false;
     for (const int c : material) used = used || c == static_cast<int>(m);
     if (!used) continue;
@@ -190,14 +190,14 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
   } else {
     out << "*STEP\n*STATIC\n1.0, 1.0\n";
   }
-  const auto& g = scene.loads.gravity;
+  const auto& g = scene.model.loads.gravity;
   const double magnitude = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   if (magnitude > 0.0)
     out << "*DLOAD\nEALL, GRAV, " << number(magnitude) << ", " << number(g[0] / magnitude) << ", "
         << number(g[1] / magnitude) << ", " << number(g[2] / magnitude) << "\n";
   // Nodal forces: the same force on each node of the group, summed over groups.
   std::map<int, std::array<double, 3>> forces;
-  for (const NodalForceSpec& load : scene.loads.nodal_forces) {
+  for (const NodalForceSpec& load : scene.model.loads.nodal_forces) {
     const Group* group = mesh.group(load.region);
     if (group == nullptr) throw std::runtime_error("calculix: no group '" + load.region + "' in the mesh");
     for (const int node : group->nodes) {

@@ -126,21 +126,21 @@ Scene make_scene(const BeamCase& beam, const Config& config, int steps) {
   material.young = beam.young;
   material.poisson = kPoisson;
   material.density = kDensity;
-  scene.materials = {material};
-  scene.fixed = {"clamp"};
-  scene.loads.gravity = {0.0, -kGravity, 0.0};
-  scene.loads.profile.kind = "ramp";
-  scene.loads.profile.duration = kRamp;
+  scene.model.materials = {material};
+  scene.model.fixed = {"clamp"};
+  scene.model.loads.gravity = {0.0, -kGravity, 0.0};
+  scene.model.loads.profile.kind = ProfileKind::ramp;
+  scene.model.loads.profile.duration = kRamp;
   scene.solver.damping_mass = kDampingMass;
-  scene.solver.type = "implicit";
+  scene.solver.type = SolverType::implicit_euler;
   scene.solver.dt = kDt;
   scene.solver.steps = steps;
   scene.solver.newton_iterations = 1;
-  scene.solver.linear.type = "cholmod";
+  scene.solver.linear.type = LinearSolverType::cholmod;
   if (config.threshold) {
     scene.adaptivity.enabled = true;
     scene.adaptivity.criteria = {{config.mode, *config.threshold, 0}};
-    scene.adaptivity.action = "upgrade";
+    scene.adaptivity.action = AdaptivityAction::upgrade;
     scene.adaptivity.every = 1;
     scene.adaptivity.blend_steps = 0;  // the origin switches at once
   }
@@ -154,13 +154,13 @@ RunResult simulate(const Mesh& mesh, const BeamCase& beam, const Config& config,
                    std::vector<double>* criterion_max = nullptr) {
   RunResult result;
   const Scene scene = make_scene(beam, config, steps);
-  Model model(mesh, scene);
+  Model model(mesh, scene.model);
   const Assembler assembler(model);
   std::unique_ptr<Adaptivity> adaptivity;
   if (scene.adaptivity.enabled) adaptivity = std::make_unique<Adaptivity>(scene.adaptivity, model, assembler);
   auto linear = make_linear_solver(scene.solver.linear);
   SolveStatistics statistics;
-  Integration run{model, assembler, *linear, scene, statistics};
+  Integration run{model, assembler, *linear, scene.solver, statistics};
   State state;
   state.displacement.assign(model.dof_count(), 0.0);
   state.velocity.assign(model.dof_count(), 0.0);

@@ -236,7 +236,7 @@ Mesh beam_mesh(int dim, const std::string& cut, std::array<int, 3> cells, std::a
 }
 
 /// A cantilever clamped at x = 0 under gravity along -y, one material everywhere.
-Scene cantilever(const std::string& law, double young, double gravity, const std::string& type) {
+Scene cantilever(const std::string& law, double young, double gravity, SolverType type) {
   Scene scene;
   scene.path = "bench-runtime.yaml";
   scene.mesh = "bench-runtime-beam";
@@ -245,9 +245,9 @@ Scene cantilever(const std::string& law, double young, double gravity, const std
   material.young = young;
   material.poisson = kPoisson;
   material.density = kDensity;
-  scene.materials = {material};
-  scene.fixed = {"clamp"};
-  scene.loads.gravity = {0.0, -gravity, 0.0};
+  scene.model.materials = {material};
+  scene.model.fixed = {"clamp"};
+  scene.model.loads.gravity = {0.0, -gravity, 0.0};
   scene.solver.type = type;
   return scene;
 }
@@ -274,7 +274,7 @@ struct StepFigures {
 StepFigures run_implicit(const Model& model, const Assembler& assembler, const Scene& scene, State& state) {
   auto linear = make_linear_solver(scene.solver.linear);
   SolveStatistics statistics;
-  Integration run{model, assembler, *linear, scene, statistics};
+  Integration run{model, assembler, *linear, scene.solver, statistics};
   SolveStatistics warm;  // statistics after the warm-up step
   const StepObserver observer = [&](const State& s) {
     if (s.step == 1) warm = statistics;
@@ -324,11 +324,11 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
   const int threads = std::max(1, options.threads);
   std::printf("\n== 1. Static StVK cantilever: tensormass vs CalculiX (NLGEOM) ==\n");
   const Mesh mesh = beam_mesh(3, "tet6", settings.cells, kCcxSize);
-  Scene scene = cantilever("stvk", kCcxYoung, kCcxGravity, "static");
+  Scene scene = cantilever("stvk", kCcxYoung, kCcxGravity, SolverType::static_newton);
   scene.solver.load_steps = settings.increments;
   scene.solver.tolerance = 1e-10;
   scene.solver.max_iterations = 50;
-  scene.solver.linear.type = "cholmod";
+  scene.solver.linear.type = LinearSolverType::cholmod;
   std::printf("beam %d x %d x %d cubes x 6 tets (tet6, Kuhn) = %d tet4, %d nodes; L x H x W = %g x %g x %g m\n",
               settings.cells[0], settings.cells[1], settings.cells[2], mesh.cell_count(), mesh.node_count(),
               kCcxSize[0], kCcxSize[1], kCcxSize[2]);
@@ -359,12 +359,12 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
   for (int rep = 0; rep < settings.repetitions; ++rep) {
     {
       const auto start = Clock::now();
-      Model model(mesh, scene);
+      Model model(mesh, scene.model);
       Assembler assembler(model);
       auto linear = make_linear_solver(scene.solver.linear);
       const double setup = since(start);
       SolveStatistics statistics;
-      Integration run{model, assembler, *linear, scene, statistics};
+      Integration run{model, assembler, *linear, scene.solver, statistics};
       State state;
       const auto solve_start = Clock::now();
       solve_static(run, state, nullptr);
@@ -472,14 +472,14 @@ bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, s
     for (const std::string solver : {"cholmod", "cg"})
       for (const int threads : thread_counts) {
         Threads scope(threads);
-        Scene scene = cantilever("stvk", kImplicitYoung, 9.81, "implicit");
+        Scene scene = cantilever("stvk", kImplicitYoung, 9.81, SolverType::implicit_euler);
         scene.solver.dt = kImplicitDt;
         const int steps = solver == "cg" ? c->cg_steps : c->cholmod_steps;
         scene.solver.steps = steps + 1;
         scene.solver.newton_iterations = 1;
-        scene.solver.linear.type = solver;
+        scene.solver.linear.type = solver == "cg" ? LinearSolverType::cg : LinearSolverType::cholmod;
         scene.solver.linear.tolerance = kCgTolerance;
-        const Model model(mesh, scene);
+        const Model model(mesh, scene.model);
         const Assembler assembler(model);
         std::vector<double> step_mean, step_median, assembly, solve, rest, iterations, first, asm_ref, spmv, ratio;
         for (int rep = 0; rep < c->repetitions; ++rep) {
@@ -573,9 +573,9 @@ std::vector<LawRun> make_law_runs(const Mesh& mesh, const std::function<void(Sce
   runs[0].law = "hooke";
   runs[1].law = "stvk";
   for (LawRun& r : runs) {
-    r.scene = cantilever(r.law, kQuadYoung, 9.81, "implicit");
+    r.scene = cantilever(r.law, kQuadYoung, 9.81, SolverType::implicit_euler);
     configure(r.scene);
-    r.model = std::make_unique<Model>(mesh, r.scene);
+    r.model = std::make_unique<Model>(mesh, r.scene.model);
     r.assembler = std::make_unique<Assembler>(*r.model);
   }
   return runs;
@@ -622,11 +622,11 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
   std::printf("implicit: backward Euler, dt = 0.01 s, %d counted steps, 1 Newton iteration per step, CHOLMOD\n", steps);
 
   std::vector<LawRun> implicit_runs = make_law_runs(mesh, [&](Scene& scene) {
-    scene.solver.type = "implicit";
+    scene.solver.type = SolverType::implicit_euler;
     scene.solver.dt = 0.01;
     scene.solver.steps = steps + 1;
     scene.solver.newton_iterations = 1;
-    scene.solver.linear.type = "cholmod";
+    scene.solver.linear.type = LinearSolverType::cholmod;
   });
   run_laws(mesh, implicit_runs, repetitions, [](LawRun& r, State& state) {
     return run_implicit(*r.model, *r.assembler, r.scene, state);
@@ -639,14 +639,14 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
   std::printf("explicit: symplectic Euler, dt = %.3g s (half the estimated stable %.3g s), %d counted steps\n",
               explicit_dt, stable, explicit_steps);
   std::vector<LawRun> explicit_runs = make_law_runs(mesh, [&](Scene& scene) {
-    scene.solver.type = "explicit";
+    scene.solver.type = SolverType::explicit_euler;
     scene.solver.dt = explicit_dt;
     scene.solver.steps = explicit_steps + 1;
   });
   run_laws(mesh, explicit_runs, repetitions, [](LawRun& r, State& state) {
     auto linear = make_linear_solver(r.scene.solver.linear);
     SolveStatistics statistics;
-    Integration run{*r.model, *r.assembler, *linear, r.scene, statistics};
+    Integration run{*r.model, *r.assembler, *linear, r.scene.solver, statistics};
     SolveStatistics warm;
     solve_explicit(run, state, [&](const State& s) {
       if (s.step == 1) warm = statistics;

@@ -17,15 +17,10 @@ constexpr const char* kNonlinearLaw = "stvk";
 constexpr int kMaxDofs = 81;
 }  // namespace
 
-Adaptivity::Adaptivity(const AdaptivitySpec& spec, Model& model, const Assembler& assembler)
-    : spec_(spec), model_(&model), assembler_(&assembler) {
-  if (spec.action != "upgrade") throw InputError("adaptivity.action: unknown action '" + spec.action + "' (known: upgrade)");
-  for (const CriterionSpec& criterion : spec.criteria) {
-    try {
-      criteria_.push_back(make_criterion(criterion.name));
-    } catch (const std::invalid_argument& error) {
-      throw InputError("adaptivity.criteria: " + std::string(error.what()));
-    }
+Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler)
+    : settings_(settings), model_(&model), assembler_(&assembler) {
+  for (const CriterionSpec& criterion : settings.criteria) {
+    criteria_.push_back(make_criterion(criterion.name));
     thresholds_.push_back(criterion.threshold);
     names_.push_back(criterion.name);
     needs_force_ = needs_force_ || criteria_.back()->needs_force();
@@ -36,8 +31,8 @@ Adaptivity::Adaptivity(const AdaptivitySpec& spec, Model& model, const Assembler
 }
 
 void Adaptivity::advance_blends() {
-  if (spec_.blend_steps <= 0) return;
-  const double increment = 1.0 / spec_.blend_steps;
+  if (settings_.blend_steps <= 0) return;
+  const double increment = 1.0 / settings_.blend_steps;
   for (int cell = 0; cell < model_->cell_count(); ++cell)
     if (model_->blend_from(cell)) model_->set_blend_weight(cell, model_->blend_weight(cell) + increment);
 }
@@ -81,8 +76,8 @@ bool Adaptivity::cell_is_calm(int cell) const {
   // Within threshold x hysteresis (quality criteria: above threshold / hysteresis).
   for (std::size_t c = 0; c < criteria_.size(); ++c) {
     const double value = values_[c][cell];
-    const bool calm = criteria_[c]->is_quality() ? value >= thresholds_[c] / spec_.hysteresis
-                                                 : value <= thresholds_[c] * spec_.hysteresis;
+    const bool calm = criteria_[c]->is_quality() ? value >= thresholds_[c] / settings_.hysteresis
+                                                 : value <= thresholds_[c] * settings_.hysteresis;
     if (!calm) return false;
   }
   return true;
@@ -91,12 +86,12 @@ bool Adaptivity::cell_is_calm(int cell) const {
 void Adaptivity::switch_law(int cell, const std::string& law) {
   const tm_kernel* before = &model_->kernel(cell);
   model_->set_law(cell, law);
-  if (spec_.blend_steps > 0) model_->start_blend(cell, before);
+  if (settings_.blend_steps > 0) model_->start_blend(cell, before);
   ++total_switches_;
 }
 
 int Adaptivity::update(std::span<const double> u, int step) {
-  if (criteria_.empty() || step % spec_.every != 0) return 0;
+  if (criteria_.empty() || step % settings_.every != 0) return 0;
   const auto start = std::chrono::steady_clock::now();
   evaluate(u);
   AdaptivityRecord record;
@@ -110,9 +105,9 @@ int Adaptivity::update(std::span<const double> u, int step) {
         calm_evaluations_[cell] = 0;
         ++record.upgrades;
       }
-    } else if (spec_.downgrade && !initial && std::string_view(model_->initial_kernel(cell).law) == kLinearLaw) {
+    } else if (settings_.downgrade && !initial && std::string_view(model_->initial_kernel(cell).law) == kLinearLaw) {
       calm_evaluations_[cell] = cell_is_calm(cell) ? calm_evaluations_[cell] + 1 : 0;
-      if (calm_evaluations_[cell] >= spec_.calm_steps) {
+      if (calm_evaluations_[cell] >= settings_.calm_steps) {
         switch_law(cell, kLinearLaw);
         calm_evaluations_[cell] = 0;
         ++record.downgrades;

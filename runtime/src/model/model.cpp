@@ -16,18 +16,15 @@ std::string default_split(const std::string& law, const tm_element_info& element
 
 namespace {
 
-std::string at_line(const Scene& scene, int line) {
-  return scene.path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
-}
-
 bool group_has_cell(const Group& group, int cell) {
   return std::binary_search(group.cells.begin(), group.cells.end(), cell);
 }
 
-/// Index of the first material whose region contains the cell, or -1.
-int find_material(const Scene& scene, const Mesh& mesh, int cell) {
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-    const MaterialSpec& material = scene.materials[m];
+}  // namespace
+
+int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell) {
+  for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+    const MaterialSpec& material = spec.materials[m];
     if (material.region == "all") return static_cast<int>(m);
     const Group* group = mesh.group(material.region);
     if (group && group_has_cell(*group, cell)) return static_cast<int>(m);
@@ -35,42 +32,40 @@ int find_material(const Scene& scene, const Mesh& mesh, int cell) {
   return -1;
 }
 
-}  // namespace
+const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element) {
+  const std::string split = material.split.empty() ? default_split(material.law, element) : material.split;
+  return Registry::instance().find(material.law, element.name, split);
+}
 
-Model::Model(const Mesh& mesh, const Scene& scene) : mesh_(&mesh), dim_(mesh.dim) {
+Model::Model(const Mesh& mesh, const ModelSpec& spec) : mesh_(&mesh), dim_(mesh.dim) {
   law_names_ = Registry::instance().laws();
   cell_offsets_.push_back(0);
   for (const ElementBlock& block : mesh.blocks) {
     cell_connectivity_.insert(cell_connectivity_.end(), block.connectivity.begin(), block.connectivity.end());
     for (int local = 0; local < block.count(); ++local) cell_offsets_.push_back(cell_offsets_.back() + block.element->nodes);
   }
-  bind_kernels(scene);
-  compute_masses_and_gravity(scene);
-  apply_nodal_forces_and_pressure(scene);
-  collect_constraints(scene);
+  load_profile_ = spec.loads.profile;
+  bind_kernels(spec);
+  compute_masses_and_gravity(spec);
+  apply_nodal_forces_and_pressure(spec);
+  collect_constraints(spec);
 }
 
-void Model::bind_kernels(const Scene& scene) {
-  const Registry& registry = Registry::instance();
+void Model::bind_kernels(const ModelSpec& spec) {
   const int cells = mesh_->cell_count();
   kernels_.resize(cells);
   cell_material_.resize(cells);
   consts_offsets_.resize(cells + 1);
-  for (const MaterialSpec& material : scene.materials) material_params_.push_back({material.young, material.poisson});
+  for (const MaterialSpec& material : spec.materials) material_params_.push_back({material.young, material.poisson});
   std::size_t total = 0;
   for (const ElementBlock& block : mesh_->blocks) {
     for (int local = 0; local < block.count(); ++local) {
       const int cell = block.first_cell + local;
-      const int m = find_material(scene, *mesh_, cell);
-      if (m < 0)
-        throw InputError(scene.path + ": no material region contains " + mesh_->describe_cell(cell) +
-                         " (add a material with region: all)");
-      const MaterialSpec& material = scene.materials[m];
-      const std::string split = material.split.empty() ? default_split(material.law, *block.element) : material.split;
-      const tm_kernel* kernel = registry.find(material.law, block.element->name, split);
+      const int m = material_of_cell(spec, *mesh_, cell);
+      const tm_kernel* kernel = m < 0 ? nullptr : material_kernel(spec.materials[m], *block.element);
       if (!kernel)
-        throw InputError(at_line(scene, material.line) + "no kernel for law '" + material.law + "', element '" +
-                         block.element->name + "', split '" + split + "' (see `tensormass kernels`)");
+        throw std::invalid_argument("Model: " + mesh_->describe_cell(cell) +
+                                    " has no material or kernel (validate the specification against the mesh first)");
       kernels_[cell] = kernel;
       cell_material_[cell] = m;
       consts_offsets_[cell] = total;

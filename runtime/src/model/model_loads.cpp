@@ -6,11 +6,24 @@
 #include <stdexcept>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/mesh/mesh_topology.hpp"
 #include "tensormass/model/model.hpp"
 
 namespace tensormass {
 
-void Model::compute_masses_and_gravity(const Scene& scene) {
+namespace {
+
+/// The group a validated spec names (std::invalid_argument for an unvalidated one).
+const Group& model_group(const Mesh& mesh, const std::string& name) {
+  const Group* group = mesh.group(name);
+  if (!group)
+    throw std::invalid_argument("Model: no group '" + name + "' (validate the specification against the mesh first)");
+  return *group;
+}
+
+}  // namespace
+
+void Model::compute_masses_and_gravity(const ModelSpec& spec) {
   const int n_dofs = dof_count();
   lumped_mass_.assign(n_dofs, 0.0);
   gravity_load_.assign(n_dofs, 0.0);
@@ -22,7 +35,7 @@ void Model::compute_masses_and_gravity(const Scene& scene) {
       const tm_kernel& kernel = *kernels_[cell];
       if (kernel.quadrature_points != element.quadrature_points)
         throw std::logic_error(std::string("kernel and element rules differ for ") + element.name);
-      const double density = scene.materials[cell_material_[cell]].density;
+      const double density = spec.materials[cell_material_[cell]].density;
       // integral of N_i and of N_i^2 over the element, with its own rule.
       std::array<double, 27> integral_n{}, integral_n2{};
       double volume = 0.0;
@@ -48,7 +61,7 @@ void Model::compute_masses_and_gravity(const Scene& scene) {
         for (int a = 0; a < dim_; ++a) {
           const std::size_t dof = static_cast<std::size_t>(nodes[j]) * dim_ + a;
           lumped_mass_[dof] += mass;
-          gravity_load_[dof] += density * integral_n[j] * scene.loads.gravity[a];
+          gravity_load_[dof] += density * integral_n[j] * spec.loads.gravity[a];
         }
       }
     }
@@ -56,10 +69,6 @@ void Model::compute_masses_and_gravity(const Scene& scene) {
 }
 
 namespace {
-
-std::string at_line_text(const std::string& path, int line) {
-  return path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
-}
 
 struct FacetRule {
   std::vector<std::array<double, 2>> points;
@@ -143,43 +152,27 @@ FacetRule facet_rule(int dim, int nodes) {
 
 }  // namespace
 
-void Model::apply_nodal_forces_and_pressure(const Scene& scene) {
+void Model::apply_nodal_forces_and_pressure(const ModelSpec& spec) {
   surface_load_.assign(dof_count(), 0.0);
-  for (const NodalForceSpec& load : scene.loads.nodal_forces) {
-    const Group& group = *mesh_->group(load.region);
+  for (const NodalForceSpec& load : spec.loads.nodal_forces) {
+    const Group& group = model_group(*mesh_, load.region);
     for (int node : group.nodes)
       for (int a = 0; a < dim_; ++a) surface_load_[static_cast<std::size_t>(node) * dim_ + a] += load.force[a];
   }
-  if (scene.loads.pressures.empty()) return;
+  if (spec.loads.pressures.empty()) return;
   // node -> cells, to orient each facet's normal away from its cell.
-  std::vector<std::vector<int>> node_cells(mesh_->node_count());
-  for (int cell = 0; cell < cell_count(); ++cell)
-    for (int node : cell_nodes(cell)) node_cells[node].push_back(cell);
-  for (const PressureSpec& load : scene.loads.pressures) {
-    const Group& group = *mesh_->group(load.region);
+  const std::vector<std::vector<int>> node_cells = cells_around_nodes(*mesh_);
+  for (const PressureSpec& load : spec.loads.pressures) {
+    const Group& group = model_group(*mesh_, load.region);
     const FacetSet& facets = group.facets;
     for (int f = 0; f < facets.count(); ++f) {
       const int* nodes = facets.nodes.data() + facets.offsets[f];
       const int count = facets.offsets[f + 1] - facets.offsets[f];
-      const bool supported = dim_ == 2 ? (count == 2 || count == 3) : (count == 3 || count == 4 || count == 6 || count == 8);
-      if (!supported)
-        throw InputError(at_line_text(scene.path, load.line) + "pressure on group '" + load.region +
-                         "': facet with " + std::to_string(count) + " nodes is not supported");
-      const int corners = dim_ == 2 ? 2 : (count == 3 || count == 6 ? 3 : 4);
-      // The cell holding every corner of the facet.
-      int owner = -1;
-      for (int cell : node_cells[nodes[0]]) {
-        const auto cn = cell_nodes(cell);
-        bool all = true;
-        for (int c = 0; c < corners && all; ++c) all = std::find(cn.begin(), cn.end(), nodes[c]) != cn.end();
-        if (all) {
-          owner = cell;
-          break;
-        }
-      }
-      if (owner < 0)
-        throw InputError(at_line_text(scene.path, load.line) + "pressure on group '" + load.region + "': facet " +
-                         std::to_string(f) + " is not a face of any element");
+      const int owner = facet_owner(*mesh_, node_cells, {nodes, static_cast<std::size_t>(count)});
+      if (!is_load_facet(dim_, count) || owner < 0)
+        throw std::invalid_argument("Model: pressure on group '" + load.region + "': facet " + std::to_string(f) +
+                                    " is not a face of any cell (validate the specification against the mesh first)");
+      const int corners = facet_corners(dim_, count);
       std::array<double, 3> cell_centre{}, facet_centre{};
       const auto cn = cell_nodes(owner);
       for (int node : cn)
@@ -216,18 +209,18 @@ void Model::apply_nodal_forces_and_pressure(const Scene& scene) {
   }
 }
 
-void Model::collect_constraints(const Scene& scene) {
+void Model::collect_constraints(const ModelSpec& spec) {
   std::map<int, PrescribedDof> by_dof;  // a later constraint on a dof wins
   profiles_.push_back(TimeProfile{});  // 0: constant, for fixed groups
-  for (const std::string& region : scene.fixed)
-    for (int node : mesh_->group(region)->nodes)
+  for (const std::string& region : spec.fixed)
+    for (int node : model_group(*mesh_, region).nodes)
       for (int a = 0; a < dim_; ++a) by_dof[node * dim_ + a] = {node * dim_ + a, 0.0, 0};
-  for (const PrescribedSpec& spec : scene.prescribed) {
-    profiles_.push_back(spec.profile);
+  for (const PrescribedSpec& prescribed : spec.prescribed) {
+    profiles_.push_back(prescribed.profile);
     const int profile = static_cast<int>(profiles_.size()) - 1;
-    for (int node : mesh_->group(spec.region)->nodes)
+    for (int node : model_group(*mesh_, prescribed.region).nodes)
       for (int a = 0; a < dim_; ++a)
-        if (spec.components[a]) by_dof[node * dim_ + a] = {node * dim_ + a, spec.displacement[a], profile};
+        if (prescribed.components[a]) by_dof[node * dim_ + a] = {node * dim_ + a, prescribed.displacement[a], profile};
   }
   for (const auto& [dof, p] : by_dof) prescribed_.push_back(p);
   free_index_.assign(dof_count(), -1);
@@ -236,9 +229,6 @@ void Model::collect_constraints(const Scene& scene) {
       free_index_[dof] = static_cast<int>(free_dofs_.size());
       free_dofs_.push_back(dof);
     }
-  if (scene.solver.type == "static" && prescribed_.empty())
-    throw InputError(scene.path + ": a static solve needs fixed or prescribed nodes (key 'fixed' or 'prescribed')");
-  if (free_dofs_.empty()) throw InputError(scene.path + ": every degree of freedom is constrained; nothing to solve");
 }
 
 }  // namespace tensormass

@@ -1,6 +1,6 @@
 // Reading and validating a scene file (docs/scene.md is the reference of
 // every key). The tree is read, overrides are applied, unknown keys are
-// rejected, then each section is read into its Spec with typed checks.
+// rejected, then each section is read into its specification or settings with typed checks.
 #include "tensormass/scene/scene.hpp"
 
 #include <algorithm>
@@ -65,6 +65,13 @@ std::string one_of(const Value& value, const std::vector<std::string>& known, co
   if (std::find(known.begin(), known.end(), name) == known.end())
     value.fail("unknown " + what + " '" + name + "' (known: " + scene_yaml::join(known) + ")");
   return name;
+}
+
+/// The position of the value's name in `known` (an enum in the same order).
+template <class Enum>
+Enum one_of_enum(const Value& value, const std::vector<std::string>& known, const std::string& what) {
+  const std::string name = one_of(value, known, what);
+  return static_cast<Enum>(std::find(known.begin(), known.end(), name) - known.begin());
 }
 
 double positive(const Value& value) {
@@ -138,22 +145,22 @@ std::vector<MaterialSpec> read_materials(const Value& list) {
   return out;
 }
 
-void read_fixed(const Value& list, Scene& scene) {
+void read_fixed(const Value& list, ModelSpec& model) {
   if (!list.present()) return;
   for (const Value& item : list.items()) {
-    scene.fixed.push_back(item.text());
-    scene.fixed_lines.push_back(item.line());
+    model.fixed.push_back(item.text());
+    model.fixed_lines.push_back(item.line());
   }
 }
 
 TimeProfile read_profile(const Value& value) {
   TimeProfile p;
   if (value.is_scalar()) {
-    p.kind = one_of(value, kProfileKinds, "profile");
+    p.kind = one_of_enum<ProfileKind>(value, kProfileKinds, "profile");
     return p;
   }
   if (!value.is_map()) value.fail("expected a profile name or a map {type: ...}, got " + value.describe());
-  p.kind = one_of(value.required("type"), kProfileKinds, "profile type");
+  p.kind = one_of_enum<ProfileKind>(value.required("type"), kProfileKinds, "profile type");
   read_optional(value, "duration", p.duration, positive);
   read_optional(value, "period", p.period, positive);
   read_optional(value, "phase", p.phase, [](const Value& v) { return v.number(); });
@@ -219,33 +226,36 @@ LoadsSpec read_loads(const Value& section) {
   return loads;
 }
 
-void read_damping(const Value& section, SolverSpec& solver) {
+void read_damping(const Value& section, SolverSettings& solver) {
   if (!section.present()) return;
   read_optional(section, "mass", solver.damping_mass, non_negative);
   read_optional(section, "stiffness", solver.damping_stiffness, non_negative);
+  const Value stiffness = section.child("stiffness");
+  if (solver.type == SolverType::explicit_euler && solver.damping_stiffness != 0.0)
+    stiffness.fail("is not supported by the explicit solver (use damping.mass)");
 }
 
-LinearSolverSpec read_linear(const Value& section) {
-  LinearSolverSpec linear;
+LinearSolverSettings read_linear(const Value& section) {
+  LinearSolverSettings linear;
   if (!section.present()) return linear;
-  read_optional(section, "type", linear.type, [](const Value& v) { return one_of(v, kLinearTypes, "linear solver"); });
+  read_optional(section, "type", linear.type,
+                [](const Value& v) { return one_of_enum<LinearSolverType>(v, kLinearTypes, "linear solver"); });
   read_optional(section, "tolerance", linear.tolerance, open_fraction);
   read_optional(section, "max_iterations", linear.max_iterations, at_least(1));
   read_optional(section, "reuse_iterations", linear.reuse_iterations, at_least(0));
   return linear;
 }
 
-SolverSpec read_solver(const Value& section) {
+SolverSettings read_solver(const Value& section) {
   section.expect_map();
-  SolverSpec solver;
-  solver.type = one_of(section.required("type"), kSolverTypes, "solver type");
+  SolverSettings solver;
+  solver.type = one_of_enum<SolverType>(section.required("type"), kSolverTypes, "solver type");
   read_optional(section, "load_steps", solver.load_steps, at_least(1));
   read_optional(section, "tolerance", solver.tolerance, open_fraction);
   read_optional(section, "max_iterations", solver.max_iterations, at_least(1));
   // Keys of the other solver types are read (and checked) but not required.
-  const bool dynamic = solver.type != "static";
-  const std::string reason = "(needed by solver type " + solver.type + ")";
-  if (dynamic) {
+  const std::string reason = "(needed by solver type " + std::string(solver_type_name(solver.type)) + ")";
+  if (solver.is_dynamic()) {
     section.required("dt", reason);
     section.required("steps", reason);
   }
@@ -267,7 +277,7 @@ CriterionSpec read_criterion(const Value& item) {
   return c;
 }
 
-void read_downgrade(const Value& value, AdaptivitySpec& spec) {
+void read_downgrade(const Value& value, AdaptivitySettings& spec) {
   if (!value.present()) return;
   if (value.is_scalar() && (value.scalar() == "true" || value.scalar() == "false")) {
     spec.downgrade = value.scalar() == "true";
@@ -279,8 +289,8 @@ void read_downgrade(const Value& value, AdaptivitySpec& spec) {
   read_optional(value, "calm_steps", spec.calm_steps, at_least(1));
 }
 
-AdaptivitySpec read_adaptivity(const Value& section) {
-  AdaptivitySpec spec;
+AdaptivitySettings read_adaptivity(const Value& section) {
+  AdaptivitySettings spec;
   if (!section.present()) return spec;
   section.expect_map();
   spec.enabled = true;
@@ -292,7 +302,8 @@ AdaptivitySpec read_adaptivity(const Value& section) {
     spec.criteria.push_back(c);
   }
   if (spec.criteria.empty()) criteria.fail("needs at least one criterion");
-  read_optional(section, "action", spec.action, [](const Value& v) { return one_of(v, kActions, "action"); });
+  read_optional(section, "action", spec.action,
+                [](const Value& v) { return one_of_enum<AdaptivityAction>(v, kActions, "action"); });
   read_optional(section, "every", spec.every, at_least(1));
   read_optional(section, "blend_steps", spec.blend_steps, at_least(0));
   read_downgrade(section.child("downgrade"), spec);
@@ -300,7 +311,7 @@ AdaptivitySpec read_adaptivity(const Value& section) {
 }
 
 /// Group names, each once and each with its own track file name.
-void read_track(const Value& list, OutputSpec& output) {
+void read_track(const Value& list, OutputSettings& output) {
   if (!list.present()) return;
   if (!list.is_list()) list.fail("expected a list of group names, got " + list.describe());
   for (const Value& item : list.items()) {
@@ -315,8 +326,8 @@ void read_track(const Value& list, OutputSpec& output) {
   }
 }
 
-OutputSpec read_output(const Value& section, const fs::path& directory) {
-  OutputSpec output;
+OutputSettings read_output(const Value& section, const fs::path& directory) {
+  OutputSettings output;
   if (section.present()) {
     section.expect_map();
     read_optional(section, "directory", output.directory, [](const Value& v) { return v.text(); });
@@ -332,10 +343,11 @@ Scene read_scene(const Value& root, const std::string& path) {
   Scene scene;
   scene.path = path;
   scene.mesh = resolve_path(directory, root.required("mesh").text());
-  scene.materials = read_materials(root.required("materials"));
-  read_fixed(root.child("fixed"), scene);
-  scene.prescribed = read_prescribed(root.child("prescribed"));
-  scene.loads = read_loads(root.child("loads"));
+  scene.model.source = path;
+  scene.model.materials = read_materials(root.required("materials"));
+  read_fixed(root.child("fixed"), scene.model);
+  scene.model.prescribed = read_prescribed(root.child("prescribed"));
+  scene.model.loads = read_loads(root.child("loads"));
   scene.solver = read_solver(root.required("solver"));
   scene.adaptivity = read_adaptivity(root.child("adaptivity"));
   scene.output = read_output(root.child("output"), directory);

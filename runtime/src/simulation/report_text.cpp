@@ -27,21 +27,21 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 std::string format_report(const Scene& scene, const RunReport& report) {
   const SolveStatistics& s = report.statistics;
   const auto [mean, median] = detail::mean_and_median(s.step_ms);
-  const bool dynamic = scene.solver.type != "static";
+  const bool dynamic = scene.solver.is_dynamic();
   std::ostringstream text;
   text << "tensormass run " << scene.path << "\n";
   text << "  mesh      " << scene.mesh << ": " << list(report.cells_per_type) << "; " << report.nodes << " nodes, "
        << report.dofs << " dofs (" << report.free_dofs << " free)\n";
   text << "  laws      " << list(report.cells_per_law) << "\n";
-  text << "  solver    " << scene.solver.type;
+  text << "  solver    " << solver_type_name(scene.solver.type);
   if (dynamic) text << format(", dt %g s, %g steps", scene.solver.dt, scene.solver.steps);
   else text << format(", %g load steps, tolerance %g", scene.solver.load_steps, scene.solver.tolerance);
   text << ", linear: " << report.linear_solver << "\n";
-  if (scene.solver.type == "explicit") text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
+  if (scene.solver.type == SolverType::explicit_euler) text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
   text << format("  time      %.3f s; per step mean %.4g ms, median %.4g ms\n", report.wall_seconds, mean, median);
   text << format("  phases    assembly %.3f s, solve %.3f s", s.assembly_seconds, s.solve_seconds)
        << format(", criteria %.3f s, output %.3f s\n", report.criteria_seconds, report.output_seconds);
-  if (scene.solver.type != "explicit") {
+  if (scene.solver.type != SolverType::explicit_euler) {
     text << "  newton    " << s.newton_iterations << " iterations";
     if (!s.newton_per_step.empty())
       text << format(" (%.2f per step)", static_cast<double>(s.newton_iterations) / s.newton_per_step.size());

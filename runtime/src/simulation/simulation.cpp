@@ -86,10 +86,6 @@ void count_cells(const Model& model, RunReport& report) {
   for (const ElementBlock& block : model.mesh().blocks) report.cells_per_type.push_back({block.element->name, block.count()});
 }
 
-int total_steps(const Scene& scene) {
-  return scene.solver.type == "static" ? scene.solver.load_steps : scene.solver.steps;
-}
-
 /// One track per `output.track` group (the groups were checked before).
 std::vector<GroupTrack> make_tracks(const Scene& scene, const Mesh& mesh) {
   std::vector<GroupTrack> tracks;
@@ -110,7 +106,7 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
 
 /// Simulated and time-loop seconds of a dynamic run (see RunReport::loop_seconds).
 void time_loop(const Scene& scene, const State& state, double adaptivity_seconds, RunReport& report) {
-  if (scene.solver.type == "static") return;
+  if (scene.solver.is_static()) return;
   report.simulated_seconds = state.step * scene.solver.dt;
   report.loop_seconds = adaptivity_seconds;
   for (double ms : report.statistics.step_ms) report.loop_seconds += ms / 1e3;
@@ -122,21 +118,19 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // Everything that can be wrong with the input is found before any output.
   const Mesh mesh = read_mesh(scene.mesh);
-  check_groups(scene, mesh);
+  validate_against_mesh(scene, mesh);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  Model model(mesh, scene);
+  Model model(mesh, scene.model);
   const Assembler assembler(model);
-  const bool dynamic = scene.solver.type != "static";
+  const bool dynamic = scene.solver.is_dynamic();
   std::unique_ptr<Adaptivity> adaptivity;
   if (scene.adaptivity.enabled) {
-    AdaptivitySpec spec = scene.adaptivity;
-    if (!dynamic) spec.blend_steps = 0;  // a static solve has no steps to blend over
-    adaptivity = std::make_unique<Adaptivity>(spec, model, assembler);
+    AdaptivitySettings settings = scene.adaptivity;
+    if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
+    adaptivity = std::make_unique<Adaptivity>(settings, model, assembler);
   }
   std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
   std::vector<GroupTrack> tracks = make_tracks(scene, mesh);
-  if (scene.solver.type == "explicit" && scene.solver.damping_stiffness != 0.0)
-    throw InputError(scene.path + ": solver.damping.stiffness is not supported by the explicit solver (use damping.mass)");
 
   RunReport report;
   report.output_directory = scene.output.directory;
@@ -144,18 +138,18 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.cells = mesh.cell_count();
   report.dofs = model.dof_count();
   report.free_dofs = model.free_dof_count();
-  report.linear_solver = scene.solver.type == "explicit" ? "none (lumped mass)" : linear->name();
+  report.linear_solver = scene.solver.type == SolverType::explicit_euler ? "none (lumped mass)" : linear->name();
   std::error_code error;
   fs::create_directories(scene.output.directory, error);
   if (error) throw InputError("cannot create output directory " + scene.output.directory + ": " + error.message());
 
   SolveStatistics& statistics = report.statistics;
-  Integration run{model, assembler, *linear, scene, statistics};
+  Integration run{model, assembler, *linear, scene.solver, statistics};
   State last_good;
   last_good.displacement.assign(model.dof_count(), 0.0);
   last_good.velocity.assign(model.dof_count(), 0.0);
   std::vector<io::SeriesEntry> series;
-  detail::Progress progress(total_steps(scene), scene.solver.type, options.progress);
+  detail::Progress progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)), options.progress);
   auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
   std::size_t counted_steps = 0;
@@ -210,10 +204,11 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   state.velocity.assign(model.dof_count(), 0.0);
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
   try {
-    if (scene.solver.type == "static") solve_static(run, state, observer);
-    else if (scene.solver.type == "implicit") solve_implicit(run, state, observer);
-    else if (scene.solver.type == "explicit") solve_explicit(run, state, observer);
-    else throw InputError(scene.path + ": unknown solver type '" + scene.solver.type + "'");
+    switch (scene.solver.type) {
+      case SolverType::static_newton: solve_static(run, state, observer); break;
+      case SolverType::implicit_euler: solve_implicit(run, state, observer); break;
+      case SolverType::explicit_euler: solve_explicit(run, state, observer); break;
+    }
   } catch (const NumericalError& failure) {
     progress.finish();
     write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());

@@ -56,14 +56,14 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   const auto [mean, median] = mean_and_median(s.step_ms);
   const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds -
                                          report.criteria_seconds);
-  const bool dynamic = scene.solver.type != "static";
+  const bool dynamic = scene.solver.is_dynamic();
   std::ostringstream j;
   j << "{\n";
   j << "  \"status\": " << quoted(failure.empty() ? "ok" : "failed") << ",\n";
   if (!failure.empty()) j << "  \"error\": " << quoted(failure) << ",\n";
   j << "  \"scene\": " << quoted(scene.path) << ",\n";
   j << "  \"mesh\": " << quoted(scene.mesh) << ",\n";
-  j << "  \"solver\": {\"type\": " << quoted(scene.solver.type) << ", \"linear\": " << quoted(report.linear_solver);
+  j << "  \"solver\": {\"type\": " << quoted(std::string(solver_type_name(scene.solver.type))) << ", \"linear\": " << quoted(report.linear_solver);
   if (dynamic) j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
   else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
   j << ", \"threads\": " << omp_get_max_threads() << "},\n";
@@ -124,7 +124,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   j << "  \"simulated_seconds\": " << (dynamic ? number(report.simulated_seconds) : "null")
     << ", \"time_loop_seconds\": " << (dynamic ? number(report.loop_seconds) : "null")
     << ", \"real_time_factor\": " << (dynamic ? number(report.real_time_factor()) : "null") << ",\n";
-  if (scene.solver.type == "explicit") j << "  \"stable_dt_s\": " << number(s.stable_dt) << ",\n";
+  if (scene.solver.type == SolverType::explicit_euler) j << "  \"stable_dt_s\": " << number(s.stable_dt) << ",\n";
   j << "  \"max_displacement\": {\"value\": " << number(report.max_displacement) << ", \"node\": "
     << report.max_displacement_node << "},\n";
   j << "  \"warnings\": [";

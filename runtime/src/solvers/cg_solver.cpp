@@ -8,7 +8,7 @@
 
 namespace tensormass {
 
-std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSpec& spec);
+std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSettings& settings);
 
 namespace {
 
@@ -16,7 +16,7 @@ constexpr int kParallelLength = 50000;  // smaller vectors: one thread is faster
 
 class ConjugateGradientSolver final : public LinearSolver {
  public:
-  explicit ConjugateGradientSolver(const LinearSolverSpec& spec) : spec_(spec) {}
+  explicit ConjugateGradientSolver(const LinearSolverSettings& settings) : settings_(settings) {}
 
   void factorize(const SparseMatrix& A) override {
     A_ = &A;
@@ -36,9 +36,9 @@ class ConjugateGradientSolver final : public LinearSolver {
       for (int i = 0; i < n; ++i) z[i] = inverse_diagonal_[i] * r[i];
     };
     const detail::PcgResult result =
-        detail::preconditioned_cg(*A_, b, x, jacobi, spec_.tolerance, spec_.max_iterations, workspace_);
+        detail::preconditioned_cg(*A_, b, x, jacobi, settings_.tolerance, settings_.max_iterations, workspace_);
     if (!result.converged)
-      throw NumericalError("conjugate gradients did not converge in " + std::to_string(spec_.max_iterations) +
+      throw NumericalError("conjugate gradients did not converge in " + std::to_string(settings_.max_iterations) +
                            " iterations (relative residual " + std::to_string(result.relative_residual) + ")");
     return result.iterations;
   }
@@ -46,7 +46,7 @@ class ConjugateGradientSolver final : public LinearSolver {
   std::string name() const override { return "cg (Jacobi)"; }
 
  private:
-  LinearSolverSpec spec_;
+  LinearSolverSettings settings_;
   const SparseMatrix* A_ = nullptr;
   std::vector<double> inverse_diagonal_;
   detail::PcgWorkspace workspace_;
@@ -54,10 +54,9 @@ class ConjugateGradientSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSpec& spec) {
-  if (spec.type == "cholmod") return make_cholmod_solver(spec);
-  if (spec.type == "cg") return std::make_unique<ConjugateGradientSolver>(spec);
-  throw InputError("unknown linear solver type '" + spec.type + "' (known: cholmod, cg)");
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings) {
+  if (settings.type == LinearSolverType::cg) return std::make_unique<ConjugateGradientSolver>(settings);
+  return make_cholmod_solver(settings);
 }
 
 }  // namespace tensormass

@@ -36,7 +36,7 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 
 class CholmodSolver final : public LinearSolver {
  public:
-  explicit CholmodSolver(const LinearSolverSpec& spec) : spec_(spec) {
+  explicit CholmodSolver(const LinearSolverSettings& settings) : settings_(settings) {
     cholmod_start(&common_);
     common_.print = 0;
   }
@@ -54,7 +54,7 @@ class CholmodSolver final : public LinearSolver {
     // An unchanged matrix (Hooke's implicit step, a constant tangent) keeps its factor.
     if (same_pattern && factorized_values_ == A.values) return;
     // A changed one first tries CG preconditioned by the old factor (solve()).
-    if (same_pattern && spec_.reuse_iterations > 0) {
+    if (same_pattern && settings_.reuse_iterations > 0) {
       lagged_ = true;
       return;
     }
@@ -64,8 +64,8 @@ class CholmodSolver final : public LinearSolver {
   int solve(std::span<const double> b, std::span<double> x) override {
     if (lagged_) {
       const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
-      const detail::PcgResult result = detail::preconditioned_cg(*current_, b, x, old_factor, spec_.tolerance,
-                                                                 spec_.reuse_iterations, workspace_);
+      const detail::PcgResult result = detail::preconditioned_cg(*current_, b, x, old_factor, settings_.tolerance,
+                                                                 settings_.reuse_iterations, workspace_);
       if (result.converged) return result.iterations;
       factorize_now(*current_);  // drifted too far: a fresh factor
     }
@@ -119,7 +119,7 @@ class CholmodSolver final : public LinearSolver {
     if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
   }
 
-  LinearSolverSpec spec_;
+  LinearSolverSettings settings_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
   const SparseMatrix* current_ = nullptr;
@@ -131,8 +131,8 @@ class CholmodSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSpec& spec) {
-  return std::make_unique<CholmodSolver>(spec);
+std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSettings& settings) {
+  return std::make_unique<CholmodSolver>(settings);
 }
 
 }  // namespace tensormass

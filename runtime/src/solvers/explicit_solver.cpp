@@ -34,11 +34,8 @@ double estimate_stable_time_step(const Model& model, const Assembler& assembler,
 
 void solve_explicit(Integration& run, State& state, const StepObserver& observer) {
   const Model& model = run.model;
-  const SolverSpec& spec = run.scene.solver;
-  const double dt = spec.dt, alpha = spec.damping_mass;
-  if (spec.damping_stiffness != 0.0)
-    throw InputError(run.scene.path + ": solver.damping.stiffness is not supported by the explicit solver "
-                     "(use damping.mass)");
+  const SolverSettings& settings = run.settings;
+  const double dt = settings.dt, alpha = settings.damping_mass;
   const int dofs = model.dof_count();
   const auto& free = model.free_dofs();
   const auto& mass = model.lumped_mass();
@@ -53,14 +50,14 @@ void solve_explicit(Integration& run, State& state, const StepObserver& observer
     std::fprintf(stderr, "tensormass: warning: %s\n", text.str().c_str());  // now, not after a long run
   }
   std::vector<double> g(dofs), next(dofs);
-  for (int s = 1; s <= spec.steps; ++s) {
+  for (int s = 1; s <= settings.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
     const double t = state.time, t1 = t + dt;
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
     auto& u = state.displacement;
     auto& v = state.velocity;
     detail::assemble(run, u, g, nullptr);
-    const std::vector<double> f = external_force(model, run.scene.loads.profile.factor(t));
+    const std::vector<double> f = external_force(model, model.load_factor(t));
     for (int d : free) v[d] += dt * ((f[d] - g[d]) / mass[d] - alpha * v[d]);
     // Constrained dofs follow their prescribed path.
     next = u;

@@ -11,8 +11,8 @@ namespace tensormass {
 
 void solve_implicit(Integration& run, State& state, const StepObserver& observer) {
   const Model& model = run.model;
-  const SolverSpec& spec = run.scene.solver;
-  const double dt = spec.dt, alpha = spec.damping_mass, beta = spec.damping_stiffness;
+  const SolverSettings& settings = run.settings;
+  const double dt = settings.dt, alpha = settings.damping_mass, beta = settings.damping_stiffness;
   const int n = model.free_dof_count(), dofs = model.dof_count();
   const auto& free = model.free_dofs();
   const auto& mass = model.lumped_mass();
@@ -21,17 +21,17 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
   std::vector<double> g(dofs), v(dofs), r(n), step(n, 0.0), damping(n), kv(n), v_free(n);
   SparseMatrix K = run.assembler.pattern(), J = run.assembler.pattern();
   const double mass_factor = 1.0 / (dt * dt) + alpha / dt, stiffness_factor = 1.0 + beta / dt;
-  for (int s = 1; s <= spec.steps; ++s) {
+  for (int s = 1; s <= settings.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
     const double t1 = state.time + dt;
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
     const std::vector<double> u0 = state.displacement, v0 = state.velocity;
     std::vector<double> u = u0;
     model.apply_constraints(t1, u);
-    const std::vector<double> f = external_force(model, run.scene.loads.profile.factor(t1));
+    const std::vector<double> f = external_force(model, model.load_factor(t1));
     double reference = 0.0;
     int iterations = 0;
-    for (int iteration = 1; iteration <= spec.newton_iterations; ++iteration) {
+    for (int iteration = 1; iteration <= settings.newton_iterations; ++iteration) {
       detail::assemble(run, u, g, &K);
       for (int d = 0; d < dofs; ++d) v[d] = (u[d] - u0[d]) / dt;
       for (int i = 0; i < n; ++i) v_free[i] = v[free[i]];
@@ -43,7 +43,7 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
       detail::require_finite(r, "the residual " + where);
       const double residual = norm(r);
       if (iteration == 1) reference = std::max(residual, 1e-300);
-      else if (residual <= spec.tolerance * reference) break;
+      else if (residual <= settings.tolerance * reference) break;
       // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
       for (int k = 0; k < K.nonzeros(); ++k) J.values[k] = stiffness_factor * K.values[k];
       for (int i = 0; i < n; ++i) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];

@@ -47,7 +47,7 @@ double potential(const Model& model, const std::vector<double>& u, const std::ve
 /// residual stalls below 1e-8 (the round-off floor of g - f).
 int newton(Integration& run, std::vector<double>& u, const std::vector<double>& f, const std::string& where) {
   const Model& model = run.model;
-  const SolverSpec& spec = run.scene.solver;
+  const SolverSettings& settings = run.settings;
   const int n = model.free_dof_count();
   const auto& free = model.free_dofs();
   std::vector<double> g(model.dof_count()), trial_g(model.dof_count()), trial_u(model.dof_count());
@@ -60,8 +60,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   const double reference = std::max({norm(f_free), norm(r), 1e-300});
   double residual = norm(r);
   const bool debug = std::getenv("TENSORMASS_DEBUG_NEWTON") != nullptr;
-  for (int iteration = 1; iteration <= spec.max_iterations; ++iteration) {
-    if (residual <= spec.tolerance * reference) return iteration - 1;
+  for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
+    if (residual <= settings.tolerance * reference) return iteration - 1;
     std::vector<double> rhs(n);
     for (int i = 0; i < n; ++i) rhs[i] = -r[i];
     std::fill(step.begin(), step.end(), 0.0);
@@ -91,19 +91,19 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     r.swap(trial_r);
     std::swap(K, trial_K);
     residual = trial_residual;
-    if (residual <= spec.tolerance * reference) return iteration;
+    if (residual <= settings.tolerance * reference) return iteration;
     if (alpha == 1.0 && residual <= 1e-8 * reference && residual > 0.1 * previous) return iteration;
   }
-  throw NumericalError("Newton did not converge " + where + " in " + std::to_string(spec.max_iterations) +
+  throw NumericalError("Newton did not converge " + where + " in " + std::to_string(settings.max_iterations) +
                        " iterations (relative residual " + format_number(residual / reference) +
-                       ", tolerance " + format_number(spec.tolerance) + ")");
+                       ", tolerance " + format_number(settings.tolerance) + ")");
 }
 
 }  // namespace
 
 void solve_static(Integration& run, State& state, const StepObserver& observer) {
   const Model& model = run.model;
-  const int steps = run.scene.solver.load_steps;
+  const int steps = run.settings.load_steps;
   state.displacement.assign(model.dof_count(), 0.0);
   state.velocity.assign(model.dof_count(), 0.0);
   // A load step solved again (the observer switched laws) counts once, with

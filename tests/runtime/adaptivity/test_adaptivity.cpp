@@ -35,7 +35,7 @@ class AdaptiveBeam : public ::testing::Test {
     Scene s = test::cantilever(law);
     s.path = (directory_ / "scene.yaml").string();
     s.mesh = (directory_ / "beam.msh").string();
-    s.materials[0].young = 1e7;
+    s.model.materials[0].young = 1e7;
     s.solver.load_steps = 4;
     s.output.directory = (directory_ / ("out-" + law + criterion + std::to_string(threshold))).string();
     if (!criterion.empty()) {
@@ -104,11 +104,11 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   Scene s;
   s.path = "blend.yaml";
   MaterialSpec material{"all", "hooke", "", 1e6, 0.3, 1000, 0};
-  s.materials = {material};
-  s.fixed = {"clamp"};
-  Model model(mesh, s);
+  s.model.materials = {material};
+  s.model.fixed = {"clamp"};
+  Model model(mesh, s.model);
   const Assembler assembler(model);
-  AdaptivitySpec adaptive;
+  AdaptivitySettings adaptive;
   adaptive.enabled = true;
   adaptive.criteria = {{"R_NL", 0.0, 0}};
   adaptive.blend_steps = 4;
@@ -129,8 +129,8 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   EXPECT_EQ(model.blend_from(0), nullptr);
   // After the blend: exactly the StVK forces.
   Scene stvk_scene = s;
-  stvk_scene.materials[0].law = "stvk";
-  const Model stvk(mesh, stvk_scene);
+  stvk_scene.model.materials[0].law = "stvk";
+  const Model stvk(mesh, stvk_scene.model);
   std::vector<double> expected(u.size());
   Assembler(stvk).assemble(u, expected, nullptr);
   for (std::size_t i = 0; i < u.size(); ++i) EXPECT_NEAR(current[i], expected[i], 1e-9 * (1 + std::abs(expected[i])));
@@ -142,11 +142,11 @@ TEST(Adaptivity, DowngradeReturnsToTheInitialKernelExactly) {
   const Mesh mesh = make_beam(spec);
   Scene s;
   s.path = "downgrade.yaml";
-  s.materials = {{"all", "hooke", "", 1e6, 0.3, 1000, 0}};
-  s.fixed = {"clamp"};
-  Model model(mesh, s);
+  s.model.materials = {{"all", "hooke", "", 1e6, 0.3, 1000, 0}};
+  s.model.fixed = {"clamp"};
+  Model model(mesh, s.model);
   const Assembler assembler(model);
-  AdaptivitySpec adaptive;
+  AdaptivitySettings adaptive;
   adaptive.enabled = true;
   adaptive.criteria = {{"R_NL", 1e-3, 0}};
   adaptive.downgrade = true;

@@ -60,56 +60,56 @@ TEST(SceneLoad, FullSceneMaterialsAndConstraints) {
   EXPECT_EQ(s.path, path);
   EXPECT_EQ(s.mesh, (dir.path() / "meshes" / "beam.msh").string());
 
-  ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_EQ(s.materials[0].region, "tumor");
-  EXPECT_EQ(s.materials[0].law, "stvk");
-  EXPECT_EQ(s.materials[0].split, "whole");
-  EXPECT_DOUBLE_EQ(s.materials[0].young, 2.0e6);
-  EXPECT_DOUBLE_EQ(s.materials[0].poisson, 0.45);
-  EXPECT_DOUBLE_EQ(s.materials[0].density, 1050);
-  EXPECT_EQ(s.materials[0].line, 4);
-  EXPECT_EQ(s.materials[1].region, "all");
-  EXPECT_EQ(s.materials[1].law, "hooke");
-  EXPECT_EQ(s.materials[1].split, "");
-  EXPECT_DOUBLE_EQ(s.materials[1].young, 1.0e6);
-  EXPECT_EQ(s.materials[1].line, 5);
+  ASSERT_EQ(s.model.materials.size(), 2u);
+  EXPECT_EQ(s.model.materials[0].region, "tumor");
+  EXPECT_EQ(s.model.materials[0].law, "stvk");
+  EXPECT_EQ(s.model.materials[0].split, "whole");
+  EXPECT_DOUBLE_EQ(s.model.materials[0].young, 2.0e6);
+  EXPECT_DOUBLE_EQ(s.model.materials[0].poisson, 0.45);
+  EXPECT_DOUBLE_EQ(s.model.materials[0].density, 1050);
+  EXPECT_EQ(s.model.materials[0].line, 4);
+  EXPECT_EQ(s.model.materials[1].region, "all");
+  EXPECT_EQ(s.model.materials[1].law, "hooke");
+  EXPECT_EQ(s.model.materials[1].split, "");
+  EXPECT_DOUBLE_EQ(s.model.materials[1].young, 1.0e6);
+  EXPECT_EQ(s.model.materials[1].line, 5);
 
-  EXPECT_EQ(s.fixed, (std::vector<std::string>{"clamp", "base"}));
-  EXPECT_EQ(s.fixed_lines, (std::vector<int>{10, 10}));
+  EXPECT_EQ(s.model.fixed, (std::vector<std::string>{"clamp", "base"}));
+  EXPECT_EQ(s.model.fixed_lines, (std::vector<int>{10, 10}));
 
-  ASSERT_EQ(s.prescribed.size(), 2u);
-  const tensormass::PrescribedSpec& d = s.prescribed[0];
+  ASSERT_EQ(s.model.prescribed.size(), 2u);
+  const tensormass::PrescribedSpec& d = s.model.prescribed[0];
   EXPECT_EQ(d.region, "diaphragm");
   EXPECT_EQ(d.line, 12);
   EXPECT_EQ(d.components, (std::array<bool, 3>{true, true, false}));
   EXPECT_EQ(d.displacement, (std::array<double, 3>{0, 0.015, 0}));
-  EXPECT_EQ(d.profile.kind, "sinusoid");
+  EXPECT_EQ(d.profile.kind, tensormass::ProfileKind::sinusoid);
   EXPECT_DOUBLE_EQ(d.profile.period, 4.0);
   EXPECT_DOUBLE_EQ(d.profile.phase, 0.5);
-  const tensormass::PrescribedSpec& w = s.prescribed[1];
+  const tensormass::PrescribedSpec& w = s.model.prescribed[1];
   EXPECT_EQ(w.components, (std::array<bool, 3>{false, true, false}));
   EXPECT_EQ(w.displacement, (std::array<double, 3>{0, -0.01, 0}));
-  EXPECT_EQ(w.profile.kind, "ramp");
+  EXPECT_EQ(w.profile.kind, tensormass::ProfileKind::ramp);
   EXPECT_DOUBLE_EQ(w.profile.duration, 1.0);
 }
 
 TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   TempDir dir;
   const Scene s = tensormass::load_scene(dir.write("scene.yaml", kFullScene));
-  EXPECT_EQ(s.loads.gravity, (std::array<double, 3>{0, -9.81, 0}));
-  ASSERT_EQ(s.loads.nodal_forces.size(), 1u);
-  EXPECT_EQ(s.loads.nodal_forces[0].region, "tip");
-  EXPECT_EQ(s.loads.nodal_forces[0].force, (std::array<double, 3>{0, -1.5, 0.4}));
-  EXPECT_EQ(s.loads.nodal_forces[0].line, 20);
-  ASSERT_EQ(s.loads.pressures.size(), 1u);
-  EXPECT_EQ(s.loads.pressures[0].region, "top");
-  EXPECT_DOUBLE_EQ(s.loads.pressures[0].pressure, -1000);
-  EXPECT_EQ(s.loads.pressures[0].line, 22);
-  EXPECT_EQ(s.loads.profile.kind, "ramp");
-  EXPECT_DOUBLE_EQ(s.loads.profile.duration, 2.0);
+  EXPECT_EQ(s.model.loads.gravity, (std::array<double, 3>{0, -9.81, 0}));
+  ASSERT_EQ(s.model.loads.nodal_forces.size(), 1u);
+  EXPECT_EQ(s.model.loads.nodal_forces[0].region, "tip");
+  EXPECT_EQ(s.model.loads.nodal_forces[0].force, (std::array<double, 3>{0, -1.5, 0.4}));
+  EXPECT_EQ(s.model.loads.nodal_forces[0].line, 20);
+  ASSERT_EQ(s.model.loads.pressures.size(), 1u);
+  EXPECT_EQ(s.model.loads.pressures[0].region, "top");
+  EXPECT_DOUBLE_EQ(s.model.loads.pressures[0].pressure, -1000);
+  EXPECT_EQ(s.model.loads.pressures[0].line, 22);
+  EXPECT_EQ(s.model.loads.profile.kind, tensormass::ProfileKind::ramp);
+  EXPECT_DOUBLE_EQ(s.model.loads.profile.duration, 2.0);
 
-  const tensormass::SolverSpec& v = s.solver;
-  EXPECT_EQ(v.type, "implicit");
+  const tensormass::SolverSettings& v = s.solver;
+  EXPECT_EQ(v.type, tensormass::SolverType::implicit_euler);
   EXPECT_EQ(v.load_steps, 4);
   EXPECT_DOUBLE_EQ(v.tolerance, 1e-8);
   EXPECT_EQ(v.max_iterations, 20);
@@ -118,19 +118,19 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   EXPECT_EQ(v.newton_iterations, 3);
   EXPECT_DOUBLE_EQ(v.damping_mass, 0.1);
   EXPECT_DOUBLE_EQ(v.damping_stiffness, 0.001);
-  EXPECT_EQ(v.linear.type, "cg");
+  EXPECT_EQ(v.linear.type, tensormass::LinearSolverType::cg);
   EXPECT_DOUBLE_EQ(v.linear.tolerance, 1e-9);
   EXPECT_EQ(v.linear.max_iterations, 500);
   EXPECT_EQ(v.threads, 2);
 
-  const tensormass::AdaptivitySpec& a = s.adaptivity;
+  const tensormass::AdaptivitySettings& a = s.adaptivity;
   EXPECT_TRUE(a.enabled);
   ASSERT_EQ(a.criteria.size(), 2u);
   EXPECT_EQ(a.criteria[0].name, "R_EL");
   EXPECT_DOUBLE_EQ(a.criteria[0].threshold, 0.03);
   EXPECT_EQ(a.criteria[0].line, 37);
   EXPECT_EQ(a.criteria[1].name, "R_V");
-  EXPECT_EQ(a.action, "upgrade");
+  EXPECT_EQ(a.action, tensormass::AdaptivityAction::upgrade);
   EXPECT_EQ(a.every, 2);
   EXPECT_EQ(a.blend_steps, 5);
   EXPECT_TRUE(a.downgrade);
@@ -145,18 +145,18 @@ TEST(SceneLoad, MinimalSceneGetsDefaults) {
   TempDir dir;
   const Scene s = tensormass::load_scene(dir.write("scene.yaml", scene_test::kBaseScene));
   EXPECT_EQ(s.mesh, (dir.path() / "beam.msh").string());
-  ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0].split, "");
-  EXPECT_TRUE(s.prescribed.empty());
-  EXPECT_EQ(s.loads.gravity, (std::array<double, 3>{0, 0, 0}));
-  EXPECT_TRUE(s.loads.nodal_forces.empty());
-  EXPECT_TRUE(s.loads.pressures.empty());
-  EXPECT_EQ(s.loads.profile.kind, "constant");
-  EXPECT_EQ(s.solver.type, "static");
+  ASSERT_EQ(s.model.materials.size(), 1u);
+  EXPECT_EQ(s.model.materials[0].split, "");
+  EXPECT_TRUE(s.model.prescribed.empty());
+  EXPECT_EQ(s.model.loads.gravity, (std::array<double, 3>{0, 0, 0}));
+  EXPECT_TRUE(s.model.loads.nodal_forces.empty());
+  EXPECT_TRUE(s.model.loads.pressures.empty());
+  EXPECT_EQ(s.model.loads.profile.kind, tensormass::ProfileKind::constant);
+  EXPECT_EQ(s.solver.type, tensormass::SolverType::static_newton);
   EXPECT_EQ(s.solver.load_steps, 10);
   EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-10);
   EXPECT_EQ(s.solver.max_iterations, 50);
-  EXPECT_EQ(s.solver.linear.type, "cholmod");
+  EXPECT_EQ(s.solver.linear.type, tensormass::LinearSolverType::cholmod);
   EXPECT_EQ(s.solver.threads, 0);
   EXPECT_FALSE(s.adaptivity.enabled);
   EXPECT_FALSE(s.adaptivity.downgrade);
@@ -177,7 +177,7 @@ TEST(SceneLoad, DynamicKeysAreAcceptedByAStaticSolver) {
   TempDir dir;
   const std::string text = scene_test::kBaseScene + "  dt: 0.5\n  steps: 3\n  linear: {type: cg}\n";
   const Scene s = tensormass::load_scene(dir.write("scene.yaml", text));
-  EXPECT_EQ(s.solver.type, "static");
+  EXPECT_EQ(s.solver.type, tensormass::SolverType::static_newton);
   EXPECT_DOUBLE_EQ(s.solver.dt, 0.5);
   EXPECT_EQ(s.solver.steps, 3);
 }
@@ -186,8 +186,8 @@ TEST(SceneLoad, EmptyValuesCountAsAbsent) {
   TempDir dir;
   const std::string text = scene_test::kBaseScene + "loads:\noutput:\nprescribed:\n";
   const Scene s = tensormass::load_scene(dir.write("scene.yaml", text));
-  EXPECT_TRUE(s.loads.nodal_forces.empty());
-  EXPECT_TRUE(s.prescribed.empty());
+  EXPECT_TRUE(s.model.loads.nodal_forces.empty());
+  EXPECT_TRUE(s.model.prescribed.empty());
   EXPECT_EQ(s.output.directory, (dir.path() / "out").string());
 }
 

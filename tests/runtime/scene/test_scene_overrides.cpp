@@ -29,15 +29,15 @@ TEST(SceneOverride, Number) {
 TEST(SceneOverride, ListValueCreatesMissingSection) {
   TempDir dir;
   const Scene s = load_with(dir, {"loads.gravity=[0,-1,0]"});
-  EXPECT_EQ(s.loads.gravity, (std::array<double, 3>{0, -1, 0}));
+  EXPECT_EQ(s.model.loads.gravity, (std::array<double, 3>{0, -1, 0}));
 }
 
 TEST(SceneOverride, ListIndex) {
   TempDir dir;
   const Scene s = load_with(dir, {"materials.0.young=2e6", "fixed.0=base"});
-  EXPECT_DOUBLE_EQ(s.materials[0].young, 2e6);
-  EXPECT_EQ(s.fixed, (std::vector<std::string>{"base"}));
-  EXPECT_EQ(s.fixed_lines, (std::vector<int>{0}));  // from the command line: no line
+  EXPECT_DOUBLE_EQ(s.model.materials[0].young, 2e6);
+  EXPECT_EQ(s.model.fixed, (std::vector<std::string>{"base"}));
+  EXPECT_EQ(s.model.fixed_lines, (std::vector<int>{0}));  // from the command line: no line
 }
 
 TEST(SceneOverride, NewKeysAndNewSection) {
@@ -52,7 +52,7 @@ TEST(SceneOverride, SolverTypeSwitchKeepsOtherKeys) {
   TempDir dir;
   const std::string text = kBaseScene + "  dt: 0.01\n  steps: 20\n";
   const Scene s = load_with(dir, {"solver.type=implicit"}, text);
-  EXPECT_EQ(s.solver.type, "implicit");
+  EXPECT_EQ(s.solver.type, tensormass::SolverType::implicit_euler);
   EXPECT_DOUBLE_EQ(s.solver.dt, 0.01);
   EXPECT_EQ(s.solver.steps, 20);
 }
@@ -65,7 +65,7 @@ TEST(SceneOverride, WholeSectionAndNestedMaps) {
   EXPECT_DOUBLE_EQ(s.adaptivity.criteria.at(0).threshold, 0.1);
   EXPECT_TRUE(s.adaptivity.downgrade);
   EXPECT_EQ(s.adaptivity.calm_steps, 3);
-  EXPECT_EQ(s.solver.linear.type, "cg");
+  EXPECT_EQ(s.solver.linear.type, tensormass::LinearSolverType::cg);
 }
 
 TEST(SceneOverride, LaterOverrideWins) {
@@ -78,13 +78,13 @@ TEST(SceneOverride, StringsAndPathsResolveLikeTheFile) {
   TempDir dir;
   const Scene s = load_with(dir, {"mesh=other.vtu", "materials.0.law = hooke"});
   EXPECT_EQ(s.mesh, (dir.path() / "other.vtu").string());
-  EXPECT_EQ(s.materials[0].law, "hooke");
+  EXPECT_EQ(s.model.materials[0].law, "hooke");
 }
 
 TEST(SceneOverride, EmptyValueRemovesAnOptionalSetting) {
   TempDir dir;
   const Scene s = load_with(dir, {"fixed="});
-  EXPECT_TRUE(s.fixed.empty());
+  EXPECT_TRUE(s.model.fixed.empty());
 }
 
 TEST(SceneOverride, UnknownKey) {

@@ -1,10 +1,11 @@
-// TimeProfile::factor and check_groups against a small hand-built mesh.
+// TimeProfile::factor and validate_against_mesh against a small hand-built mesh.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "scene_test_support.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace {
 
@@ -17,7 +18,7 @@ using tensormass::TimeProfile;
 
 TEST(SceneProfile, Constant) {
   const TimeProfile p;
-  EXPECT_EQ(p.kind, "constant");
+  EXPECT_EQ(p.kind, tensormass::ProfileKind::constant);
   EXPECT_DOUBLE_EQ(p.factor(-1), 1);
   EXPECT_DOUBLE_EQ(p.factor(0), 1);
   EXPECT_DOUBLE_EQ(p.factor(123), 1);
@@ -25,7 +26,7 @@ TEST(SceneProfile, Constant) {
 
 TEST(SceneProfile, Ramp) {
   TimeProfile p;
-  p.kind = "ramp";
+  p.kind = tensormass::ProfileKind::ramp;
   p.duration = 2.0;
   EXPECT_DOUBLE_EQ(p.factor(-1), 0);
   EXPECT_DOUBLE_EQ(p.factor(0), 0);
@@ -36,7 +37,7 @@ TEST(SceneProfile, Ramp) {
 
 TEST(SceneProfile, Sinusoid) {
   TimeProfile p;
-  p.kind = "sinusoid";
+  p.kind = tensormass::ProfileKind::sinusoid;
   p.period = 4.0;
   EXPECT_NEAR(p.factor(0), 0, 1e-15);
   EXPECT_NEAR(p.factor(1), 0.5, 1e-15);
@@ -52,9 +53,9 @@ TEST(SceneProfile, ReadFromTheScene) {
   TempDir dir;
   const std::string text = scene_test::kBaseScene + "loads:\n  profile: sinusoid\n";
   const Scene s = tensormass::load_scene(dir.write("scene.yaml", text));
-  EXPECT_EQ(s.loads.profile.kind, "sinusoid");
-  EXPECT_DOUBLE_EQ(s.loads.profile.period, 1.0);
-  EXPECT_NEAR(s.loads.profile.factor(0.5), 1, 1e-15);
+  EXPECT_EQ(s.model.loads.profile.kind, tensormass::ProfileKind::sinusoid);
+  EXPECT_DOUBLE_EQ(s.model.loads.profile.period, 1.0);
+  EXPECT_NEAR(s.model.loads.profile.factor(0.5), 1, 1e-15);
 }
 
 Group make_group(const std::string& name, int dim, std::vector<int> nodes, bool with_facet) {
@@ -70,12 +71,18 @@ Group make_group(const std::string& name, int dim, std::vector<int> nodes, bool 
   return g;
 }
 
-/// Groups only: check_groups does not look at the elements.
+/// One unit quad and its groups: the smallest mesh every check of
+/// validate_against_mesh accepts for kGroupsScene.
 Mesh groups_mesh() {
   Mesh mesh;
   mesh.dim = 2;
   mesh.source = "beam.msh";
   mesh.rest_positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  tensormass::ElementBlock quad;
+  quad.element = tensormass::Registry::instance().element("quad4");
+  quad.connectivity = {0, 1, 2, 3};
+  quad.source_ids = {1};
+  mesh.blocks = {quad};
   mesh.groups = {make_group("clamp", 1, {0, 3}, true), make_group("top", 1, {2, 3}, true),
                  make_group("tip", 0, {1}, false)};
   return mesh;
@@ -97,7 +104,7 @@ solver: {type: static}
 std::string groups_error(const TempDir& dir, const std::vector<std::string>& overrides) {
   const Scene scene = tensormass::load_scene(dir.write("scene.yaml", kGroupsScene), overrides);
   try {
-    tensormass::check_groups(scene, groups_mesh());
+    tensormass::validate_against_mesh(scene, groups_mesh());
   } catch (const InputError& e) {
     return e.what();
   }
@@ -112,7 +119,7 @@ void expect_contains(const std::string& message, const std::vector<std::string>&
 TEST(SceneGroups, AllRegionsExist) {
   TempDir dir;
   const Scene scene = tensormass::load_scene(dir.write("scene.yaml", kGroupsScene));
-  EXPECT_NO_THROW(tensormass::check_groups(scene, groups_mesh()));
+  EXPECT_NO_THROW(tensormass::validate_against_mesh(scene, groups_mesh()));
 }
 
 TEST(SceneGroups, MissingGroupsNameKeyLineAndGroups) {
@@ -134,17 +141,17 @@ TEST(SceneGroups, LinesComeFromTheFile) {
   text = scene_test::replaced(text, "region: tip", "region: tap");
   const Scene scene = tensormass::load_scene(dir.write("scene.yaml", text));
   Scene only_fixed = scene;
-  only_fixed.loads.nodal_forces.clear();
+  only_fixed.model.loads.nodal_forces.clear();
   try {
-    tensormass::check_groups(only_fixed, groups_mesh());
+    tensormass::validate_against_mesh(only_fixed, groups_mesh());
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
     expect_contains(e.what(), {"scene.yaml:5: fixed[1]: no group 'wall'", "(groups: clamp, top, tip)"});
   }
   Scene only_force = scene;
-  only_force.fixed.pop_back();
+  only_force.model.fixed.pop_back();
   try {
-    tensormass::check_groups(only_force, groups_mesh());
+    tensormass::validate_against_mesh(only_force, groups_mesh());
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
     expect_contains(e.what(), {"scene.yaml:9: loads.nodal_forces[0].region: no group 'tap'"});
@@ -168,7 +175,7 @@ TEST(SceneGroups, MeshWithoutGroups) {
   Mesh mesh = groups_mesh();
   mesh.groups.clear();
   try {
-    tensormass::check_groups(scene, mesh);
+    tensormass::validate_against_mesh(scene, mesh);
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
     expect_contains(e.what(), {"scene.yaml:3: materials[0].region", "the mesh has no groups"});

@@ -20,7 +20,7 @@ inline Mesh beam(int dim, const std::string& cut, std::array<int, 3> cells, int 
 }
 
 /// A clamped beam under gravity with one material on every cell.
-inline Scene cantilever(const std::string& law, const std::string& type = "static") {
+inline Scene cantilever(const std::string& law, SolverType type = SolverType::static_newton) {
   Scene scene;
   scene.path = "test-scene.yaml";
   scene.mesh = "test-beam.msh";
@@ -29,9 +29,9 @@ inline Scene cantilever(const std::string& law, const std::string& type = "stati
   material.young = 1e6;
   material.poisson = 0.3;
   material.density = 1000;
-  scene.materials = {material};
-  scene.fixed = {"clamp"};
-  scene.loads.gravity = {0, -9.81, 0};
+  scene.model.materials = {material};
+  scene.model.fixed = {"clamp"};
+  scene.model.loads.gravity = {0, -9.81, 0};
   scene.solver.type = type;
   scene.solver.tolerance = 1e-10;
   return scene;

@@ -31,7 +31,7 @@ TEST(Assembler, TangentIsTheDerivativeOfTheForcesOnAMixedBeam) {
   spec.size = {4, 1, 1};
   spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
   const Mesh mesh = make_beam(spec);
-  const Model model(mesh, test::cantilever("stvk"));
+  const Model model(mesh, test::cantilever("stvk").model);
   const Assembler assembler(model);
   std::vector<double> u = wavy_displacement(model.dof_count(), 0.02), g(model.dof_count()), gp(g), gm(g);
   SparseMatrix K = assembler.pattern();
@@ -57,7 +57,7 @@ TEST(Assembler, TangentIsTheDerivativeOfTheForcesOnAMixedBeam) {
 
 TEST(Assembler, PatternIsSymmetricWithEveryDiagonal) {
   const Mesh mesh = test::beam(2, "tri3", {6, 2, 1});
-  const Model model(mesh, test::cantilever("hooke"));
+  const Model model(mesh, test::cantilever("hooke").model);
   const Assembler assembler(model);
   const SparseMatrix& K = assembler.pattern();
   for (int row = 0; row < K.rows; ++row) {
@@ -74,7 +74,7 @@ TEST(Assembler, PatternIsSymmetricWithEveryDiagonal) {
 TEST(Assembler, OneAndTwoThreadsGiveIdenticalResults) {
   // 4320 tets: above the threshold where assembly goes parallel.
   const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
-  const Model model(mesh, test::cantilever("stvk"));
+  const Model model(mesh, test::cantilever("stvk").model);
   const Assembler assembler(model);
   const std::vector<double> u = wavy_displacement(model.dof_count(), 0.01);
   std::vector<double> g1(model.dof_count()), g2(model.dof_count());

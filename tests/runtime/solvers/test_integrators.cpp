@@ -17,13 +17,13 @@ namespace {
 /// Runs one integrator on `mesh` and returns the final state.
 State integrate(const Mesh& mesh, const Scene& scene, SolveStatistics& statistics,
                 const StepObserver& observer = {}) {
-  const Model model(mesh, scene);
+  const Model model(mesh, scene.model);
   const Assembler assembler(model);
   auto linear = make_linear_solver(scene.solver.linear);
-  Integration run{model, assembler, *linear, scene, statistics};
+  Integration run{model, assembler, *linear, scene.solver, statistics};
   State state;
-  if (scene.solver.type == "static") solve_static(run, state, observer);
-  else if (scene.solver.type == "implicit") solve_implicit(run, state, observer);
+  if (scene.solver.type == SolverType::static_newton) solve_static(run, state, observer);
+  else if (scene.solver.type == SolverType::implicit_euler) solve_implicit(run, state, observer);
   else solve_explicit(run, state, observer);
   return state;
 }
@@ -40,7 +40,7 @@ TEST(StaticSolver, HookeCantileverMatchesBeamTheoryInOneSolve) {
   // strain E' = E / (1 - nu^2); quad8 elements bend without locking.
   const Mesh mesh = test::beam(2, "quad4", {40, 4, 1}, 2);
   Scene scene = test::cantilever("hooke");
-  scene.materials[0].young = 1e9;
+  scene.model.materials[0].young = 1e9;
   SolveStatistics statistics;
   const State state = integrate(mesh, scene, statistics);
   const double length = 10, q = 1000 * 9.81 * 1.0, inertia = 1.0 / 12, young = 1e9 / (1 - 0.09);
@@ -53,11 +53,11 @@ TEST(StaticSolver, HookeCantileverMatchesBeamTheoryInOneSolve) {
 TEST(StaticSolver, StvkConvergesAtLargeDeflectionAndDiffersFromHooke) {
   const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
   Scene scene = test::cantilever("stvk");
-  scene.materials[0].young = 3e6;
+  scene.model.materials[0].young = 3e6;
   scene.solver.load_steps = 4;
   SolveStatistics stvk_statistics, hooke_statistics;
   const State stvk = integrate(mesh, scene, stvk_statistics);
-  scene.materials[0].law = "hooke";
+  scene.model.materials[0].law = "hooke";
   const State hooke = integrate(mesh, scene, hooke_statistics);
   EXPECT_GT(std::abs(tip_deflection(mesh, hooke)), 0.1 * 5);  // beyond small displacements
   EXPECT_LT(std::abs(tip_deflection(mesh, stvk)), std::abs(tip_deflection(mesh, hooke)));
@@ -67,7 +67,7 @@ TEST(StaticSolver, StvkConvergesAtLargeDeflectionAndDiffersFromHooke) {
 TEST(StaticSolver, NewtonFailureIsANumericalError) {
   const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
   Scene scene = test::cantilever("stvk");
-  scene.materials[0].young = 1e5;
+  scene.model.materials[0].young = 1e5;
   scene.solver.max_iterations = 2;
   SolveStatistics statistics;
   EXPECT_THROW(integrate(mesh, scene, statistics), NumericalError);
@@ -75,9 +75,9 @@ TEST(StaticSolver, NewtonFailureIsANumericalError) {
 
 TEST(ExplicitSolver, ConservesEnergyWithoutDamping) {
   const Mesh mesh = test::beam(2, "quad4", {10, 2, 1});
-  Scene scene = test::cantilever("stvk", "explicit");
-  scene.materials[0].young = 1e9;  // 1 cm deflection: a clean oscillation
-  const Model model(mesh, scene);
+  Scene scene = test::cantilever("stvk", SolverType::explicit_euler);
+  scene.model.materials[0].young = 1e9;  // 1 cm deflection: a clean oscillation
+  const Model model(mesh, scene.model);
   const double stable = estimate_stable_time_step(model, Assembler(model));
   scene.solver.dt = 0.2 * stable;
   scene.solver.steps = 4000;
@@ -104,8 +104,8 @@ TEST(ExplicitSolver, ConservesEnergyWithoutDamping) {
 
 TEST(ExplicitSolver, WarnsAndFailsAboveTheStableStep) {
   const Mesh mesh = test::beam(2, "quad4", {10, 2, 1});
-  Scene scene = test::cantilever("hooke", "explicit");
-  const Model model(mesh, scene);
+  Scene scene = test::cantilever("hooke", SolverType::explicit_euler);
+  const Model model(mesh, scene.model);
   scene.solver.dt = 3 * estimate_stable_time_step(model, Assembler(model));
   scene.solver.steps = 2000;
   SolveStatistics statistics;
@@ -116,8 +116,8 @@ TEST(ExplicitSolver, WarnsAndFailsAboveTheStableStep) {
 
 TEST(ImplicitSolver, StableAtAHundredTimesTheExplicitLimit) {
   const Mesh mesh = test::beam(2, "quad4", {10, 2, 1});
-  Scene scene = test::cantilever("stvk", "implicit");
-  const Model model(mesh, scene);
+  Scene scene = test::cantilever("stvk", SolverType::implicit_euler);
+  const Model model(mesh, scene.model);
   scene.solver.dt = 100 * estimate_stable_time_step(model, Assembler(model));
   scene.solver.steps = 200;
   scene.solver.newton_iterations = 3;
@@ -138,13 +138,13 @@ TEST(ImplicitSolver, StableAtAHundredTimesTheExplicitLimit) {
 
 TEST(ImplicitSolver, CholmodAndConjugateGradientsAgree) {
   const Mesh mesh = test::beam(3, "hex8", {8, 2, 2});
-  Scene scene = test::cantilever("stvk", "implicit");
+  Scene scene = test::cantilever("stvk", SolverType::implicit_euler);
   scene.solver.dt = 0.01;
   scene.solver.steps = 5;
   scene.solver.newton_iterations = 2;
   SolveStatistics direct_statistics, cg_statistics;
   const State direct = integrate(mesh, scene, direct_statistics);
-  scene.solver.linear.type = "cg";
+  scene.solver.linear.type = LinearSolverType::cg;
   scene.solver.linear.tolerance = 1e-12;
   const State iterative = integrate(mesh, scene, cg_statistics);
   double worst = 0, scale = 0;
@@ -158,11 +158,11 @@ TEST(ImplicitSolver, CholmodAndConjugateGradientsAgree) {
 
 TEST(ImplicitSolver, OneAndTwoThreadsAgree) {
   const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
-  Scene scene = test::cantilever("stvk", "implicit");
+  Scene scene = test::cantilever("stvk", SolverType::implicit_euler);
   scene.solver.dt = 0.01;
   scene.solver.steps = 3;
   scene.solver.newton_iterations = 2;
-  scene.solver.linear.type = "cg";
+  scene.solver.linear.type = LinearSolverType::cg;
   scene.solver.linear.tolerance = 1e-12;
   const int threads = omp_get_max_threads();
   SolveStatistics s1, s2;
@@ -181,15 +181,15 @@ TEST(ImplicitSolver, OneAndTwoThreadsAgree) {
 
 TEST(ImplicitSolver, PrescribedSinusoidMovesTheGroup) {
   const Mesh mesh = test::beam(2, "quad4", {10, 2, 1});
-  Scene scene = test::cantilever("hooke", "implicit");
-  scene.loads.gravity = {0, 0, 0};
+  Scene scene = test::cantilever("hooke", SolverType::implicit_euler);
+  scene.model.loads.gravity = {0, 0, 0};
   PrescribedSpec lift;
   lift.region = "tip";
   lift.displacement = {0, 0.05, 0};
   lift.components = {false, true, false};
-  lift.profile.kind = "sinusoid";
+  lift.profile.kind = tensormass::ProfileKind::sinusoid;
   lift.profile.period = 1.0;
-  scene.prescribed = {lift};
+  scene.model.prescribed = {lift};
   scene.solver.dt = 0.05;
   scene.solver.steps = 10;  // half a period: the full amplitude
   SolveStatistics statistics;

@@ -1,5 +1,5 @@
 // output.track in a scene: parsing, duplicate and file-name checks,
-// check_groups (unknown group, group without cells), and `tensormass run`
+// validate_against_mesh (unknown group, group without cells), and `tensormass run`
 // refusing such a scene before writing anything.
 #include <gtest/gtest.h>
 
@@ -98,7 +98,7 @@ TEST(TrackScene, UnknownGroupNamesFileLineAndGroups) {
   TempDir dir;
   const auto scene = tensormass::load_scene(dir.write("scene.yaml", kScene + "    - tumour\n"));
   const tensormass::Mesh mesh = beam();
-  const std::string message = error_of([&] { tensormass::check_groups(scene, mesh); });
+  const std::string message = error_of([&] { tensormass::validate_against_mesh(scene, mesh); });
   EXPECT_NE(message.find("scene.yaml:10: output.track[1]"), std::string::npos) << message;
   EXPECT_NE(message.find("'tumour'"), std::string::npos) << message;
   EXPECT_NE(message.find("clamp, tip, body"), std::string::npos) << message;
@@ -108,7 +108,7 @@ TEST(TrackScene, GroupWithoutCellsIsAnError) {
   TempDir dir;
   const auto scene = tensormass::load_scene(dir.write("scene.yaml", kScene + "    - clamp\n"));
   const tensormass::Mesh mesh = beam();
-  const std::string message = error_of([&] { tensormass::check_groups(scene, mesh); });
+  const std::string message = error_of([&] { tensormass::validate_against_mesh(scene, mesh); });
   EXPECT_NE(message.find("scene.yaml:10: output.track[1]"), std::string::npos) << message;
   EXPECT_NE(message.find("group 'clamp' has no cells"), std::string::npos) << message;
 }

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/adaptivity/adaptivity_settings.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/model/model.hpp"
-#include "tensormass/scene/scene.hpp"
 
 namespace tensormass {
 
@@ -31,9 +31,9 @@ struct AdaptivityRecord {
 
 class Adaptivity {
  public:
-  /// Throws InputError for an unknown criterion or action.
-  /// The assembler gives R_S its nodal forces.
-  Adaptivity(const AdaptivitySpec& spec, Model& model, const Assembler& assembler);
+  /// The settings must name known criteria (validated by scene/);
+  /// std::invalid_argument otherwise. The assembler gives R_S its nodal forces.
+  Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler);
 
   /// Moves every blending cell one step towards its new law (call once per
   /// time step, before the next solve).
@@ -60,7 +60,7 @@ class Adaptivity {
   bool cell_is_calm(int cell) const;
   void switch_law(int cell, const std::string& law);
 
-  AdaptivitySpec spec_;
+  AdaptivitySettings settings_;
   Model* model_;
   const Assembler* assembler_;
   std::vector<double> nodal_forces_;  ///< dof_count, for R_S

@@ -13,7 +13,7 @@
 
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/mesh/mesh.hpp"
-#include "tensormass/scene/scene.hpp"
+#include "tensormass/model/model_spec.hpp"
 
 namespace tensormass {
 
@@ -21,6 +21,14 @@ namespace tensormass {
 /// kernel timings (docs/results/kernels.md): `tensor` for Hooke on
 /// first-order elements (its Hessian is a precomputed copy), `whole` otherwise.
 std::string default_split(const std::string& law, const tm_element_info& element);
+
+/// Index of the first material of `spec` whose region contains mesh-wide
+/// cell `cell` ("all" or a group holding it), or -1.
+int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell);
+
+/// The kernel a cell of `element` gets under `material` (its split or the
+/// default one), or nullptr when the registry has none.
+const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element);
 
 /// A displacement imposed on one degree of freedom: amplitude * profile(t).
 struct PrescribedDof {
@@ -32,11 +40,13 @@ struct PrescribedDof {
 class Model {
  public:
   /// Binds kernels, precomputes constants and assembles masses and loads.
-  /// Throws InputError (unknown kernel, non-positive Jacobian at rest named
-  /// by element, unknown groups, no constraint in a static scene, ...).
-  Model(const Mesh& mesh, const Scene& scene);
+  /// The spec must have passed validation against this mesh (scene/,
+  /// validate_against_mesh); a spec that did not throws std::invalid_argument.
+  /// Throws InputError for what only the model computes: a cell with a
+  /// non-positive Jacobian or lumped mass at rest, named by element.
+  Model(const Mesh& mesh, const ModelSpec& spec);
   /// The model keeps a reference to the mesh: a temporary mesh would dangle.
-  Model(Mesh&&, const Scene&) = delete;
+  Model(Mesh&&, const ModelSpec&) = delete;
 
   const Mesh& mesh() const { return *mesh_; }
   int dim() const { return dim_; }
@@ -84,6 +94,8 @@ class Model {
   const std::vector<int>& free_dofs() const { return free_dofs_; }
   const std::vector<PrescribedDof>& prescribed() const { return prescribed_; }
   const std::vector<TimeProfile>& profiles() const { return profiles_; }
+  /// Dynamic solvers: the factor of every load at time t (LoadsSpec::profile).
+  double load_factor(double t) const { return load_profile_.factor(t); }
 
   /// Sets every constrained dof of `u` (dof_count) to its value at time `t`;
   /// the static solver passes the load factor as t with ramp profiles.
@@ -97,10 +109,10 @@ class Model {
   void gather(int cell, std::span<const double> u, double* local) const;
 
  private:
-  void bind_kernels(const Scene& scene);
-  void compute_masses_and_gravity(const Scene& scene);
-  void apply_nodal_forces_and_pressure(const Scene& scene);
-  void collect_constraints(const Scene& scene);
+  void bind_kernels(const ModelSpec& spec);
+  void compute_masses_and_gravity(const ModelSpec& spec);
+  void apply_nodal_forces_and_pressure(const ModelSpec& spec);
+  void collect_constraints(const ModelSpec& spec);
   void precompute(int cell);
 
   const Mesh* mesh_;
@@ -119,6 +131,7 @@ class Model {
   std::vector<int> free_index_, free_dofs_;
   std::vector<PrescribedDof> prescribed_;
   std::vector<TimeProfile> profiles_;
+  TimeProfile load_profile_;
 };
 
 }  // namespace tensormass

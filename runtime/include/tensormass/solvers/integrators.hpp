@@ -15,7 +15,7 @@
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 #include "tensormass/model/model.hpp"
-#include "tensormass/scene/scene.hpp"
+#include "tensormass/solvers/solver_settings.hpp"
 
 namespace tensormass {
 
@@ -49,7 +49,7 @@ struct Integration {
   const Model& model;
   const Assembler& assembler;
   LinearSolver& linear;
-  const Scene& scene;
+  const SolverSettings& settings;
   SolveStatistics& statistics;
 };
 

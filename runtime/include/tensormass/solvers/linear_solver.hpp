@@ -10,7 +10,7 @@
 #include <span>
 #include <string>
 
-#include "tensormass/scene/scene.hpp"
+#include "tensormass/solvers/solver_settings.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
 
 namespace tensormass {
@@ -28,7 +28,7 @@ class LinearSolver {
   virtual std::string name() const = 0;
 };
 
-std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSpec& spec);
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings);
 
 }  // namespace tensormass
 

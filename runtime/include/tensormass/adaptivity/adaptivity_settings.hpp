@@ -1,0 +1,35 @@
+/// \file adaptivity_settings.hpp
+/// The adaptive model's settings as plain data: the criteria and their
+/// thresholds, the action, how often to evaluate, blending and downgrade.
+/// Filled and validated by the scene reader (scene/) or by another front end.
+#ifndef TENSORMASS_ADAPTIVITY_ADAPTIVITY_SETTINGS_HPP
+#define TENSORMASS_ADAPTIVITY_ADAPTIVITY_SETTINGS_HPP
+
+#include <string>
+#include <vector>
+
+namespace tensormass {
+
+struct CriterionSpec {
+  std::string name;      ///< R_EL, R_V, R_VL, R_VLX, R_S, R_NL (criteria.hpp)
+  double threshold = 0;
+  int line = 0;          ///< 1-based line in the scene file (0: not from a file)
+};
+
+/// What happens to an element that fails a criterion.
+enum class AdaptivityAction { upgrade };  ///< hooke -> stvk
+
+struct AdaptivitySettings {
+  bool enabled = false;
+  std::vector<CriterionSpec> criteria;
+  AdaptivityAction action = AdaptivityAction::upgrade;
+  int every = 1;          ///< evaluate every this many steps
+  int blend_steps = 0;    ///< steps over which a switched cell blends to its new law (0 = at once)
+  bool downgrade = false;
+  double hysteresis = 0.5;
+  int calm_steps = 10;
+};
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,18 @@
+#include "tensormass/solvers/solver_settings.hpp"
+
+namespace tensormass {
+
+std::string_view solver_type_name(SolverType type) {
+  switch (type) {
+    case SolverType::implicit_euler: return "implicit";
+    case SolverType::explicit_euler: return "explicit";
+    case SolverType::static_newton: break;
+  }
+  return "static";
+}
+
+std::string_view linear_solver_type_name(LinearSolverType type) {
+  return type == LinearSolverType::cg ? "cg" : "cholmod";
+}
+
+}  // namespace tensormass
