@@ -12,7 +12,7 @@ For every case (element type x linear/NLGEOM x gravity/tip load) this script
      against the .dat printout), checks that the clamp reactions balance the
      applied load and that 2D results stay in plane, and
   5. writes ``reference.csv`` (our node index, ux, uy, uz) and ``scene.yaml``
-     (DESIGN.md scene contract) into ``cases/<case>/``.
+     (docs/scene.md contract) into ``cases/<case>/``.
 
 Only mesh.msh, scene.yaml, reference.csv and ccx.inp are kept; CalculiX's
 scratch files stay in a temporary directory.

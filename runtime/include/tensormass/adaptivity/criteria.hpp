@@ -1,5 +1,5 @@
 /// \file criteria.hpp
-/// Per-element criteria of the adaptive model (DESIGN.md; origin report
+/// Per-element criteria of the adaptive model (docs/architecture.md; origin report
 /// section 5): each predicts, from one element's nodes, whether the linear
 /// law errs there. Every criterion is O(nodes of the element).
 ///
