@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "common/vector3.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 
@@ -81,13 +82,10 @@ void check_order(const BeamSpec& spec) {
 
 // --- Positions and orientation -------------------------------------------------
 
-using Point = std::array<double, 3>;
-
-Point minus(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point cross(const Point& a, const Point& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using Point = detail::Vector3;
+using detail::cross;
+using detail::dot;
+using detail::minus;
 
 /// Coordinate of grid line `index` of `count` cells over [0, length]; exact at both ends.
 double grid_coordinate(int index, int count, double length) {

@@ -504,17 +504,8 @@ int CoreMesher::node(Key key) {
   return where->second;
 }
 
-std::array<double, 3> minus(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-std::array<double, 3> cross(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 void CoreMesher::add_tet(int a, int b, int c, int d) {
+  using detail::cross, detail::dot, detail::minus;
   const auto pa = point(a);
   if (dot(cross(minus(point(b), pa), minus(point(c), pa)), minus(point(d), pa)) < 0) std::swap(b, c);
   tets_.insert(tets_.end(), {a, b, c, d});
@@ -522,6 +513,7 @@ void CoreMesher::add_tet(int a, int b, int c, int d) {
 
 /// pyramid5 convention: the base's right-hand normal points to the apex.
 void CoreMesher::add_pyramid(std::array<int, 4> base, int apex) {
+  using detail::cross, detail::dot, detail::minus;
   const auto p0 = point(base[0]);
   if (dot(cross(minus(point(base[1]), p0), minus(point(base[2]), p0)), minus(point(apex), p0)) < 0)
     std::swap(base[1], base[3]);
