@@ -16,10 +16,11 @@ sys.path.insert(0, str(ROOT))
 from generator import stale  # noqa: E402
 from generator.compiler import differences, generate  # noqa: E402
 from generator.load import GeneratorInputError, load_element, load_law  # noqa: E402
-from generator.lower import SplitRefused, build_kernel_ir, build_law_ir  # noqa: E402
-from generator.optimize import count_flops  # noqa: E402
+from generator.lower import SplitRefused, build_kernel_ir  # noqa: E402
+from generator.model import Inputs  # noqa: E402
+from generator.optimize import count_flops, optimise  # noqa: E402
 from generator.printer import print_expr  # noqa: E402
-from generator.symbolic import gradient_symbols, law_derivatives, strain_quadratic  # noqa: E402
+from generator.symbolic import derive, gradient_symbols, law_derivatives, strain_quadratic  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -152,12 +153,12 @@ def test_tensor_split_refusals():
     stvk = load_law(ROOT / "laws" / "stvk.toml")
     hex8 = load_element(ROOT / "elements" / "hex8.toml")
     tet10 = load_element(ROOT / "elements" / "tet10.toml")
-    law_ir = build_law_ir(stvk, 3)
+    optimised = optimise(derive(Inputs(elements=(hex8, tet10), laws=(stvk,))))
     with pytest.raises(SplitRefused, match="first-order"):
-        build_kernel_ir(stvk, tet10, "tensor", law_ir)
+        build_kernel_ir(optimised, stvk, tet10, "tensor")
     with pytest.raises(SplitRefused, match="over the limit 100"):
-        build_kernel_ir(stvk, hex8, "tensor", law_ir, tensor_limit=100)
-    assert build_kernel_ir(stvk, hex8, "tensor", law_ir).consts_size > 2000
+        build_kernel_ir(optimised, stvk, hex8, "tensor", tensor_limit=100)
+    assert build_kernel_ir(optimised, stvk, hex8, "tensor").consts_size > 2000
 
 
 def test_elasticity_tensor_of_hooke_is_isotropic():
