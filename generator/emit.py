@@ -52,12 +52,10 @@ def _terms_context(terms: TermsIR, names: dict[str, str]) -> dict:
     }
 
 
-def _tensor_context(tensor: TensorIR, names: dict[str, str], k_nodes) -> dict:
+def _tensor_context(tensor: TensorIR, names: dict[str, str]) -> dict:
     return {
         "green": tensor.green,
         "coefficients": tensor.layout.total,
-        "pairs": list(tensor.layout.pairs),
-        "pair_of": [[tensor.layout.pairs.index((min(j, m), max(j, m))) for m in range(k_nodes)] for j in range(k_nodes)],
         "elasticity": [(index, print_expr(expr, names)) for index, expr in tensor.elasticity],
     }
 
@@ -92,7 +90,7 @@ def kernel_context(k: KernelIR) -> dict:
     if isinstance(k.split_ir, TermsIR):
         context.update(_terms_context(k.split_ir, names))
     if isinstance(k.split_ir, TensorIR):
-        context.update(_tensor_context(k.split_ir, names, k.element.node_count))
+        context.update(_tensor_context(k.split_ir, names))
     return context
 
 
