@@ -172,7 +172,7 @@ class LawKernelIR:
     symbol holding A[I][J], or None when that entry is identically zero;
     tangent_fill lists the entries of the full wA array the tangent block does
     not assign: (flat index, symbol to copy, or None for zero)."""
-    law: str
+    law: str  # the law's name
     dim: int
     energy: Block
     stress: Block
