@@ -1,28 +1,35 @@
 """The kernel compiler: reference elements and laws in, C++ kernels out.
 
-Stages, each timed (`--verbose` prints the times):
-  1. load       elements/*.toml, laws/*.toml  -> ElementSpec, LawSpec (validated)
-  2. symbolic   specs -> element tables (weights, dN/dr at points) and, per
-                (law, dim), psi, P = dpsi/dH and A = d2psi/dH2 in SymPy
-  3. optimise   per (law, dim): CSE'd straight-line law blocks with flop counts
-  4. lower      per LES triple: KernelIR (split-specific entries, layouts, flops);
-                refused splits are reported with their reason
-  5. emit       KernelIR -> C++ text through the Jinja2 templates (strict)
-  6. format     normalise whitespace; write only files whose bytes changed,
-                remove stale ones; record the input hash
+Stages, each timed (`--verbose` prints the times), each taking the previous
+stage's typed output and nothing else:
+  1. load       elements/, laws/              -> Inputs: ElementSpec, LawSpec (validated)
+  2. symbolic   Inputs                        -> SymbolicIR: element tables; per (law, dim)
+                                                 psi, P = dpsi/dH, A = d2psi/dH2 and the
+                                                 strain quadratic in SymPy
+  3. optimise   SymbolicIR                    -> OptimisedIR: per (law, dim) CSE'd
+                                                 straight-line law blocks with flop counts
+  4. lower      OptimisedIR, tensor limit     -> LoweredIR: per LES triple a KernelIR (split
+                                                 IR, flops, constants) or a refusal with its
+                                                 reason; per element an ElementIR
+  5. emit       LoweredIR, templates/         -> {path: text} through the Jinja2 templates
+                                                 (strict); printing only
+  6. format     {path: text}, project root    -> normalised whitespace and the input hash;
+                                                 `write` stores only files whose bytes changed
+                                                 and removes stale ones
 """
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import stale
-from .emit import render_all
+from .emit import emit
 from .format import format_source
 from .load import load_all
-from .lower import DEFAULT_TENSOR_LIMIT, SPLITS, SplitRefused, build_kernel_ir, build_law_ir
+from .lower import DEFAULT_TENSOR_LIMIT, lower
+from .optimize import optimise
+from .symbolic import derive
 
 
 @dataclass
@@ -45,40 +52,31 @@ class _Timer:
         self.report.timings[self.stage] = self.report.timings.get(self.stage, 0.0) + time.perf_counter() - self.start
 
 
+def format_all(files: dict[str, str], root: Path) -> dict[str, str]:
+    """Stage 6: every file formatted, plus the hash of the inputs they were generated from."""
+    formatted = {name: format_source(text) for name, text in files.items()}
+    formatted[stale.HASH_FILE] = stale.input_hash(root) + "\n"
+    return formatted
+
+
 def generate(root: Path, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> tuple[dict[str, str], Report]:
-    """Runs stages 1-5 and 6's formatting; returns {relative path: text}."""
+    """Runs stages 1-6 on the project at root; returns {relative path: text} and the report."""
     report = Report()
     with _Timer(report, "load"):
-        elements, laws = load_all(root / "elements", root / "laws")
-    with _Timer(report, "symbolic+optimise"):
-        law_irs = {(law.name, dim): build_law_ir(law, dim) for law in laws for dim in sorted({e.dim for e in elements})}
-    kernels = []
+        inputs = load_all(root / "elements", root / "laws")
+    with _Timer(report, "symbolic"):
+        symbolic = derive(inputs)
+    with _Timer(report, "optimise"):
+        optimised = optimise(symbolic)
     with _Timer(report, "lower"):
-        for law in laws:
-            for element in elements:
-                for split in SPLITS:
-                    try:
-                        kernels.append(build_kernel_ir(law, element, split, law_irs[(law.name, element.dim)],
-                                                       tensor_limit))
-                        report.kernels.append((law.name, element.name, split))
-                    except SplitRefused as why:
-                        report.refused.append((law.name, element.name, split, str(why)))
+        lowered = lower(optimised, tensor_limit)
     with _Timer(report, "emit"):
-        files = render_all(kernels, elements, laws, root / "templates")
-        files["manifest.json"] = _manifest(kernels, report)
+        files = emit(lowered, root / "templates")
     with _Timer(report, "format"):
-        files = {name: format_source(text) for name, text in files.items()}
-        files[stale.HASH_FILE] = stale.input_hash(root) + "\n"
+        files = format_all(files, root)
+    report.kernels = [(k.law.name, k.element.name, k.split) for k in lowered.kernels]
+    report.refused = [(r.law, r.element, r.split, r.reason) for r in lowered.refused]
     return files, report
-
-
-def _manifest(kernels, report: Report) -> str:
-    rows = [{"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
-             "dim": k.element.dim, "consts": k.consts_size, "flops_energy": k.flops["energy"],
-             "flops_gradient": k.flops["gradient"], "flops_hessian": k.flops["hessian"]} for k in kernels]
-    refused = [{"law": law, "element": element, "split": split, "reason": why}
-               for law, element, split, why in report.refused]
-    return json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"
 
 
 def write(files: dict[str, str], output: Path, report: Report) -> None:

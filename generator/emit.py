@@ -1,21 +1,22 @@
-"""Stage 5 (emit): render `KernelIR`s through the Jinja2 templates.
+"""Stage 5 (emit): print the lowered IR through the Jinja2 templates.
 
-Input: `KernelIR`s, element specs, the templates directory.
-Output: {relative path: C++ text}. Rendering is strict (StrictUndefined): a
+Input: `LoweredIR` (stage 4) and the templates directory.
+Output: {relative path: C++ text} for every kernel (and terms part),
+registry.cpp, elements.cpp, sources.cmake and manifest.json. Printing only:
+expressions through the C printer, numbers as round-tripping literals, IR
+fields into template contexts. Rendering is strict (StrictUndefined): a
 template naming a missing field fails the generation.
 """
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import jinja2
-import sympy
 
-from .lower import elasticity_assignments, h_expressions
-from .model import Block, ElementSpec, KernelIR, LawSpec
-from .optimize import eliminate
+from .ir import ElementIR, KernelIR, LoweredIR, TensorIR, TermsIR
+from .model import Block
 from .printer import double_literal, print_expr
-from .symbolic import element_tables
 
 
 def _environment(templates: Path) -> jinja2.Environment:
@@ -27,15 +28,6 @@ def _environment(templates: Path) -> jinja2.Environment:
     )
 
 
-def _symbol_names(k: KernelIR) -> dict[str, str]:
-    """Maps IR symbol names to the C expressions that hold them."""
-    n, d = k.element.node_count, k.element.dim
-    names = {f"H{i}": f"H[{i}]" for i in range(d * d)}
-    names.update({f"u{i}": f"u[{i}]" for i in range(n * d)})
-    names.update(k.extra.get("symbol_names", {}))
-    return names
-
-
 def _printed(block: Block, names: dict[str, str]) -> dict:
     return {
         "flops": block.flops,
@@ -44,28 +36,36 @@ def _printed(block: Block, names: dict[str, str]) -> dict:
     }
 
 
+def _literals(values) -> list[str]:
+    return [double_literal(v) for v in values]
+
+
 def _tangent_fill(k: KernelIR) -> list[str]:
-    d2 = k.element.dim ** 2
-    fills = []
-    for i in range(d2):
-        for j in range(d2):
-            own = f"wA[{i * d2 + j}]"
-            source = k.law_ir.tangent_map[i][j]
-            if source != own:
-                fills.append(f"{own} = {source if source else '0.0'};")
-    return fills
+    return [f"wA[{index}] = {source if source else '0.0'};" for index, source in k.law_ir.tangent_fill]
 
 
-def prefix(k: KernelIR) -> str:
-    return f"tm_{k.law.name}_{k.element.name}_{k.split}"
+def _terms_context(terms: TermsIR, names: dict[str, str]) -> dict:
+    return {
+        "terms_h": _printed(terms.h_block, names),
+        "parts": [{"index": i, "nodes": list(p.nodes), "gradient": _printed(p.gradient, names),
+                   "hessian": _printed(p.hessian, names)} for i, p in enumerate(terms.parts)],
+    }
+
+
+def _tensor_context(tensor: TensorIR, names: dict[str, str]) -> dict:
+    return {
+        "green": tensor.green,
+        "coefficients": tensor.layout.total,
+        "elasticity": [(index, print_expr(expr, names)) for index, expr in tensor.elasticity],
+    }
 
 
 def kernel_context(k: KernelIR) -> dict:
-    names = _symbol_names(k)
+    """The template context of one kernel (the `k` of kernel_*.cpp.j2 and registry.cpp.j2)."""
+    names = dict(k.symbol_names)
     law = k.law
-    params = {p: sympy.Symbol(p, real=True) for p in law.parameters}
     context = {
-        "prefix": prefix(k),
+        "prefix": k.prefix,
         "law": law.name,
         "element": k.element.name,
         "split": k.split,
@@ -77,9 +77,9 @@ def kernel_context(k: KernelIR) -> dict:
         "flops": k.flops,
         "parameters": list(law.parameters),
         "derived": [name for name, _ in law.derived],
-        "derived_code": [(name, print_expr(expr.subs(params), names)) for name, expr in law.derived],
-        "weights": [double_literal(w) for w in k.tables.weights],
-        "reference_gradients": [[[double_literal(x) for x in row] for row in q] for q in k.tables.reference_gradients],
+        "derived_code": [(name, print_expr(expr, names)) for name, expr in law.derived],
+        "weights": _literals(k.tables.weights),
+        "reference_gradients": [[_literals(row) for row in q] for q in k.tables.reference_gradients],
         "law_energy": _printed(k.law_ir.energy, names),
         "law_stress": _printed(k.law_ir.stress, names),
         "law_weighted_stress": _printed(k.law_ir.weighted_stress, names),
@@ -87,35 +87,15 @@ def kernel_context(k: KernelIR) -> dict:
         "law_tangent_only": _printed(k.law_ir.tangent_only, names),
         "tangent_fill": _tangent_fill(k),
     }
-    if k.split == "terms":
-        context["terms_h"] = _printed(eliminate(h_expressions(k.element), "h"), names)
-        context["parts"] = [{"index": i, "nodes": list(p.nodes), "gradient": _printed(p.gradient, names),
-                             "hessian": _printed(p.hessian, names)} for i, p in enumerate(k.extra["parts"])]
-    if k.split == "tensor":
-        quadratic, layout = k.extra["quadratic"], k.extra["layout"]
-        n = k.element.node_count
-        pairs = layout["pairs"]
-        index = {pair: i for i, pair in enumerate(pairs)}
-        context.update({
-            "green": quadratic.strain == "E",
-            "coefficients": layout["total"],
-            "pairs": pairs,
-            "pair_of": [[index[(min(j, m), max(j, m))] for m in range(n)] for j in range(n)],
-            "elasticity": [(i, print_expr(expr, names)) for i, expr in elasticity_assignments(law, quadratic)],
-        })
+    if isinstance(k.split_ir, TermsIR):
+        context.update(_terms_context(k.split_ir, names))
+    if isinstance(k.split_ir, TensorIR):
+        context.update(_tensor_context(k.split_ir, names))
     return context
 
 
-def _element_context(e: ElementSpec) -> dict:
-    tables = element_tables(e)
-    faces = [list(f) for f in e.faces]
-    offsets, total = [], 0
-    for f in faces:
-        offsets.append(total)
-        total += len(f)
-    edge_sizes = {len(edge) for edge in e.edges}
-    if len(edge_sizes) != 1:
-        raise ValueError(f"{e.source}: key 'edges': all edges must have the same number of nodes")
+def element_context(e: ElementIR) -> dict:
+    """The template context of one element (an item of elements.cpp.j2's `elements`)."""
     return {
         "name": e.name,
         "cname": e.name.capitalize(),
@@ -128,38 +108,47 @@ def _element_context(e: ElementSpec) -> dict:
         "vtk_order": list(e.vtk.node_order),
         "gmsh_order": list(e.gmsh.node_order),
         "edge_count": len(e.edges),
-        "edge_size": edge_sizes.pop(),
+        "edge_size": e.edge_size,
         "edges": [i for edge in e.edges for i in edge],
-        "face_count": len(faces),
-        "face_sizes": [len(f) for f in faces],
-        "face_offsets": offsets,
-        "faces": [i for f in faces for i in f],
-        "reference_nodes": [double_literal(float(x)) for node in e.nodes for x in node],
-        "points": len(tables.weights),
-        "weights": [double_literal(w) for w in tables.weights],
-        "shape_values": [double_literal(v) for row in tables.shape_values for v in row],
+        "face_count": len(e.faces),
+        "face_sizes": [len(f) for f in e.faces],
+        "face_offsets": list(e.face_offsets),
+        "faces": [i for f in e.faces for i in f],
+        "reference_nodes": _literals(e.reference_nodes),
+        "points": len(e.weights),
+        "weights": _literals(e.weights),
+        "shape_values": _literals(e.shape_values),
         "calculix_type": e.calculix.type if e.calculix else "",
         "calculix_order": list(e.calculix.node_order) if e.calculix else [],
     }
 
 
-def render_all(kernels: list[KernelIR], elements: tuple[ElementSpec, ...], laws: tuple[LawSpec, ...],
-               templates: Path) -> dict[str, str]:
+def manifest(lowered: LoweredIR) -> str:
+    """manifest.json: every kernel with its sizes and flops, every refusal with its reason."""
+    rows = [{"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
+             "dim": k.element.dim, "consts": k.consts_size, "flops_energy": k.flops.energy,
+             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian} for k in lowered.kernels]
+    refused = [{"law": r.law, "element": r.element, "split": r.split, "reason": r.reason} for r in lowered.refused]
+    return json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"
+
+
+def emit(lowered: LoweredIR, templates: Path) -> dict[str, str]:
+    """Stage 5: every generated file's text, by its path relative to generated/."""
     env = _environment(templates)
     files: dict[str, str] = {}
     contexts = []
-    for k in kernels:
+    for k in lowered.kernels:
         context = kernel_context(k)
         contexts.append(context)
         name = f"kernels/{context['prefix'][3:]}.cpp"
         files[name] = env.get_template(f"kernel_{k.split}.cpp.j2").render(k=context)
-        if k.split == "terms":
+        if isinstance(k.split_ir, TermsIR):
             part_template = env.get_template("kernel_terms_part.cpp.j2")
             for part in context["parts"]:
                 files[f"kernels/{context['prefix'][3:]}_part{part['index']}.cpp"] = part_template.render(k=context, p=part)
-    files["registry.cpp"] = env.get_template("registry.cpp.j2").render(kernels=contexts, laws=laws)
+    files["registry.cpp"] = env.get_template("registry.cpp.j2").render(kernels=contexts, laws=lowered.laws)
     files["elements.cpp"] = env.get_template("elements.cpp.j2").render(
-        elements=[_element_context(e) for e in elements])
-    sources = sorted(files)
-    files["sources.cmake"] = env.get_template("sources.cmake.j2").render(files=sources)
+        elements=[element_context(e) for e in lowered.elements])
+    files["sources.cmake"] = env.get_template("sources.cmake.j2").render(files=sorted(files))
+    files["manifest.json"] = manifest(lowered)
     return files

@@ -1,8 +1,9 @@
 """Stage 1 (load): read and validate element and law files into specs.
 
-Input: paths of `elements/*.toml` and `laws/*.toml`.
-Output: immutable `ElementSpec` and `LawSpec` objects. Every error names the
-file and the key at fault (`GeneratorInputError`).
+Input: the directories holding `elements/*.toml` and `laws/*.toml`.
+Output: `Inputs`, immutable `ElementSpec` and `LawSpec` objects. Every error
+names the file and the key at fault (`GeneratorInputError`); everything the
+later stages rely on about the files' structure is checked here.
 """
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from typing import Any
 
 import sympy
 
-from .model import ElementSpec, FormatOrder, LawSpec, QuadratureRule
+from .model import ElementSpec, FormatOrder, Inputs, LawSpec, QuadratureRule
 
 REFERENCE_VARIABLES = sympy.symbols("r s t", real=True)
 ELEMENT_KEYS = {
@@ -127,6 +128,16 @@ def _shape_functions(data: Any, source: str, dim: int, nodes: int) -> tuple[symp
     return tuple(result)
 
 
+def _edges(data: Any, source: str, nodes: int) -> tuple[tuple[int, ...], ...]:
+    """Node lists of the edges, all of one size (the runtime's edge table has a fixed stride)."""
+    if not isinstance(data, list) or not data:
+        raise _fail(source, "edges", "expected a non-empty list of node lists")
+    edges = tuple(_int_list(e, source, f"edges[{i}]", nodes) for i, e in enumerate(data))
+    if len({len(edge) for edge in edges}) != 1:
+        raise _fail(source, "edges", "all edges must have the same number of nodes")
+    return edges
+
+
 def load_element(path: Path) -> ElementSpec:
     source = str(path)
     data = _read_toml(path)
@@ -147,7 +158,7 @@ def load_element(path: Path) -> ElementSpec:
             raise _fail(source, f"nodes[{i}]", f"expected {dim} coordinates")
         nodes.append(tuple(_number(x, source, f"nodes[{i}]") for x in node))
     count = len(nodes)
-    edges = tuple(_int_list(e, source, f"edges[{i}]", count) for i, e in enumerate(data["edges"]))
+    edges = _edges(data["edges"], source, count)
     faces = tuple(_int_list(f, source, f"faces[{i}]", count) for i, f in enumerate(data.get("faces", [])))
     if dim == 3 and not faces:
         raise _fail(source, "faces", "3D elements must list their faces")
@@ -214,11 +225,13 @@ def load_law(path: Path) -> LawSpec:
     )
 
 
-def load_all(elements_dir: Path, laws_dir: Path) -> tuple[tuple[ElementSpec, ...], tuple[LawSpec, ...]]:
+def load_all(elements_dir: Path, laws_dir: Path) -> Inputs:
+    """Stage 1: every element and law file of the two directories, sorted by name."""
     element_paths = sorted(elements_dir.glob("*.toml"))
     law_paths = sorted(laws_dir.glob("*.toml"))
     if not element_paths:
         raise GeneratorInputError(f"{elements_dir}: no element files (*.toml)")
     if not law_paths:
         raise GeneratorInputError(f"{laws_dir}: no law files (*.toml)")
-    return tuple(load_element(p) for p in element_paths), tuple(load_law(p) for p in law_paths)
+    return Inputs(elements=tuple(load_element(p) for p in element_paths),
+                  laws=tuple(load_law(p) for p in law_paths))

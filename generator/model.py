@@ -1,4 +1,6 @@
-"""Typed, immutable intermediate representations shared by the generator stages.
+"""Typed, immutable outputs of stages 1-3 (load, symbolic, optimise).
+
+The lowered IR of stage 4, which the emitter prints, is in `ir.py`.
 
 Glossary (the same names are used in the C++ runtime):
   reference element   the element in its reference coordinates (r, s, t)
@@ -10,11 +12,13 @@ Glossary (the same names are used in the C++ runtime):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Optional
 
 import sympy
 
+
+# --- Stage 1 (load) ----------------------------------------------------------
 
 @dataclass(frozen=True)
 class QuadratureRule:
@@ -78,6 +82,20 @@ class LawSpec:
 
 
 @dataclass(frozen=True)
+class Inputs:
+    """Stage 1 (load) output: the validated element and law descriptions, sorted by file name."""
+    elements: tuple[ElementSpec, ...]
+    laws: tuple[LawSpec, ...]
+
+    @property
+    def dims(self) -> tuple[int, ...]:
+        """The dimensions of the elements, ascending (laws are derived once per dimension)."""
+        return tuple(sorted({e.dim for e in self.elements}))
+
+
+# --- Stage 2 (symbolic) ------------------------------------------------------
+
+@dataclass(frozen=True)
 class ElementTables:
     """Numbers the kernels need from the reference element at one quadrature rule."""
     rule: QuadratureRule
@@ -85,6 +103,45 @@ class ElementTables:
     shape_values: tuple[tuple[float, ...], ...]  # #Q by #N
     reference_gradients: tuple[tuple[tuple[float, ...], ...], ...]  # #Q by #N by dim
 
+
+@dataclass(frozen=True)
+class StrainQuadratic:
+    """A law that is a homogeneous quadratic in one strain measure: psi = 1/2 S:CC:S."""
+    strain: str  # "eps" (linear) or "E" (Green-Lagrange)
+    elasticity: tuple[tuple[tuple[tuple[sympy.Expr, ...], ...], ...], ...]  # CC[a][b][c][d], in derived parameters
+
+
+@dataclass(frozen=True)
+class LawDerivatives:
+    """A law at one point in dimension dim, in H0.. and the derived parameters.
+
+    quadratic: the law as 1/2 S:CC:S in one strain measure (for the tensor
+    split), or None, with not_quadratic saying why."""
+    law: LawSpec
+    dim: int
+    energy: sympy.Expr  # psi
+    stress: tuple[sympy.Expr, ...]  # P[I] = dpsi/dH_I
+    tangent: tuple[tuple[sympy.Expr, ...], ...]  # A[I][J] = d2psi/dH_I dH_J (full, symmetric)
+    quadratic: Optional[StrainQuadratic]
+    not_quadratic: str = ""
+
+
+@dataclass(frozen=True)
+class SymbolicIR:
+    """Stage 2 (symbolic) output: the inputs, one ElementTables per element
+    (same order) and one LawDerivatives per law and element dimension."""
+    inputs: Inputs
+    tables: tuple[ElementTables, ...]
+    derivatives: tuple[LawDerivatives, ...]
+
+    def tables_of(self, element: ElementSpec) -> ElementTables:
+        return self.tables[self.inputs.elements.index(element)]
+
+    def derivatives_of(self, law: LawSpec, dim: int) -> LawDerivatives:
+        return next(d for d in self.derivatives if d.law == law and d.dim == dim)
+
+
+# --- Stage 3 (optimise) ------------------------------------------------------
 
 @dataclass(frozen=True)
 class Assignment:
@@ -111,8 +168,11 @@ class LawKernelIR:
     energy: defines `psi` (weighted by w); stress: defines P0.. (unweighted);
     weighted_stress: defines wP0..; tangent: defines wP0.. and wA0.. (unique
     entries of the weighted tangent, row-major upper triangle of the d^2 x d^2
-    matrix); tangent_only: the same wA without wP; tangent_map[I][J] names the symbol holding A[I][J], or None when
-    that entry is identically zero."""
+    matrix); tangent_only: the same wA without wP; tangent_map[I][J] names the
+    symbol holding A[I][J], or None when that entry is identically zero;
+    tangent_fill lists the entries of the full wA array the tangent block does
+    not assign: (flat index, symbol to copy, or None for zero)."""
+    law: str  # the law's name
     dim: int
     energy: Block
     stress: Block
@@ -120,23 +180,14 @@ class LawKernelIR:
     tangent: Block
     tangent_only: Block  # wA entries alone (for code that needs no stress)
     tangent_map: tuple[tuple[Optional[str], ...], ...]
+    tangent_fill: tuple[tuple[int, Optional[str]], ...]
 
 
 @dataclass(frozen=True)
-class StrainQuadratic:
-    """A law that is a homogeneous quadratic in one strain measure: psi = 1/2 S:CC:S."""
-    strain: str  # "eps" (linear) or "E" (Green-Lagrange)
-    elasticity: tuple  # CC[a][b][c][d] as SymPy expressions of the derived parameters
+class OptimisedIR:
+    """Stage 3 (optimise) output: the symbolic IR and one LawKernelIR per law and dimension."""
+    symbolic: SymbolicIR
+    laws: tuple[LawKernelIR, ...]
 
-
-@dataclass(frozen=True)
-class KernelIR:
-    """Everything a template needs to emit one LES triple."""
-    law: LawSpec
-    element: ElementSpec
-    split: str  # whole | terms | tensor
-    tables: ElementTables
-    law_ir: LawKernelIR
-    consts_size: int
-    flops: dict = field(hash=False, compare=False)  # energy/gradient/hessian -> int
-    extra: dict = field(hash=False, compare=False)  # split-specific data for templates
+    def law_ir(self, law: LawSpec, dim: int) -> LawKernelIR:
+        return next(ir for ir in self.laws if ir.law == law.name and ir.dim == dim)

@@ -1,16 +1,25 @@
 """Stage 3 (optimise): common subexpression elimination and flop counting.
 
-Input: named SymPy outputs (target lvalue -> expression).
-Output: a `Block` of straight-line assignments (temporaries first) and its
-flop count: each +, -, *, / counts 1; an integer power x^n counts n-1
+Input: `SymbolicIR` (stage 2).
+Output: `OptimisedIR`: per law and dimension a `LawKernelIR`, the law at one
+quadrature point as CSE'd straight-line `Block`s (energy, stress, weighted
+stress, tangent) with their flop counts.
+
+`eliminate` turns named SymPy outputs (target lvalue -> expression) into a
+`Block` (temporaries first); the lower stage uses it for the split-specific
+entries too. Flops: each +, -, *, / counts 1; an integer power x^n counts n-1
 multiplications (emitted as products, never pow()); a negative power adds one
 division; each transcendental call (log, exp, sqrt) counts 1.
 """
 from __future__ import annotations
 
+from typing import Optional
+
 import sympy
 
-from .model import Assignment, Block
+from .model import Assignment, Block, LawDerivatives, LawKernelIR, OptimisedIR, SymbolicIR
+
+WEIGHT = sympy.Symbol("w", real=True)
 
 
 def count_flops(expr: sympy.Expr) -> int:
@@ -45,3 +54,48 @@ def eliminate(outputs: list[tuple[str, sympy.Expr]], prefix: str) -> Block:
     assignments = [Assignment(str(symbol), value, declare=True) for symbol, value in replacements]
     assignments += [Assignment(target, expr) for (target, _), expr in zip(outputs, reduced)]
     return Block(tuple(assignments), sum(count_flops(a.expr) for a in assignments))
+
+
+def _tangent_fill(tangent_map: tuple[tuple[Optional[str], ...], ...]) -> tuple[tuple[int, Optional[str]], ...]:
+    """Entries of the full wA array that the tangent block leaves unassigned."""
+    d2 = len(tangent_map)
+    fills = []
+    for i in range(d2):
+        for j in range(d2):
+            flat = i * d2 + j
+            source = tangent_map[i][j]
+            if source != f"wA[{flat}]":
+                fills.append((flat, source))
+    return tuple(fills)
+
+
+def build_law_ir(derivatives: LawDerivatives) -> LawKernelIR:
+    """The law's blocks at one point; symmetric or repeated tangent entries are computed once."""
+    psi, P, A = derivatives.energy, derivatives.stress, derivatives.tangent
+    d2 = derivatives.dim ** 2
+    energy = eliminate([("psi", WEIGHT * psi)], "e")
+    stress = eliminate([(f"P[{i}]", p) for i, p in enumerate(P)], "s")
+    weighted = [(f"wP[{i}]", WEIGHT * p) for i, p in enumerate(P)]
+    weighted_stress = eliminate(weighted, "s")
+    outputs, canonical, tangent_map = list(weighted), {}, [[None] * d2 for _ in range(d2)]
+    for i in range(d2):
+        for j in range(i, d2):
+            entry = WEIGHT * A[i][j]
+            key = sympy.expand(entry) if A[i][j].is_polynomial() else entry
+            if key == 0:
+                continue
+            if key not in canonical:
+                canonical[key] = f"wA[{i * d2 + j}]"
+                outputs.append((canonical[key], entry))
+            tangent_map[i][j] = tangent_map[j][i] = canonical[key]
+    tangent = eliminate(outputs, "a")
+    tangent_only = eliminate(outputs[len(weighted):], "a")
+    tangent_map = tuple(tuple(row) for row in tangent_map)
+    return LawKernelIR(law=derivatives.law.name, dim=derivatives.dim, energy=energy, stress=stress,
+                       weighted_stress=weighted_stress, tangent=tangent, tangent_only=tangent_only,
+                       tangent_map=tangent_map, tangent_fill=_tangent_fill(tangent_map))
+
+
+def optimise(symbolic: SymbolicIR) -> OptimisedIR:
+    """Stage 3: the optimised law blocks of every law in every element dimension."""
+    return OptimisedIR(symbolic=symbolic, laws=tuple(build_law_ir(d) for d in symbolic.derivatives))

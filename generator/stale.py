@@ -6,7 +6,7 @@ import hashlib
 from pathlib import Path
 
 HASH_FILE = "INPUTS.sha256"
-INPUT_PATTERNS = ("elements/*.toml", "laws/*.toml", "templates/*.j2", "generator/*.py")
+INPUT_PATTERNS = ("elements/*.toml", "laws/*.toml", "templates/*.j2", "generator/*.py", "generator/splits/*.py")
 
 
 def input_files(root: Path) -> list[Path]:

@@ -1,10 +1,12 @@
 """Stage 2 (symbolic): element tables and the law's point-wise derivatives.
 
-Input: `ElementSpec` and `LawSpec`.
-Output: `ElementTables` (weights, shape values and reference gradients at the
-quadrature points, as doubles) and, per law and dimension, SymPy expressions of
-psi(H), P = dpsi/dH and A = d2psi/dH2 in the displacement-gradient symbols
-H0..H{d*d-1} (row-major) and the law's derived parameters. The chain rule
+Input: `Inputs` (stage 1).
+Output: `SymbolicIR`: per element `ElementTables` (weights, shape values and
+reference gradients at the quadrature points, as doubles) and, per law and
+dimension, `LawDerivatives`: SymPy expressions of psi(H), P = dpsi/dH and
+A = d2psi/dH2 in the displacement-gradient symbols H0..H{d*d-1} (row-major)
+and the law's derived parameters, and the law as a quadratic in one strain
+measure where it is one (for the tensor split). The chain rule
 g_ja = sum_q w_q sum_C P_aC G_jC and K_ja,kb = sum_q w_q sum_CD G_jC A_aC,bD G_kD
 links them to nodal displacements; the split stage decides how those sums
 are written.
@@ -17,7 +19,7 @@ import functools
 import sympy
 
 from .load import REFERENCE_VARIABLES, GeneratorInputError
-from .model import ElementSpec, ElementTables, LawSpec, StrainQuadratic
+from .model import ElementSpec, ElementTables, Inputs, LawDerivatives, LawSpec, StrainQuadratic, SymbolicIR
 
 # Names a law's energy may use, besides its derived parameters.
 KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "d", "I")
@@ -159,3 +161,22 @@ def strain_quadratic(law: LawSpec, dim: int) -> StrainQuadratic:
         sympy.simplify((raw[a][b][c][e] + raw[b][a][c][e] + raw[a][b][e][c] + raw[b][a][e][c]) / 4)
         for e in range(dim)) for c in range(dim)) for b in range(dim)) for a in range(dim))
     return StrainQuadratic(strain=strain, elasticity=cc)
+
+
+def derive_law(law: LawSpec, dim: int) -> LawDerivatives:
+    """psi, P and A of the law in dimension dim, and its strain quadratic or why it has none."""
+    psi, P, A = law_derivatives(law, dim)
+    try:
+        quadratic, why = strain_quadratic(law, dim), ""
+    except GeneratorInputError as error:
+        quadratic, why = None, str(error)
+    return LawDerivatives(law=law, dim=dim, energy=psi, stress=P, tangent=A, quadratic=quadratic, not_quadratic=why)
+
+
+def derive(inputs: Inputs) -> SymbolicIR:
+    """Stage 2: the tables of every element and the derivatives of every law in every element dimension."""
+    return SymbolicIR(
+        inputs=inputs,
+        tables=tuple(element_tables(e) for e in inputs.elements),
+        derivatives=tuple(derive_law(law, dim) for law in inputs.laws for dim in inputs.dims),
+    )

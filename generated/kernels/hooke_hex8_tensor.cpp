@@ -6,10 +6,14 @@
 // coefficient tensors are precomputed per element (576 doubles):
 //   W = 1/2 u.K u
 // Flops per element: energy 1200, gradient 1152, hessian 0.
+// The loops are in tensormass/kernels/tensor_split.hpp; this file holds the element's tables and the law.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
+#include "tensormass/kernels/tensor_split.hpp"
 
 namespace {
+namespace tensor = tensormass::kernel::tensor;
+
 constexpr int kDim = 3;
 constexpr int kNodes = 8;
 constexpr int kDofs = 24;
@@ -27,7 +31,10 @@ constexpr double kReferenceGradients[kPoints][kNodes][kDim] = {
   { { -0.022329099369260225, -0.08333333333333333, -0.08333333333333333 }, { 0.022329099369260225, -0.022329099369260225, -0.022329099369260225 }, { 0.08333333333333333, 0.022329099369260225, -0.08333333333333333 }, { -0.08333333333333333, 0.08333333333333333, -0.3110042339640731 }, { -0.08333333333333333, -0.3110042339640731, 0.08333333333333333 }, { 0.08333333333333333, -0.08333333333333333, 0.022329099369260225 }, { 0.3110042339640731, 0.08333333333333333, 0.08333333333333333 }, { -0.3110042339640731, 0.3110042339640731, 0.3110042339640731 } },
   { { -0.022329099369260225, -0.022329099369260225, -0.022329099369260225 }, { 0.022329099369260225, -0.08333333333333333, -0.08333333333333333 }, { 0.08333333333333333, 0.08333333333333333, -0.3110042339640731 }, { -0.08333333333333333, 0.022329099369260225, -0.08333333333333333 }, { -0.08333333333333333, -0.08333333333333333, 0.022329099369260225 }, { 0.08333333333333333, -0.3110042339640731, 0.08333333333333333 }, { 0.3110042339640731, 0.3110042339640731, 0.3110042339640731 }, { -0.3110042339640731, 0.08333333333333333, 0.08333333333333333 } },
 };
-constexpr int kOffsetK = kDerived + kPoints * kStride;  // K: dofs by dofs
+constexpr tensor::Strain kStrain = tensor::Strain::linear;
+constexpr int kOffsetCoefficients = kDerived + kPoints * kStride;  // K: tensor::Layout
+static_assert(tensor::Layout<kDim, kNodes, kStrain>::total == 576,
+              "the generator and tensor_split.hpp disagree on the coefficient layout");
 
 /// psi(H) times w at one point.
 inline double law_energy(const double* H, double w, const double* consts) {
@@ -214,11 +221,6 @@ inline void elasticity(const double* consts, double* CC) {
   CC[76] = lam;
   CC[80] = lam + 2.0*mu;
 }
-
-inline double cc(const double* CC, int a, int b, int c, int e) {
-  return CC[((a * kDim + b) * kDim + c) * kDim + e];
-}
-
 }  // namespace
 
 extern "C" int tm_hooke_hex8_tensor_precompute(const double* rest_positions, const double* params, double* consts) {
@@ -226,28 +228,10 @@ extern "C" int tm_hooke_hex8_tensor_precompute(const double* rest_positions, con
   const double poisson = params[1];
   consts[0] = poisson*young/((1.0 - 2.0*poisson)*(poisson + 1.0));
   consts[1] = young/(2.0*poisson + 2.0);
-  const int status = tensormass::kernel::precompute_points<kDim, kNodes, kPoints>(rest_positions, kReferenceGradients,
-                                                                              kWeights, consts + kDerived);
-  if (status != 0) return status;
   double CC[kDim * kDim * kDim * kDim];
   elasticity(consts, CC);
-  double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs * kDofs; ++i) K[i] = 0.0;
-  for (int q = 0; q < kPoints; ++q) {
-    const double* point = consts + kDerived + q * kStride;
-    const double w = point[0];
-    const double* GT = point + 1;
-    for (int j = 0; j < kNodes; ++j)
-      for (int k = 0; k < kNodes; ++k)
-        for (int a = 0; a < kDim; ++a)
-          for (int b = 0; b < kDim; ++b) {
-            double sum = 0.0;
-            for (int c = 0; c < kDim; ++c)
-              for (int e = 0; e < kDim; ++e) sum += cc(CC, a, c, b, e) * GT[c * kNodes + j] * GT[e * kNodes + k];
-            K[(j * kDim + a) * kDofs + k * kDim + b] += w * sum;
-          }
-  }
-  return 0;
+  return tensor::precompute<kDim, kNodes, kPoints, kStrain>(rest_positions, kReferenceGradients, kWeights, CC,
+                                                           consts + kDerived);
 }
 
 extern "C" void tm_hooke_hex8_tensor_stress(const double* u, const double* consts, double* stress) {
@@ -260,29 +244,15 @@ extern "C" void tm_hooke_hex8_tensor_stress(const double* u, const double* const
 }
 
 extern "C" void tm_hooke_hex8_tensor_gradient(const double* u, const double* consts, double* gradient) {
-  const double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs; ++i) {
-    double sum = 0.0;
-    for (int j = 0; j < kDofs; ++j) sum += K[i * kDofs + j] * u[j];
-    gradient[i] = sum;
-  }
+  tensor::gradient<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients, gradient);
 }
 
 extern "C" double tm_hooke_hex8_tensor_energy(const double* u, const double* consts) {
-  const double* K = consts + kOffsetK;
-  double W = 0.0;
-  for (int i = 0; i < kDofs; ++i) {
-    double sum = 0.0;
-    for (int j = 0; j < kDofs; ++j) sum += K[i * kDofs + j] * u[j];
-    W += 0.5 * u[i] * sum;
-  }
-  return W;
+  return tensor::energy<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients);
 }
 
 extern "C" void tm_hooke_hex8_tensor_hessian(const double* u, const double* consts, double* hessian) {
-  const double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs * kDofs; ++i) hessian[i] = K[i];
-  (void)u;  // linear strain: the Hessian is the constant K
+  tensor::hessian<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients, hessian);
 }
 
 extern "C" void tm_hooke_hex8_tensor_gradient_hessian(const double* u, const double* consts, double* gradient,

@@ -6,10 +6,14 @@
 // coefficient tensors are precomputed per element (108 doubles):
 //   W = 1/2 u.K u + sum_l sum_jk s_jk (u_l . V_ljk) + sum_jklm D_jklm s_jk s_lm,  s_jk = u_j . u_k
 // Flops per element: energy 270, gradient 414, hessian 1206.
+// The loops are in tensormass/kernels/tensor_split.hpp; this file holds the element's tables and the law.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
+#include "tensormass/kernels/tensor_split.hpp"
 
 namespace {
+namespace tensor = tensormass::kernel::tensor;
+
 constexpr int kDim = 2;
 constexpr int kNodes = 3;
 constexpr int kDofs = 6;
@@ -20,18 +24,10 @@ constexpr double kWeights[kPoints] = { 0.5 };
 constexpr double kReferenceGradients[kPoints][kNodes][kDim] = {
   { { -1.0, -1.0 }, { 1.0, 0.0 }, { 0.0, 1.0 } },
 };
-constexpr int kOffsetK = kDerived + kPoints * kStride;  // K: dofs by dofs
-constexpr int kPairs = 6;  // node pairs j <= k
-constexpr int kOffsetV = kOffsetK + kDofs * kDofs;      // V: nodes by pairs by dim
-constexpr int kOffsetD = kOffsetV + kNodes * kPairs * kDim;  // D: pairs by pairs, times multiplicity of the column pair
-constexpr int kPairFirst[kPairs] = { 0, 0, 0, 1, 1, 2 };
-constexpr int kPairSecond[kPairs] = { 0, 1, 2, 1, 2, 2 };
-constexpr double kPairMultiplicity[kPairs] = { 1.0, 2.0, 2.0, 1.0, 2.0, 1.0 };
-constexpr int kPairOf[kNodes][kNodes] = {
-  { 0, 1, 2 },
-  { 1, 3, 4 },
-  { 2, 4, 5 },
-};
+constexpr tensor::Strain kStrain = tensor::Strain::green;
+constexpr int kOffsetCoefficients = kDerived + kPoints * kStride;  // K, V, D: tensor::Layout
+static_assert(tensor::Layout<kDim, kNodes, kStrain>::total == 108,
+              "the generator and tensor_split.hpp disagree on the coefficient layout");
 
 /// psi(H) times w at one point.
 inline double law_energy(const double* H, double w, const double* consts) {
@@ -163,34 +159,6 @@ inline void elasticity(const double* consts, double* CC) {
   CC[12] = lam;
   CC[15] = lam + 2.0*mu;
 }
-
-inline double cc(const double* CC, int a, int b, int c, int e) {
-  return CC[((a * kDim + b) * kDim + c) * kDim + e];
-}
-
-/// s[p] = u_j . u_k for each node pair p = (j, k).
-inline void pair_products(const double* u, double* s) {
-  for (int p = 0; p < kPairs; ++p) {
-    double sum = 0.0;
-    for (int a = 0; a < kDim; ++a) sum += u[kPairFirst[p] * kDim + a] * u[kPairSecond[p] * kDim + a];
-    s[p] = sum;
-  }
-}
-
-/// t[p] = sum_l u_l . V_l,p and r[p] = sum_p' D'[p][p'] s[p'].
-inline void pair_coefficients(const double* u, const double* consts, const double* s, double* t, double* r) {
-  const double* V = consts + kOffsetV;
-  const double* D = consts + kOffsetD;
-  for (int p = 0; p < kPairs; ++p) {
-    double tp = 0.0, rp = 0.0;
-    for (int l = 0; l < kNodes; ++l)
-      for (int a = 0; a < kDim; ++a) tp += u[l * kDim + a] * V[(l * kPairs + p) * kDim + a];
-    for (int p2 = 0; p2 < kPairs; ++p2) rp += D[p * kPairs + p2] * s[p2];
-    t[p] = tp;
-    r[p] = rp;
-  }
-}
-
 }  // namespace
 
 extern "C" int tm_stvk_tri3_tensor_precompute(const double* rest_positions, const double* params, double* consts) {
@@ -198,58 +166,10 @@ extern "C" int tm_stvk_tri3_tensor_precompute(const double* rest_positions, cons
   const double poisson = params[1];
   consts[0] = poisson*young/((1.0 - 2.0*poisson)*(poisson + 1.0));
   consts[1] = young/(2.0*poisson + 2.0);
-  const int status = tensormass::kernel::precompute_points<kDim, kNodes, kPoints>(rest_positions, kReferenceGradients,
-                                                                              kWeights, consts + kDerived);
-  if (status != 0) return status;
   double CC[kDim * kDim * kDim * kDim];
   elasticity(consts, CC);
-  double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs * kDofs; ++i) K[i] = 0.0;
-  double* V = consts + kOffsetV;
-  double* D = consts + kOffsetD;
-  for (int i = 0; i < kNodes * kPairs * kDim; ++i) V[i] = 0.0;
-  for (int i = 0; i < kPairs * kPairs; ++i) D[i] = 0.0;
-  for (int q = 0; q < kPoints; ++q) {
-    const double* point = consts + kDerived + q * kStride;
-    const double w = point[0];
-    const double* GT = point + 1;
-    for (int j = 0; j < kNodes; ++j)
-      for (int k = 0; k < kNodes; ++k)
-        for (int a = 0; a < kDim; ++a)
-          for (int b = 0; b < kDim; ++b) {
-            double sum = 0.0;
-            for (int c = 0; c < kDim; ++c)
-              for (int e = 0; e < kDim; ++e) sum += cc(CC, a, c, b, e) * GT[c * kNodes + j] * GT[e * kNodes + k];
-            K[(j * kDim + a) * kDofs + k * kDim + b] += w * sum;
-          }
-    double X[kPairs][kDim * kDim], M[kPairs][kDim * kDim];  // X_p = G_j G_k^T, M_p = CC : X_p
-    for (int p = 0; p < kPairs; ++p) {
-      for (int a = 0; a < kDim; ++a)
-        for (int b = 0; b < kDim; ++b)
-          X[p][a * kDim + b] = GT[a * kNodes + kPairFirst[p]] * GT[b * kNodes + kPairSecond[p]];
-      for (int c = 0; c < kDim; ++c)
-        for (int e = 0; e < kDim; ++e) {
-          double sum = 0.0;
-          for (int a = 0; a < kDim; ++a)
-            for (int b = 0; b < kDim; ++b) sum += X[p][a * kDim + b] * cc(CC, a, b, c, e);
-          M[p][c * kDim + e] = sum;
-        }
-    }
-    for (int l = 0; l < kNodes; ++l)
-      for (int p = 0; p < kPairs; ++p)
-        for (int a = 0; a < kDim; ++a) {
-          double sum = 0.0;
-          for (int b = 0; b < kDim; ++b) sum += GT[b * kNodes + l] * M[p][a * kDim + b];
-          V[(l * kPairs + p) * kDim + a] += 0.5 * w * sum;
-        }
-    for (int p = 0; p < kPairs; ++p)
-      for (int p2 = 0; p2 < kPairs; ++p2) {
-        double sum = 0.0;
-        for (int i = 0; i < kDim * kDim; ++i) sum += M[p][i] * X[p2][i];
-        D[p * kPairs + p2] += 0.125 * w * kPairMultiplicity[p2] * sum;
-      }
-  }
-  return 0;
+  return tensor::precompute<kDim, kNodes, kPoints, kStrain>(rest_positions, kReferenceGradients, kWeights, CC,
+                                                           consts + kDerived);
 }
 
 extern "C" void tm_stvk_tri3_tensor_stress(const double* u, const double* consts, double* stress) {
@@ -262,73 +182,15 @@ extern "C" void tm_stvk_tri3_tensor_stress(const double* u, const double* consts
 }
 
 extern "C" void tm_stvk_tri3_tensor_gradient(const double* u, const double* consts, double* gradient) {
-  const double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs; ++i) {
-    double sum = 0.0;
-    for (int j = 0; j < kDofs; ++j) sum += K[i * kDofs + j] * u[j];
-    gradient[i] = sum;
-  }
-  const double* V = consts + kOffsetV;
-  double s[kPairs], t[kPairs], r[kPairs];
-  pair_products(u, s);
-  pair_coefficients(u, consts, s, t, r);
-  for (int i = 0; i < kNodes; ++i) {
-    for (int p = 0; p < kPairs; ++p) {
-      const double weight = kPairMultiplicity[p] * s[p];
-      for (int a = 0; a < kDim; ++a) gradient[i * kDim + a] += weight * V[(i * kPairs + p) * kDim + a];
-    }
-    for (int k = 0; k < kNodes; ++k) {
-      const int p = kPairOf[i][k];
-      const double weight = 2.0 * t[p] + 4.0 * r[p];
-      for (int a = 0; a < kDim; ++a) gradient[i * kDim + a] += weight * u[k * kDim + a];
-    }
-  }
+  tensor::gradient<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients, gradient);
 }
 
 extern "C" double tm_stvk_tri3_tensor_energy(const double* u, const double* consts) {
-  const double* K = consts + kOffsetK;
-  double W = 0.0;
-  for (int i = 0; i < kDofs; ++i) {
-    double sum = 0.0;
-    for (int j = 0; j < kDofs; ++j) sum += K[i * kDofs + j] * u[j];
-    W += 0.5 * u[i] * sum;
-  }
-  double s[kPairs], t[kPairs], r[kPairs];
-  pair_products(u, s);
-  pair_coefficients(u, consts, s, t, r);
-  for (int p = 0; p < kPairs; ++p) W += kPairMultiplicity[p] * s[p] * (t[p] + r[p]);
-  return W;
+  return tensor::energy<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients);
 }
 
 extern "C" void tm_stvk_tri3_tensor_hessian(const double* u, const double* consts, double* hessian) {
-  const double* K = consts + kOffsetK;
-  for (int i = 0; i < kDofs * kDofs; ++i) hessian[i] = K[i];
-  const double* V = consts + kOffsetV;
-  const double* D = consts + kOffsetD;
-  double s[kPairs], t[kPairs], r[kPairs];
-  pair_products(u, s);
-  pair_coefficients(u, consts, s, t, r);
-  for (int i = 0; i < kNodes; ++i)
-    for (int n = 0; n < kNodes; ++n) {
-      double block[kDim][kDim] = {};
-      const double diagonal = 2.0 * t[kPairOf[i][n]] + 4.0 * r[kPairOf[i][n]];
-      for (int a = 0; a < kDim; ++a) block[a][a] = diagonal;
-      for (int k = 0; k < kNodes; ++k) {
-        const double* v_i = V + (i * kPairs + kPairOf[n][k]) * kDim;  // V_i,(n k)
-        const double* v_n = V + (n * kPairs + kPairOf[i][k]) * kDim;  // V_n,(i k)
-        double y[kDim] = {};  // sum_m D_(ik)(nm) u_m
-        for (int m = 0; m < kNodes; ++m) {
-          const int p2 = kPairOf[n][m];
-          const double coefficient = D[kPairOf[i][k] * kPairs + p2] / kPairMultiplicity[p2];
-          for (int b = 0; b < kDim; ++b) y[b] += coefficient * u[m * kDim + b];
-        }
-        for (int a = 0; a < kDim; ++a)
-          for (int b = 0; b < kDim; ++b)
-            block[a][b] += 2.0 * (v_i[a] * u[k * kDim + b] + u[k * kDim + a] * v_n[b]) + 8.0 * u[k * kDim + a] * y[b];
-      }
-      for (int a = 0; a < kDim; ++a)
-        for (int b = 0; b < kDim; ++b) hessian[(i * kDim + a) * kDofs + n * kDim + b] += block[a][b];
-    }
+  tensor::hessian<kDim, kNodes, kStrain>(u, consts + kOffsetCoefficients, hessian);
 }
 
 extern "C" void tm_stvk_tri3_tensor_gradient_hessian(const double* u, const double* consts, double* gradient,

@@ -1,0 +1,78 @@
+"""Stage 1 (load): every malformed element or law file is refused with an
+error naming the file and the key; the stage output is typed."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+from generator.load import GeneratorInputError, load_all, load_element, load_law
+from generator.model import ElementSpec, Inputs, LawSpec
+
+
+def _copy_element(tmp_path: Path, name: str = "tet4") -> Path:
+    target = tmp_path / f"{name}.toml"
+    shutil.copy(ROOT / "elements" / f"{name}.toml", target)
+    return target
+
+
+@pytest.mark.parametrize("edit, key", [
+    (lambda t: "surprise = 1\n" + t, "surprise"),
+    (lambda t: t.replace('"1 - r - s - t"', '"1 - r - s - q"'), "shape_functions[0]"),
+    (lambda t: t.replace('name = "tet4"', 'name = "tet5"'), "name"),
+    (lambda t: t.replace('default_quadrature = "gauss1"', 'default_quadrature = "nope"'), "default_quadrature"),
+    (lambda t: t.replace('weights = ["1/6"]', 'weights = [0.1666]'), "quadrature.gauss1.weights[0]"),
+    (lambda t: t.replace("node_order = [0, 1, 2, 3]\n\n[vtk]", "node_order = [0, 1, 1, 3]\n\n[vtk]"), "gmsh.node_order"),
+    (lambda t: t.replace("[1, 2, 3], [2, 0, 3]]", "[1, 2, 3], [2, 0, 7]]"), "faces[3]"),
+    (lambda t: t.replace("edges = [[0, 1],", "edges = [[0, 1, 2],"), "edges"),
+    (lambda t: t.replace("edges = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]]", "edges = []"), "edges"),
+])
+def test_element_errors_name_file_and_key(tmp_path, edit, key):
+    path = _copy_element(tmp_path)
+    text = path.read_text()
+    assert edit(text) != text, "the edit no longer matches elements/tet4.toml"
+    path.write_text(edit(text))
+    with pytest.raises(GeneratorInputError) as error:
+        load_element(path)
+    assert str(path) in str(error.value)
+    assert f"'{key}'" in str(error.value)
+
+
+def test_edges_of_mixed_sizes_are_refused_at_load(tmp_path):
+    """The runtime's edge table has one stride per element: checked by load, not at emit time."""
+    path = _copy_element(tmp_path)
+    path.write_text(path.read_text().replace("edges = [[0, 1],", "edges = [[0, 1, 2],"))
+    with pytest.raises(GeneratorInputError, match=r"key 'edges': all edges must have the same number of nodes"):
+        load_element(path)
+
+
+def test_invalid_toml_names_file(tmp_path):
+    path = tmp_path / "tet4.toml"
+    path.write_text("name = \n")
+    with pytest.raises(GeneratorInputError, match=str(path)):
+        load_element(path)
+
+
+def test_law_derived_parameter_errors_name_the_key(tmp_path):
+    path = tmp_path / "stvk.toml"
+    text = (ROOT / "laws" / "stvk.toml").read_text()
+    path.write_text(text.replace('mu = "young/(2*(1 + poisson))"', 'mu = "young/(2*(1 + nu))"'))
+    with pytest.raises(GeneratorInputError, match="derived.mu"):
+        load_law(path)
+
+
+def test_load_all_returns_typed_sorted_inputs():
+    inputs = load_all(ROOT / "elements", ROOT / "laws")
+    assert isinstance(inputs, Inputs)
+    assert all(isinstance(e, ElementSpec) for e in inputs.elements)
+    assert all(isinstance(law, LawSpec) for law in inputs.laws)
+    assert [e.name for e in inputs.elements] == sorted(p.stem for p in (ROOT / "elements").glob("*.toml"))
+    assert [law.name for law in inputs.laws] == sorted(p.stem for p in (ROOT / "laws").glob("*.toml"))
+    assert inputs.dims == (2, 3)
+
+
+def test_load_all_needs_files(tmp_path):
+    with pytest.raises(GeneratorInputError, match="no element files"):
+        load_all(tmp_path, ROOT / "laws")

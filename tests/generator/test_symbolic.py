@@ -1,0 +1,84 @@
+"""Stage 2 (symbolic): element tables and law derivatives, checked against
+independent formulas; the stage output is typed."""
+from __future__ import annotations
+
+import pytest
+import sympy
+
+from conftest import ROOT
+from generator.load import GeneratorInputError, load_element, load_law
+from generator.model import Inputs, LawDerivatives, SymbolicIR
+from generator.symbolic import derive, gradient_symbols, law_derivatives, strain_quadratic
+
+LAM, MU = sympy.Symbol("lam", real=True), sympy.Symbol("mu", real=True)
+H_VALUES = [0.03, -0.02, 0.05, 0.01, 0.04, -0.03, 0.02, 0.06, -0.01]
+
+
+def _law(name: str):
+    return load_law(ROOT / "laws" / f"{name}.toml")
+
+
+def test_stvk_stress_is_F_times_S():
+    _, P, _ = law_derivatives(_law("stvk"), 3)
+    H = gradient_symbols(3)
+    lam, mu = 2.0, 3.0
+    F = sympy.eye(3) + sympy.Matrix(3, 3, H_VALUES)
+    E = (F.T * F - sympy.eye(3)) / 2
+    S = lam * E.trace() * sympy.eye(3) + 2 * mu * E
+    expected = F * S
+    at = dict(zip(H, H_VALUES)) | {LAM: lam, MU: mu}
+    for i in range(9):
+        assert float(P[i].subs(at)) == pytest.approx(float(expected[i // 3, i % 3]), rel=1e-13)
+
+
+def test_neohookean_stress_reference():
+    _, P, _ = law_derivatives(_law("neohookean"), 3)
+    lam, mu = 2.0, 3.0
+    F = sympy.eye(3) + sympy.Matrix(3, 3, H_VALUES)
+    J = F.det()
+    expected = mu * (F - F.inv().T) + lam * sympy.log(J) * F.inv().T
+    at = dict(zip(gradient_symbols(3), H_VALUES)) | {LAM: lam, MU: mu}
+    for i in range(9):
+        assert float(P[i].subs(at)) == pytest.approx(float(expected[i // 3, i % 3]), rel=1e-12)
+
+
+def test_law_energy_with_unknown_names_is_refused(tmp_path):
+    path = tmp_path / "stvk.toml"
+    path.write_text((ROOT / "laws" / "stvk.toml").read_text().replace("tr(E*E)", "tr(Q*E)"))
+    law = load_law(path)
+    with pytest.raises(GeneratorInputError, match=r"energy.*unknown names \['Q'\]"):
+        law_derivatives(law, 3)
+
+
+def test_only_laws_quadratic_in_one_strain_have_a_strain_quadratic():
+    with pytest.raises(GeneratorInputError, match="one strain measure"):
+        strain_quadratic(_law("neohookean"), 3)
+    assert strain_quadratic(_law("stvk"), 3).strain == "E"
+    assert strain_quadratic(_law("hooke"), 2).strain == "eps"
+
+
+def test_elasticity_tensor_of_hooke_is_isotropic():
+    quadratic = strain_quadratic(_law("hooke"), 3)
+    delta = lambda i, j: 1 if i == j else 0  # noqa: E731
+    for a in range(3):
+        for b in range(3):
+            for c in range(3):
+                for d in range(3):
+                    expected = LAM * delta(a, b) * delta(c, d) + MU * (delta(a, c) * delta(b, d) + delta(a, d) * delta(b, c))
+                    assert sympy.simplify(quadratic.elasticity[a][b][c][d] - expected) == 0
+
+
+def test_derive_gives_tables_per_element_and_derivatives_per_law_and_dimension():
+    tet4, tri3 = (load_element(ROOT / "elements" / f"{n}.toml") for n in ("tet4", "tri3"))
+    stvk, neo = _law("stvk"), _law("neohookean")
+    symbolic = derive(Inputs(elements=(tet4, tri3), laws=(stvk, neo)))
+    assert isinstance(symbolic, SymbolicIR)
+    assert symbolic.tables_of(tet4).weights == (1 / 6,)
+    assert symbolic.tables_of(tri3).reference_gradients == (((-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)),)
+    assert [(d.law.name, d.dim) for d in symbolic.derivatives] == [("stvk", 2), ("stvk", 3),
+                                                                    ("neohookean", 2), ("neohookean", 3)]
+    assert all(isinstance(d, LawDerivatives) for d in symbolic.derivatives)
+    assert symbolic.derivatives_of(stvk, 3).quadratic.strain == "E"
+    neo3 = symbolic.derivatives_of(neo, 3)
+    assert neo3.quadratic is None and "one strain measure" in neo3.not_quadratic
+    assert len(neo3.stress) == 9 and len(neo3.tangent) == 9
