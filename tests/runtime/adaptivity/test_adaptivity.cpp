@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "solvers/solver_test_support.hpp"
+#include "support/cantilever.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/meshing/beam.hpp"

@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "python_check.hpp"
+#include "support/python_check.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 

@@ -13,7 +13,7 @@
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace scene_test {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "solver_test_support.hpp"
+#include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/integrators.hpp"

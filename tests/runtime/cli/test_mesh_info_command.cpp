@@ -9,7 +9,7 @@
 #include <string>
 #include <sys/wait.h>
 
-#include "mesh_test_support.hpp"
+#include "support/test_meshes.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "solver_test_support.hpp"
+#include "support/cantilever.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/model/model.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "surface_test_support.hpp"
+#include "support/test_surfaces.hpp"
 #include "tensormass/surface/surface.hpp"
 
 namespace {

@@ -1,7 +1,7 @@
 // `tensormass beam`: exit codes, messages, summary and the written file.
 #include <gtest/gtest.h>
 
-#include "io/python_check.hpp"
+#include "support/python_check.hpp"
 #include "tensormass/meshing/beam.hpp"
 
 namespace {

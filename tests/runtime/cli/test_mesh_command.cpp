@@ -12,7 +12,7 @@
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 

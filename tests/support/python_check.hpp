@@ -78,7 +78,7 @@ inline std::string read_text(const std::string& path) {
 inline void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 inline std::string script(const std::string& name) {
-  return std::string(TENSORMASS_SOURCE_DIR) + "/tests/runtime/io/" + name;
+  return std::string(TENSORMASS_SOURCE_DIR) + "/tests/support/" + name;
 }
 
 /// Exit status of a shell command (-1 when it did not exit normally).

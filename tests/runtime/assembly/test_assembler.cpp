@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "solver_test_support.hpp"
+#include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/model/model.hpp"
 

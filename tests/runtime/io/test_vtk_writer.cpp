@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "python_check.hpp"
+#include "support/python_check.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <sstream>
 
-#include "python_check.hpp"
+#include "support/python_check.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
