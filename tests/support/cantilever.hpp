@@ -1,7 +1,10 @@
-// Scenes and beams built in code for the model, assembly and solver tests.
-#ifndef TENSORMASS_TESTS_SOLVER_TEST_SUPPORT_HPP
-#define TENSORMASS_TESTS_SOLVER_TEST_SUPPORT_HPP
+/// \file cantilever.hpp
+/// Beams and a clamped-beam scene built in code, for the model, assembly,
+/// solver and adaptivity tests.
+#ifndef TENSORMASS_TESTS_SUPPORT_CANTILEVER_HPP
+#define TENSORMASS_TESTS_SUPPORT_CANTILEVER_HPP
 
+#include <array>
 #include <string>
 
 #include "tensormass/meshing/beam.hpp"
@@ -9,6 +12,7 @@
 
 namespace tensormass::test {
 
+/// A beam of cells[0] by cells[1] (by cells[2]) square cells one unit high, all of type `cut`.
 inline Mesh beam(int dim, const std::string& cut, std::array<int, 3> cells, int order = 1) {
   BeamSpec spec;
   spec.dim = dim;

@@ -1,57 +1,22 @@
 /// \file python_check.hpp
-/// Helpers of the io and beam tests: scratch directories, exact JSON numbers,
-/// and running the meshio/Gmsh checking scripts (check_vtu.py, check_msh.py)
-/// with /usr/bin/python3.
-#ifndef TENSORMASS_TESTS_IO_PYTHON_CHECK_HPP
-#define TENSORMASS_TESTS_IO_PYTHON_CHECK_HPP
+/// Checks of written mesh files by independent readers: the expectations
+/// (exact JSON numbers, meshio cell names) and the checking scripts beside
+/// this header, check_msh.py (meshio and the Gmsh API) and check_vtu.py
+/// (meshio), run with /usr/bin/python3. For the io writer and beam command tests.
+#ifndef TENSORMASS_TESTS_SUPPORT_PYTHON_CHECK_HPP
+#define TENSORMASS_TESTS_SUPPORT_PYTHON_CHECK_HPP
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <algorithm>
 #include <charconv>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <sstream>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "tensormass/mesh/mesh.hpp"
 
 namespace tmtest {
-
-/// A fresh empty directory, removed with its content on destruction.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& tag) {
-    static int counter = 0;
-    path_ = std::filesystem::temp_directory_path() /
-            ("tensormass_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  /// Names of the files in the directory, sorted.
-  std::vector<std::string> files() const {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  std::filesystem::path path_;
-};
 
 /// Shortest text that reads back as exactly `value` (Python's float() included).
 inline std::string exact(double value) {
@@ -70,26 +35,10 @@ std::string json_list(const std::vector<T>& values) {
   return text + "]";
 }
 
-inline std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-inline void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-inline std::string script(const std::string& name) {
-  return std::string(TENSORMASS_SOURCE_DIR) + "/tests/support/" + name;
-}
-
-/// Exit status of a shell command (-1 when it did not exit normally).
-inline int run_command(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-/// Runs /usr/bin/python3 SCRIPT FILE EXPECTED; 0 when the script is satisfied.
+/// Runs /usr/bin/python3 tests/support/SCRIPT FILE EXPECTED; 0 when the script is satisfied.
 inline int run_check(const std::string& script_name, const std::string& file, const std::string& expected_json) {
-  return run_command("/usr/bin/python3 '" + script(script_name) + "' '" + file + "' '" + expected_json + "'");
+  const std::string script = test_support::source_path("tests/support/" + script_name);
+  return test_support::python("'" + script + "' '" + file + "' '" + expected_json + "'").exit_code;
 }
 
 /// The meshio name of a reference element (as check_msh.py counts cells).
@@ -99,13 +48,6 @@ inline std::string meshio_name(const std::string& element) {
       {"tet4", "tetra"},    {"tet10", "tetra10"},  {"hex8", "hexahedron"}, {"hex20", "hexahedron20"},
       {"prism6", "wedge"},  {"pyramid5", "pyramid"}};
   return names.at(element);
-}
-
-/// Cells per reference element name.
-inline std::map<std::string, int> element_counts(const tensormass::Mesh& mesh) {
-  std::map<std::string, int> counts;
-  for (const tensormass::ElementBlock& block : mesh.blocks) counts[block.element->name] += block.count();
-  return counts;
 }
 
 /// check_msh.py's expected JSON for `mesh` written as .msh: points, cell counts and groups.

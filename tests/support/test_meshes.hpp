@@ -1,9 +1,11 @@
-/// \file mesh_test_support.hpp
-/// Helpers of the mesh tests: paths of the committed test meshes, a scratch
-/// directory, a minimal JSON reader for expected.json, mesh comparison and
-/// an InputError matcher.
-#ifndef TENSORMASS_TESTS_MESH_TEST_SUPPORT_HPP
-#define TENSORMASS_TESTS_MESH_TEST_SUPPORT_HPP
+/// \file test_meshes.hpp
+/// Helpers of the tests that read and check meshes (io readers, mesh
+/// quality, mesh-info): paths of the committed test meshes
+/// (tests/data/meshes), a minimal JSON reader for their expected.json, node
+/// positions, cells per type, mesh comparison and a read_mesh InputError
+/// matcher.
+#ifndef TENSORMASS_TESTS_SUPPORT_TEST_MESHES_HPP
+#define TENSORMASS_TESTS_SUPPORT_TEST_MESHES_HPP
 
 #include <gtest/gtest.h>
 
@@ -11,22 +13,17 @@
 #include <array>
 #include <cctype>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <memory>
-#include <sstream>
+#include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh.hpp"
+#include "support/test_support.hpp"
 
 namespace meshtest {
-
-namespace fs = std::filesystem;
 
 inline std::string data_dir() { return std::string(TENSORMASS_SOURCE_DIR) + "/tests/data/meshes/"; }
 inline std::string data_file(const std::string& name) { return data_dir() + name; }
@@ -37,54 +34,13 @@ inline const std::vector<std::string>& encodings() {
   return list;
 }
 
-/// A fresh directory under the system temporary directory, removed at exit.
-class ScratchDir {
- public:
-  ScratchDir() {
-    path_ = fs::temp_directory_path() /
-            ("tensormass_mesh_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-
-  /// Writes `content` to NAME in the directory; returns the path.
-  std::string write(const std::string& name, const std::string& content) const {
-    const std::string file = (path_ / name).string();
-    std::ofstream out(file, std::ios::binary);
-    out << content;
-    return file;
-  }
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  static int& counter() {
-    static int value = 0;
-    return value;
-  }
-  fs::path path_;
-};
-
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// Runs read_mesh(path); expects an InputError whose message contains every piece.
 inline void expect_input_error(const std::string& path, const std::vector<std::string>& pieces) {
   try {
     tensormass::read_mesh(path);
     ADD_FAILURE() << path << ": read without error";
   } catch (const tensormass::InputError& error) {
-    const std::string message = error.what();
-    for (const std::string& piece : pieces)
-      EXPECT_NE(message.find(piece), std::string::npos) << "message '" << message << "' lacks '" << piece << "'";
+    test_support::expect_contains(error.what(), pieces);
   } catch (const std::exception& error) {
     ADD_FAILURE() << path << ": not an InputError: " << error.what();
   }
@@ -174,7 +130,7 @@ class JsonParser {
 };
 
 inline const Json& expected_meshes() {
-  static const Json json = JsonParser(read_file(data_file("expected.json"))).parse();
+  static const Json json = JsonParser(test_support::read_file(data_file("expected.json"))).parse();
   return json;
 }
 
@@ -183,6 +139,13 @@ inline const Json& expected_meshes() {
 inline std::array<double, 3> position(const tensormass::Mesh& mesh, int node) {
   const auto n = static_cast<std::size_t>(node);
   return {mesh.rest_positions[3 * n], mesh.rest_positions[3 * n + 1], mesh.rest_positions[3 * n + 2]};
+}
+
+/// Cells per reference element name.
+inline std::map<std::string, int> cells_per_type(const tensormass::Mesh& mesh) {
+  std::map<std::string, int> counts;
+  for (const tensormass::ElementBlock& block : mesh.blocks) counts[block.element->name] += block.count();
+  return counts;
 }
 
 /// Sorted coordinates of `nodes`.

@@ -1,12 +1,12 @@
-/// \file surface_test_support.hpp
-/// Helpers of the surface tests: a scratch directory, closed test surfaces
-/// built in memory (subdivided box, icosphere, torus, tetrahedra), STL/OBJ
-/// writers, an InputError matcher and a brute-force point-triangle distance.
-#ifndef TENSORMASS_TESTS_SURFACE_TEST_SUPPORT_HPP
-#define TENSORMASS_TESTS_SURFACE_TEST_SUPPORT_HPP
+/// \file test_surfaces.hpp
+/// Helpers of the surface tests (surface reader, checks, distance): the
+/// committed test surfaces (tests/data/surfaces), closed test surfaces built
+/// in memory (subdivided box, icosphere, torus, tetrahedra), STL writers,
+/// InputError matchers and a brute-force point-triangle distance.
+#ifndef TENSORMASS_TESTS_SUPPORT_TEST_SURFACES_HPP
+#define TENSORMASS_TESTS_SUPPORT_TEST_SURFACES_HPP
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -24,6 +23,7 @@
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/surface_reader.hpp"
 #include "tensormass/surface/surface.hpp"
+#include "support/test_support.hpp"
 
 namespace surfacetest {
 
@@ -35,44 +35,13 @@ inline std::string data_file(const std::string& name) {
   return std::string(TENSORMASS_SOURCE_DIR) + "/tests/data/surfaces/" + name;
 }
 
-/// A fresh directory under the system temporary directory, removed at exit.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("tensormass_surface_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-  /// Writes `content` to NAME in the directory; returns the path.
-  std::string write(const std::string& name, const std::string& content) const {
-    const std::string file = path(name);
-    std::ofstream out(file, std::ios::binary);
-    out << content;
-    return file;
-  }
-
- private:
-  fs::path path_;
-};
-
 /// Expects read_surface(path) to throw InputError whose message contains every part.
 inline void expect_read_error(const std::string& path, const std::vector<std::string>& parts) {
   try {
     (void)tensormass::read_surface(path);
     ADD_FAILURE() << "no InputError for " << path;
   } catch (const tensormass::InputError& error) {
-    const std::string message = error.what();
-    for (const std::string& part : parts)
-      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' missing in: " << message;
+    test_support::expect_contains(error.what(), parts);
   }
 }
 
@@ -82,9 +51,7 @@ inline void expect_check_error(TriangleSurface surface, const std::vector<std::s
     (void)tensormass::check_closed_surface(surface);
     ADD_FAILURE() << "no InputError";
   } catch (const tensormass::InputError& error) {
-    const std::string message = error.what();
-    for (const std::string& part : parts)
-      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' missing in: " << message;
+    test_support::expect_contains(error.what(), parts);
   }
 }
 
@@ -126,6 +93,16 @@ class SurfaceMaker {
   TriangleSurface surface_;
   std::map<Vec, int> index_;
 };
+
+/// The unit corner tetrahedron, faces outward; triangles 0-1 in patch 0, 2-3 in patch 1.
+inline TriangleSurface unit_tetrahedron() {
+  TriangleSurface s;
+  s.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  s.triangles = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  s.patches = {0, 0, 1, 1};
+  s.patch_names = {"bottom", "sides"};
+  return s;
+}
 
 /// The box [lo, hi], each face an n by n grid of squares cut in two triangles, outward.
 inline TriangleSurface make_box(const Vec& lo, const Vec& hi, int n) {

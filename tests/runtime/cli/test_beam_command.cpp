@@ -6,61 +6,52 @@
 
 namespace {
 
-struct CliResult {
-  int code;
-  std::string out;
-  std::string err;
-};
+using test_support::Result;
+using test_support::TempDir;
 
-/// Runs `tensormass beam ARGS` in `dir`, capturing stdout and stderr.
-CliResult beam_cli(const tmtest::ScratchDir& dir, const std::string& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const int code = tmtest::run_command("cd '" + dir.file("") + "' && '" + TENSORMASS_BINARY + "' beam " + args + " >'" +
-                                       out + "' 2>'" + err + "'");
-  CliResult result{code, tmtest::read_text(out), tmtest::read_text(err)};
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return result;
+/// Runs `tensormass beam ARGS` in `dir`, capturing stdout (output) and stderr (error) apart.
+Result beam_cli(const TempDir& dir, const std::string& args) {
+  return test_support::shell_apart("cd '" + dir.path().string() + "' && '" TENSORMASS_BINARY "' beam " + args);
 }
 
 TEST(BeamCli, DefaultIsTheOrigin600QuadBeam) {
-  const tmtest::ScratchDir dir("beam_cli");
-  const CliResult result = beam_cli(dir, "-o beam.msh");
-  EXPECT_EQ(result.code, 0) << result.err;
-  EXPECT_NE(result.out.find("671 nodes, 600 cells (600 quad4)"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("clamp"), std::string::npos);
+  const TempDir dir;
+  const Result result = beam_cli(dir, "-o beam.msh");
+  EXPECT_EQ(result.exit_code, 0) << result.error;
+  EXPECT_NE(result.output.find("671 nodes, 600 cells (600 quad4)"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("clamp"), std::string::npos);
   EXPECT_EQ(dir.files(), std::vector<std::string>{"beam.msh"});
 }
 
 TEST(BeamCli, HelpExitsZero) {
-  const tmtest::ScratchDir dir("beam_cli");
-  const CliResult result = beam_cli(dir, "--help");
-  EXPECT_EQ(result.code, 0);
-  EXPECT_NE(result.out.find("--mix TYPE:F"), std::string::npos);
+  const TempDir dir;
+  const Result result = beam_cli(dir, "--help");
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_NE(result.output.find("--mix TYPE:F"), std::string::npos);
   EXPECT_TRUE(dir.files().empty());
 }
 
 TEST(BeamCli, MixedThreeDimensionalBeamReadsBackInGmsh) {
-  const tmtest::ScratchDir dir("beam_cli");
-  const CliResult result =
+  const TempDir dir;
+  const Result result =
       beam_cli(dir, "--dim 3 --cells 6,2,2 --size 3,0.5,0.5 --mix hex8:0.5,tet5:0.5 --format 2.2 -o beam.msh");
-  ASSERT_EQ(result.code, 0) << result.err;
-  EXPECT_NE(result.out.find("phase_tet5"), std::string::npos) << result.out;
+  ASSERT_EQ(result.exit_code, 0) << result.error;
+  EXPECT_NE(result.output.find("phase_tet5"), std::string::npos) << result.output;
   tensormass::BeamSpec spec;
   spec.dim = 3;
   spec.cells = {6, 2, 2};
   spec.size = {3, 0.5, 0.5};
   spec.phases = tensormass::parse_beam_mix("hex8:0.5,tet5:0.5");
-  tmtest::write_text(dir.file("expected.json"), tmtest::msh_expectation(tensormass::make_beam(spec)));
+  dir.write("expected.json", tmtest::msh_expectation(tensormass::make_beam(spec)));
   EXPECT_EQ(tmtest::run_check("check_msh.py", dir.file("beam.msh"), dir.file("expected.json")), 0);
-  EXPECT_EQ(tmtest::read_text(dir.file("beam.msh")).rfind("$MeshFormat\n2.2", 0), 0u);
+  EXPECT_EQ(test_support::read_file(dir.file("beam.msh")).rfind("$MeshFormat\n2.2", 0), 0u);
 }
 
 TEST(BeamCli, OptionsWithEqualsAndOrder2) {
-  const tmtest::ScratchDir dir("beam_cli");
-  const CliResult result = beam_cli(dir, "--dim=2 --cells=4,2 --type=tri3 --order=2 --output=b.msh");
-  EXPECT_EQ(result.code, 0) << result.err;
-  EXPECT_NE(result.out.find("16 tri6"), std::string::npos) << result.out;
+  const TempDir dir;
+  const Result result = beam_cli(dir, "--dim=2 --cells=4,2 --type=tri3 --order=2 --output=b.msh");
+  EXPECT_EQ(result.exit_code, 0) << result.error;
+  EXPECT_NE(result.output.find("16 tri6"), std::string::npos) << result.output;
 }
 
 TEST(BeamCli, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
@@ -83,10 +74,10 @@ TEST(BeamCli, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"-o missing/b.msh", "missing/b.msh"},
   };
   for (const auto& [args, phrase] : cases) {
-    const tmtest::ScratchDir dir("beam_cli");
-    const CliResult result = beam_cli(dir, args);
-    EXPECT_EQ(result.code, 2) << args;
-    EXPECT_NE(result.err.find(phrase), std::string::npos) << args << ": " << result.err;
+    const TempDir dir;
+    const Result result = beam_cli(dir, args);
+    EXPECT_EQ(result.exit_code, 2) << args;
+    EXPECT_NE(result.error.find(phrase), std::string::npos) << args << ": " << result.error;
     EXPECT_TRUE(dir.files().empty()) << args;
   }
 }

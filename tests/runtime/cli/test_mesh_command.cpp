@@ -1,10 +1,7 @@
 // `tensormass mesh` through the binary: the written mesh reads back with its
 // groups; bad input exits 2 and writes nothing.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -27,21 +24,14 @@ std::string surface(const std::string& name) {
 
 class MeshCommand : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() / ("tensormass-mesh-" + std::to_string(getpid()) + "-" +
-                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-  std::string out() const { return (directory_ / "out.msh").string(); }
+  std::string out() const { return dir_.file("out.msh"); }
   void expect_input_error(const std::string& arguments, const std::string& message) {
     const Result result = run("mesh " + arguments + " -o " + out());
     EXPECT_EQ(result.exit_code, 2) << result.output;
     EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
     EXPECT_FALSE(fs::exists(out()));
   }
-  fs::path directory_;
+  test_support::TempDir dir_;
 };
 
 TEST_F(MeshCommand, WritesAMeshWithGroupsAndReportsQuality) {
@@ -64,11 +54,11 @@ TEST_F(MeshCommand, BadOptionsExitTwoAndWriteNothing) {
   expect_input_error(surface("sphere") + " --size 0.2 --roi 1,2,3", "--roi");
   expect_input_error(surface("sphere") + " --size 0.2 --region noequals", "NAME=FILE");
   expect_input_error(surface("sphere") + " --size 0.2 --frobnicate 1", "unknown option");
-  expect_input_error((directory_ / "missing.stl").string() + " --size 0.2", "missing.stl");
+  expect_input_error(dir_.file("missing.stl") + " --size 0.2", "missing.stl");
 }
 
 TEST_F(MeshCommand, OpenSurfaceIsRefused) {
-  const fs::path open = directory_ / "open.stl";
+  const fs::path open = dir_.path() / "open.stl";
   // A tetrahedron with one face missing.
   std::ofstream(open) << "solid open\n"
                          "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n"

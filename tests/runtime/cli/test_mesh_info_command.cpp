@@ -5,34 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 #include "support/test_meshes.hpp"
 
 namespace {
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test_support::Result;
 
-ProcessResult mesh_info(const std::string& arguments) {
-  meshtest::ScratchDir dir;
-  const std::string err_file = dir.path("stderr.txt");
-  const std::string command = std::string("'") + TENSORMASS_BINARY + "' mesh-info " + arguments + " 2>'" + err_file + "'";
-  ProcessResult run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.err = meshtest::read_file(err_file);
-  return run;
+/// Runs `tensormass mesh-info ARGUMENTS`, stdout (output) and stderr (error) apart.
+Result mesh_info(const std::string& arguments) {
+  return test_support::shell_apart("'" TENSORMASS_BINARY "' mesh-info " + arguments);
 }
 
 std::string quoted(const std::string& path) { return "'" + path + "'"; }
@@ -40,20 +23,20 @@ std::string quoted(const std::string& path) { return "'" + path + "'"; }
 int line_count(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(MeshInfo, TextReport) {
-  const ProcessResult run = mesh_info(quoted(meshtest::data_file("hybrid_o1.msh41.msh")));
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(run.err, "");
+  const Result run = mesh_info(quoted(meshtest::data_file("hybrid_o1.msh41.msh")));
+  ASSERT_EQ(run.exit_code, 0) << run.error;
+  EXPECT_EQ(run.error, "");
   for (const char* piece : {"dimension       3", "nodes           57", "cells           125", "hex8", "prism6", "pyramid5",
                             "tet4", "lower", "upper", "bottom", "top", "min_sj", "max edge ratio", "volume          1\n",
                             "inverted        0"})
-    EXPECT_NE(run.out.find(piece), std::string::npos) << "missing '" << piece << "' in\n" << run.out;
+    EXPECT_NE(run.output.find(piece), std::string::npos) << "missing '" << piece << "' in\n" << run.output;
 }
 
 TEST(MeshInfo, JsonReportMatchesGmsh) {
   for (const std::string stem : {"box_tet_o2", "plate2d_o1", "hybrid_o1"}) {
-    const ProcessResult run = mesh_info(quoted(meshtest::data_file(stem + ".msh22b.msh")) + " --json");
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    const meshtest::Json report = meshtest::JsonParser(run.out).parse();
+    const Result run = mesh_info(quoted(meshtest::data_file(stem + ".msh22b.msh")) + " --json");
+    ASSERT_EQ(run.exit_code, 0) << run.error;
+    const meshtest::Json report = meshtest::JsonParser(run.output).parse();
     const meshtest::Json& expected = meshtest::expected_meshes()[stem];
     EXPECT_EQ(report["dimension"].integer(), expected["dim"].integer());
     EXPECT_EQ(report["nodes"].integer(), expected["nodes"].integer());
@@ -78,22 +61,22 @@ TEST(MeshInfo, JsonReportMatchesGmsh) {
 }
 
 TEST(MeshInfo, InvertedElementsAreListedWithAWarning) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   // Two tetrahedra; element 20 has two nodes swapped (negative volume).
   const std::string path = dir.write("flipped.msh",
                                      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
                                      "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n$EndNodes\n"
                                      "$Elements\n1 2 10 20\n3 1 4 2\n10 1 2 3 4\n20 3 2 4 5\n$EndElements\n");
-  const ProcessResult text = mesh_info(quoted(path));
+  const Result text = mesh_info(quoted(path));
   EXPECT_EQ(text.exit_code, 0);
-  EXPECT_NE(text.out.find("inverted        1"), std::string::npos) << text.out;
-  EXPECT_NE(text.out.find("element 1 (tet4, id 20 in " + path + ")"), std::string::npos) << text.out;
-  EXPECT_EQ(line_count(text.err), 1) << text.err;
-  EXPECT_NE(text.err.find("warning: 1 inverted element"), std::string::npos) << text.err;
+  EXPECT_NE(text.output.find("inverted        1"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("element 1 (tet4, id 20 in " + path + ")"), std::string::npos) << text.output;
+  EXPECT_EQ(line_count(text.error), 1) << text.error;
+  EXPECT_NE(text.error.find("warning: 1 inverted element"), std::string::npos) << text.error;
 
-  const ProcessResult json = mesh_info(quoted(path) + " --json");
+  const Result json = mesh_info(quoted(path) + " --json");
   EXPECT_EQ(json.exit_code, 0);
-  const meshtest::Json report = meshtest::JsonParser(json.out).parse();
+  const meshtest::Json report = meshtest::JsonParser(json.output).parse();
   ASSERT_EQ(report["inverted"].items.size(), 1u);
   EXPECT_EQ(report["inverted"].items[0]["cell"].integer(), 1);
   EXPECT_EQ(report["inverted"].items[0]["source_id"].integer(), 20);
@@ -103,27 +86,27 @@ TEST(MeshInfo, InvertedElementsAreListedWithAWarning) {
 }
 
 TEST(MeshInfo, BadInputExitsTwoWithOneLine) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string garbled = dir.write("garbled.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\nfour\n");
-  const ProcessResult bad = mesh_info(quoted(garbled));
+  const Result bad = mesh_info(quoted(garbled));
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_EQ(bad.out, "");
-  EXPECT_EQ(line_count(bad.err), 1) << bad.err;
-  EXPECT_NE(bad.err.find("garbled.msh:5:"), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.output, "");
+  EXPECT_EQ(line_count(bad.error), 1) << bad.error;
+  EXPECT_NE(bad.error.find("garbled.msh:5:"), std::string::npos) << bad.error;
 
-  const ProcessResult missing = mesh_info(quoted(dir.path("absent.vtu")));
+  const Result missing = mesh_info(quoted(dir.file("absent.vtu")));
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_EQ(line_count(missing.err), 1) << missing.err;
-  EXPECT_NE(missing.err.find("absent.vtu"), std::string::npos);
+  EXPECT_EQ(line_count(missing.error), 1) << missing.error;
+  EXPECT_NE(missing.error.find("absent.vtu"), std::string::npos);
 }
 
 TEST(MeshInfo, UsageErrors) {
   EXPECT_EQ(mesh_info("").exit_code, 2);
   EXPECT_EQ(mesh_info("--frobnicate x.msh").exit_code, 2);
   EXPECT_EQ(mesh_info("a.msh b.msh").exit_code, 2);
-  const ProcessResult help = mesh_info("--help");
+  const Result help = mesh_info("--help");
   EXPECT_EQ(help.exit_code, 0);
-  EXPECT_NE(help.out.find("usage: tensormass mesh-info FILE [--json]"), std::string::npos);
+  EXPECT_NE(help.output.find("usage: tensormass mesh-info FILE [--json]"), std::string::npos);
 }
 
 }  // namespace

@@ -3,39 +3,20 @@
 // meshio (0..1 criterion / threshold, 2 = switched), drawn to PNGs; bad
 // input exits 2 and writes nothing.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <memory>
 #include <string>
+
+#include "support/test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code;
-  std::string output;  ///< stdout and stderr
-};
-
-Result shell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-Result tensormass(const std::string& arguments) { return shell(std::string(TENSORMASS_BINARY) + " " + arguments); }
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_support::Result;
+using test_support::tensormass;
 
 /// Adds `state` (and matching law_id: 2 where switched) to a result, as the adaptive model will.
 constexpr const char* kAddState = R"(import sys
@@ -55,9 +36,8 @@ meshio.write(sys.argv[2], mesh)
 class Render : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    directory_ = fs::temp_directory_path() / ("tensormass-render-" + std::to_string(getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
+    dir_ = std::make_unique<test_support::TempDir>();
+    directory_ = dir_->path();
     std::ofstream(directory_ / "add_state.py") << kAddState;
     std::ofstream(directory_ / "scene.yaml") << "mesh: beam.msh\n"
                                                 "materials:\n"
@@ -70,7 +50,7 @@ class Render : public ::testing::Test {
     make_result("2d", "--cells 30,5");
     make_result("3d", "--dim 3 --cells 12,3,3 --type tet6");
   }
-  static void TearDownTestSuite() { fs::remove_all(directory_); }
+  static void TearDownTestSuite() { dir_.reset(); }
 
   /// DIR/NAME/out/final.vtu (run) and DIR/NAME/out/state.vtu (with the fake state).
   static void make_result(const std::string& name, const std::string& beam_options) {
@@ -82,15 +62,15 @@ class Render : public ::testing::Test {
     const Result run = tensormass("run " + (case_directory / "scene.yaml").string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const fs::path out = case_directory / "out";
-    const Result state = shell("/usr/bin/python3 " + (directory_ / "add_state.py").string() + " " +
-                               (out / "final.vtu").string() + " " + (out / "state.vtu").string());
+    const Result state = test_support::python((directory_ / "add_state.py").string() + " " +
+                                              (out / "final.vtu").string() + " " + (out / "state.vtu").string());
     ASSERT_EQ(state.exit_code, 0) << state.output;
   }
 
   /// Checks a PNG: signature, width from the IHDR chunk, a plausible size.
   static void expect_png(const fs::path& path, unsigned width) {
     ASSERT_TRUE(fs::exists(path)) << path;
-    const std::string bytes = read_bytes(path);
+    const std::string bytes = test_support::read_file(path);
     ASSERT_GT(bytes.size(), 10000u) << path;
     EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << path;
     EXPECT_EQ(bytes.substr(12, 4), "IHDR");
@@ -104,10 +84,9 @@ class Render : public ::testing::Test {
       EXPECT_NE(entry.path().filename().string().rfind(stem, 0), 0u) << "left behind: " << entry.path();
   }
 
-  static fs::path directory_;
+  static inline std::unique_ptr<test_support::TempDir> dir_;  ///< shared by the suite's tests
+  static inline fs::path directory_;
 };
-
-fs::path Render::directory_;
 
 TEST_F(Render, Beam2DStateDefaultField) {
   const fs::path image = directory_ / "beam2d.png";

@@ -191,7 +191,7 @@ TEST(GmshReader, SourceIdsAreTheFileNumbers) {
 // A hand-written MSH 2.2 file as Gmsh writes an element in two physical
 // groups: twice, with different ids. One cell results, in both groups.
 TEST(GmshReader, Msh22DuplicatesOfAnElementInSeveralGroupsAreMerged) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("dup.msh",
                                      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                                      "$PhysicalNames\n2\n2 10 \"a\"\n2 11 \"b\"\n$EndPhysicalNames\n"
@@ -212,7 +212,7 @@ TEST(GmshReader, Msh22DuplicatesOfAnElementInSeveralGroupsAreMerged) {
 
 // Nodes used by no cell are dropped; file ids stay in node_source_ids.
 TEST(GmshReader, UnusedNodesAreDroppedAndIdsKept) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("sparse.msh",
                                      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                                      "$Nodes\n5\n10 0 0 0\n20 1 0 0\n999 5 5 5\n30 0 1 0\n1000000 0 0 1\n$EndNodes\n"
@@ -225,7 +225,7 @@ TEST(GmshReader, UnusedNodesAreDroppedAndIdsKept) {
 }
 
 TEST(GmshReader, UnknownSectionsAreSkipped) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("extra.msh",
                                      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
                                      "$Comments\nanything $Nodes here\n$EndComments\n"
@@ -239,7 +239,7 @@ TEST(GmshReader, UnknownSectionsAreSkipped) {
 
 // MSH 4.1 node blocks with parametric coordinates (u on curves, u v on surfaces).
 TEST(GmshReader, Msh41ParametricNodesAreRead) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("param.msh",
                                      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
                                      "$Nodes\n3 4 1 4\n0 1 1 1\n1\n0 0 0\n1 1 1 1\n2\n1 0 0 0.5\n"
@@ -268,7 +268,7 @@ TEST(GmshReader, BigEndianBinaryMsh22) {
   for (int n = 0; n < 4; ++n) text += be32(n + 1) + be64(xyz[n][0]) + be64(xyz[n][1]) + be64(xyz[n][2]);
   text += "\n$EndNodes\n$Elements\n1\n" + be32(4) + be32(1) + be32(2) + be32(1) + be32(5) + be32(9) + be32(1) + be32(2) +
           be32(3) + be32(4) + "\n$EndElements\n";
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const Mesh mesh = tensormass::read_mesh(dir.write("be.msh", text));
   ASSERT_EQ(mesh.cell_count(), 1);
   EXPECT_EQ(mesh.rest_positions[3], 2.0);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "support/python_check.hpp"
+#include "support/test_meshes.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
@@ -55,10 +56,10 @@ std::vector<MshCase> cases() {
 class MshWriterTest : public testing::TestWithParam<MshCase> {};
 
 TEST_P(MshWriterTest, GmshAndMeshioReadNodesCellsGroupsAndOrientation) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   const Mesh mesh = beam(GetParam());
   tensormass::io::write_msh(dir.file("beam.msh"), mesh, GetParam().format);
-  tmtest::write_text(dir.file("expected.json"), tmtest::msh_expectation(mesh));
+  dir.write("expected.json", tmtest::msh_expectation(mesh));
   EXPECT_EQ(tmtest::run_check("check_msh.py", dir.file("beam.msh"), dir.file("expected.json")), 0);
 }
 
@@ -87,13 +88,13 @@ std::vector<std::vector<int>> group_cell_nodes(const Mesh& mesh, const tensormas
 }
 
 TEST_P(MshWriterTest, ReadMeshReadsItBackUnchanged) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   const Mesh mesh = beam(GetParam());
   tensormass::io::write_msh(dir.file("beam.msh"), mesh, GetParam().format);
   const Mesh back = tensormass::read_mesh(dir.file("beam.msh"));
   EXPECT_EQ(back.dim, mesh.dim);
   EXPECT_EQ(back.rest_positions, mesh.rest_positions);
-  EXPECT_EQ(tmtest::element_counts(back), tmtest::element_counts(mesh));
+  EXPECT_EQ(meshtest::cells_per_type(back), meshtest::cells_per_type(mesh));
   EXPECT_EQ(cells_by_node_set(back), cells_by_node_set(mesh)) << "cells differ (node order included)";
   ASSERT_EQ(back.groups.size(), mesh.groups.size());
   for (const tensormass::Group& group : mesh.groups) {
@@ -110,19 +111,19 @@ INSTANTIATE_TEST_SUITE_P(Beams, MshWriterTest, testing::ValuesIn(cases()),
                          [](const testing::TestParamInfo<MshCase>& info) { return info.param.name; });
 
 TEST(MshWriter, CoordinatesAreExact) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   Mesh mesh = beam({"", 3, {3, 1, 1}, "hex8:1", 1, MshFormat::v41});
   for (std::size_t i = 0; i < mesh.rest_positions.size(); ++i)
     mesh.rest_positions[i] += (i % 2 ? 1.0 : -1.0) * 1e-9 / (3.0 + static_cast<double>(i));
   for (MshFormat format : {MshFormat::v41, MshFormat::v22}) {
     tensormass::io::write_msh(dir.file("exact.msh"), mesh, format);
-    tmtest::write_text(dir.file("expected.json"), tmtest::msh_expectation(mesh));
+    dir.write("expected.json", tmtest::msh_expectation(mesh));
     EXPECT_EQ(tmtest::run_check("check_msh.py", dir.file("exact.msh"), dir.file("expected.json")), 0);
   }
 }
 
 TEST(MshWriter, NodeOnlyGroupsBecomePointElements) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   Mesh mesh = beam({"", 2, {3, 1, 1}, "quad4:1", 1, MshFormat::v41});
   tensormass::Group probe;
   probe.name = "probe";
@@ -131,7 +132,7 @@ TEST(MshWriter, NodeOnlyGroupsBecomePointElements) {
   mesh.groups.push_back(probe);
   for (MshFormat format : {MshFormat::v41, MshFormat::v22}) {
     tensormass::io::write_msh(dir.file("points.msh"), mesh, format);
-    tmtest::write_text(dir.file("expected.json"), tmtest::msh_expectation(mesh));
+    dir.write("expected.json", tmtest::msh_expectation(mesh));
     EXPECT_EQ(tmtest::run_check("check_msh.py", dir.file("points.msh"), dir.file("expected.json")), 0);
     const Mesh back = tensormass::read_mesh(dir.file("points.msh"));
     ASSERT_NE(back.group("probe"), nullptr);
@@ -140,10 +141,10 @@ TEST(MshWriter, NodeOnlyGroupsBecomePointElements) {
 }
 
 TEST(MshWriter, Format41WritesACellInSeveralGroupsOnce) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   const Mesh mesh = beam({"", 2, {10, 2, 1}, "tri3:0.3,quad4:0.7", 1, MshFormat::v41});
   tensormass::io::write_msh(dir.file("a.msh"), mesh, MshFormat::v41);
-  const std::string text = tmtest::read_text(dir.file("a.msh"));
+  const std::string text = test_support::read_file(dir.file("a.msh"));
   EXPECT_EQ(text.rfind("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n", 0), 0u);
   const int elements = mesh.cell_count() + mesh.group("clamp")->facets.count() + mesh.group("tip")->facets.count();
   const std::string header = "$Elements\n";
@@ -156,9 +157,9 @@ TEST(MshWriter, Format41WritesACellInSeveralGroupsOnce) {
 }
 
 TEST(MshWriter, Format22StartsWithItsHeader) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   tensormass::io::write_msh(dir.file("a.msh"), beam({"", 2, {2, 1, 1}, "quad4:1", 1, MshFormat::v22}), MshFormat::v22);
-  EXPECT_EQ(tmtest::read_text(dir.file("a.msh")).rfind("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", 0), 0u);
+  EXPECT_EQ(test_support::read_file(dir.file("a.msh")).rfind("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", 0), 0u);
 }
 
 TEST(MshWriter, FormatNames) {
@@ -168,7 +169,7 @@ TEST(MshWriter, FormatNames) {
 }
 
 TEST(MshWriter, UnwritablePathThrowsAndWritesNothing) {
-  const tmtest::ScratchDir dir("msh");
+  const test_support::TempDir dir;
   const Mesh mesh = beam({"", 2, {2, 1, 1}, "quad4:1", 1, MshFormat::v41});
   EXPECT_THROW(tensormass::io::write_msh(dir.file("missing/a.msh"), mesh), std::runtime_error);
   EXPECT_TRUE(dir.files().empty());

@@ -19,7 +19,7 @@
 namespace {
 
 using meshtest::expect_input_error;
-using meshtest::ScratchDir;
+using test_support::TempDir;
 
 // One tetrahedron, MSH 2.2 ASCII. Line numbers: 4 $Nodes, 5 count, 6..9
 // nodes 1..4, 10 $EndNodes, 11 $Elements, 12 count, 13 the element.
@@ -29,80 +29,80 @@ std::string tet_msh(const std::string& node_lines = "1 0 0 0\n2 1 0 0\n3 0 1 0\n
          element_line + "$EndElements\n";
 }
 
-TEST(BadInput, ValidReferenceFileReads) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, ValidReferenceFileReads) {
+  TempDir dir;
   EXPECT_EQ(tensormass::read_mesh(dir.write("ok.msh", tet_msh())).cell_count(), 1);
 }
 
-TEST(BadInput, MissingFile) {
-  ScratchDir dir;
-  expect_input_error(dir.path("nowhere.msh"), {"nowhere.msh", "cannot open"});
+TEST(ReadMeshErrors, MissingFile) {
+  TempDir dir;
+  expect_input_error(dir.file("nowhere.msh"), {"nowhere.msh", "cannot open"});
 }
 
-TEST(BadInput, DirectoryInsteadOfFile) {
-  ScratchDir dir;
-  std::filesystem::create_directory(dir.path("folder.msh"));
-  expect_input_error(dir.path("folder.msh"), {"folder.msh", "directory"});
+TEST(ReadMeshErrors, DirectoryInsteadOfFile) {
+  TempDir dir;
+  std::filesystem::create_directory(dir.file("folder.msh"));
+  expect_input_error(dir.file("folder.msh"), {"folder.msh", "directory"});
 }
 
-TEST(BadInput, UnknownExtension) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, UnknownExtension) {
+  TempDir dir;
   expect_input_error(dir.write("mesh.obj", "v 0 0 0\n"), {"mesh.obj", ".obj"});
 }
 
-TEST(BadInput, EmptyFiles) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, EmptyFiles) {
+  TempDir dir;
   expect_input_error(dir.write("empty.msh", ""), {"empty.msh", "empty"});
   expect_input_error(dir.write("blank.vtu", " \n\n "), {"blank.vtu", "empty"});
   expect_input_error(dir.write("empty.vtk", ""), {"empty.vtk", "empty"});
 }
 
-TEST(BadInput, NotAGmshFile) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, NotAGmshFile) {
+  TempDir dir;
   expect_input_error(dir.write("text.msh", "hello world\n"), {"text.msh:1:", "$MeshFormat"});
 }
 
-TEST(BadInput, UnsupportedMshVersion) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, UnsupportedMshVersion) {
+  TempDir dir;
   expect_input_error(dir.write("v4.msh", "$MeshFormat\n4.0 0 8\n$EndMeshFormat\n"), {"v4.msh:2:", "4.0", "not supported"});
 }
 
-TEST(BadInput, TruncatedAsciiFile) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, TruncatedAsciiFile) {
+  TempDir dir;
   const std::string text = tet_msh();
   expect_input_error(dir.write("cut.msh", text.substr(0, text.find("1 4 2 1 1 1 2") + 13)), {"cut.msh:13:", "truncated"});
   expect_input_error(dir.write("cut_nodes.msh", text.substr(0, text.find("3 0 1 0") + 3)), {"cut_nodes.msh:5:", "truncated"});
 }
 
-TEST(BadInput, MissingEndMarker) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, MissingEndMarker) {
+  TempDir dir;
   std::string text = tet_msh();
   text.erase(text.find("$EndNodes"), 10);
   expect_input_error(dir.write("noend.msh", text), {"noend.msh:10:", "$EndNodes", "$Elements"});
 }
 
-TEST(BadInput, GarbledNumber) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, GarbledNumber) {
+  TempDir dir;
   expect_input_error(dir.write("garbled.msh", tet_msh("1 0 0 0\n2 1 0x 0\n3 0 1 0\n4 0 0 1\n")),
                      {"garbled.msh:7:", "'0x'", "expected a number"});
   expect_input_error(dir.write("garbled_id.msh", tet_msh("1 0 0 0\n2.5 1 0 0\n3 0 1 0\n4 0 0 1\n")),
                      {"garbled_id.msh:7:", "'2.5'", "integer"});
 }
 
-TEST(BadInput, NodeIndexOutOfRange) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, NodeIndexOutOfRange) {
+  TempDir dir;
   expect_input_error(dir.write("range.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n", "57 4 2 1 1 1 2 3 99\n")),
                      {"range.msh:13:", "element 57", "node 99"});
 }
 
-TEST(BadInput, NonFiniteCoordinates) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, NonFiniteCoordinates) {
+  TempDir dir;
   expect_input_error(dir.write("nan.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 nan 1 0\n4 0 0 1\n")), {"nan.msh:8:", "node 3", "non-finite"});
   expect_input_error(dir.write("inf.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 -inf\n")), {"inf.msh:9:", "node 4", "non-finite"});
 }
 
-TEST(BadInput, AbsurdCountsAreRefusedBeforeAllocating) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, AbsurdCountsAreRefusedBeforeAllocating) {
+  TempDir dir;
   expect_input_error(dir.write("huge.msh", tet_msh("1 0 0 0\n", "1 15 0 1\n", "1000000000000000")),
                      {"huge.msh:5:", "1000000000000000"});
   expect_input_error(dir.write("large.msh", tet_msh("1 0 0 0\n", "1 15 0 1\n", "100000000")),
@@ -113,8 +113,8 @@ TEST(BadInput, AbsurdCountsAreRefusedBeforeAllocating) {
   expect_input_error(dir.write("elements.msh", elements), {"elements.msh:12:", "2000000000 elements"});
 }
 
-TEST(BadInput, UnsupportedElementType) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, UnsupportedElementType) {
+  TempDir dir;
   const std::string nodes = "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
   expect_input_error(dir.write("quad9.msh", tet_msh(nodes, "1 10 2 1 1 1 2 3 4 1 2 3 4 1\n")),
                      {"quad9.msh:13:", "type 10", "9-node quadrangle", "not supported"});
@@ -122,56 +122,56 @@ TEST(BadInput, UnsupportedElementType) {
                      {"unknown.msh:13:", "unknown Gmsh element type 999"});
 }
 
-TEST(BadInput, DuplicateNodeIds) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, DuplicateNodeIds) {
+  TempDir dir;
   expect_input_error(dir.write("dup.msh", tet_msh("1 0 0 0\n2 1 0 0\n2 0 1 0\n4 0 0 1\n")),
                      {"dup.msh:8:", "duplicate node id 2", "dup.msh:7)"});
 }
 
-TEST(BadInput, UnquotedPhysicalName) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, UnquotedPhysicalName) {
+  TempDir dir;
   std::string text = tet_msh();
   text.insert(text.find("$Nodes"), "$PhysicalNames\n1\n3 1 body\n$EndPhysicalNames\n");
   expect_input_error(dir.write("name.msh", text), {"name.msh:6:", "quoted"});
 }
 
-TEST(BadInput, NoVolumeOrSurfaceElements) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, NoVolumeOrSurfaceElements) {
+  TempDir dir;
   expect_input_error(dir.write("lines.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n", "1 1 2 1 1 1 2\n")),
                      {"lines.msh", "no 2D or 3D elements"});
 }
 
-TEST(BadInput, FlatMeshOutsideThePlaneZ0) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, FlatMeshOutsideThePlaneZ0) {
+  TempDir dir;
   expect_input_error(dir.write("tilted.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0.5\n4 0 0 1\n", "1 2 2 1 1 1 2 3\n")),
                      {"tilted.msh", "node 3", "z = 0"});
 }
 
-TEST(BadInput, MissingSection) {
-  ScratchDir dir;
+TEST(ReadMeshErrors, MissingSection) {
+  TempDir dir;
   const std::string text = tet_msh();
   expect_input_error(dir.write("noelements.msh", text.substr(0, text.find("$Elements"))), {"noelements.msh", "no $Elements"});
 }
 
-TEST(BadInput, TruncatedBinaryFile) {
-  ScratchDir dir;
-  const std::string text = meshtest::read_file(meshtest::data_file("box_tet_o1.msh41b.msh"));
+TEST(ReadMeshErrors, TruncatedBinaryFile) {
+  TempDir dir;
+  const std::string text = test_support::read_file(meshtest::data_file("box_tet_o1.msh41b.msh"));
   const std::size_t nodes = text.find("$Nodes");
   expect_input_error(dir.write("cut41b.msh", text.substr(0, nodes + 200)), {"cut41b.msh: byte ", "truncated"});
-  const std::string text22 = meshtest::read_file(meshtest::data_file("box_tet_o1.msh22b.msh"));
+  const std::string text22 = test_support::read_file(meshtest::data_file("box_tet_o1.msh22b.msh"));
   expect_input_error(dir.write("cut22b.msh", text22.substr(0, text22.find("$Elements") + 40)), {"cut22b.msh: byte ", "truncated"});
 }
 
-TEST(BadInput, BadEndiannessMarker) {
-  ScratchDir dir;
-  std::string text = meshtest::read_file(meshtest::data_file("box_hex_o1.msh41b.msh"));
+TEST(ReadMeshErrors, BadEndiannessMarker) {
+  TempDir dir;
+  std::string text = test_support::read_file(meshtest::data_file("box_hex_o1.msh41b.msh"));
   text[text.find("4.1 1 8\n") + 8] = 7;
   expect_input_error(dir.write("endian.msh", text), {"endian.msh: byte 20", "endianness"});
 }
 
-TEST(BadInput, AbsurdBinaryBlockSize) {
-  ScratchDir dir;
-  std::string text = meshtest::read_file(meshtest::data_file("box_hex_o1.msh41b.msh"));
+TEST(ReadMeshErrors, AbsurdBinaryBlockSize) {
+  TempDir dir;
+  std::string text = test_support::read_file(meshtest::data_file("box_hex_o1.msh41b.msh"));
   const std::size_t elements = text.find("$Elements\n") + 10;
   const std::uint64_t huge = 1ull << 40;
   std::memcpy(&text[elements + 8], &huge, 8);  // numElements
@@ -195,57 +195,57 @@ std::string tet_vtu(const std::string& points = "0 0 0 1 0 0 0 1 0 0 0 1", const
 }
 
 TEST(BadVtu, ValidReferenceFileReads) {
-  ScratchDir dir;
+  TempDir dir;
   EXPECT_EQ(tensormass::read_mesh(dir.write("ok.vtu", tet_vtu())).cell_count(), 1);
 }
 
 TEST(BadVtu, CompressedData) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("zlib.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 3", "10", " compressor=\"vtkZLibDataCompressor\"")),
                      {"zlib.vtu:2:", "vtkZLibDataCompressor", "not supported"});
 }
 
 TEST(BadVtu, GarbledNumber) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("garbled.vtu", tet_vtu("0 0 0 1 0 0\n0 1 zero 0 0 1")), {"garbled.vtu:8:", "'zero'"});
 }
 
 TEST(BadVtu, NodeIndexOutOfRange) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("range.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 40")), {"range.vtu:11:", "cell 0", "node 40"});
 }
 
 TEST(BadVtu, NonFiniteCoordinate) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("nan.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 nan")), {"nan.vtu:6:", "node 3", "non-finite"});
 }
 
 TEST(BadVtu, UnsupportedCellType) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("polygon.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 3", "7")),
                      {"polygon.vtu:11:", "cell 0", "VTK_POLYGON", "not supported"});
 }
 
 TEST(BadVtu, WrongValueCount) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("short.vtu", tet_vtu("0 0 0 1 0 0 0 1 0")), {"short.vtu:6:", "9 values, expected 12"});
 }
 
 TEST(BadVtu, TruncatedXml) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text = tet_vtu();
   expect_input_error(dir.write("cut.vtu", text.substr(0, text.find("<Cells>"))), {"cut.vtu:", "unexpected end of file"});
 }
 
 TEST(BadVtu, AbsurdCounts) {
-  ScratchDir dir;
+  TempDir dir;
   std::string text = tet_vtu();
   text.replace(text.find("NumberOfPoints=\"4\""), 18, "NumberOfPoints=\"1000000000000000\"");
   expect_input_error(dir.write("huge.vtu", text), {"huge.vtu:4:", "1000000000000000"});
 }
 
 TEST(BadVtu, BadBase64AndTruncatedAppendedData) {
-  ScratchDir dir;
+  TempDir dir;
   std::string text = tet_vtu("@@@@not base64");
   text.replace(text.find("format=\"ascii\""), 14, "format=\"binary\"");
   expect_input_error(dir.write("b64.vtu", text), {"b64.vtu:6:", "base64"});
@@ -259,7 +259,7 @@ TEST(BadVtu, BadBase64AndTruncatedAppendedData) {
 }
 
 TEST(BadVtu, OtherDatasetType) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("poly.vtu", "<VTKFile type=\"PolyData\"><PolyData/></VTKFile>"), {"poly.vtu:1:", "PolyData"});
 }
 
@@ -272,52 +272,52 @@ std::string tet_vtk(const std::string& cells = "4 0 1 2 3", const std::string& t
 }
 
 TEST(BadLegacyVtk, ValidReferenceFileReads) {
-  ScratchDir dir;
+  TempDir dir;
   EXPECT_EQ(tensormass::read_mesh(dir.write("ok.vtk", tet_vtk())).cell_count(), 1);
 }
 
 TEST(BadLegacyVtk, NotAVtkFile) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("text.vtk", "solid cube\n"), {"text.vtk:1:", "not a legacy VTK file"});
 }
 
 TEST(BadLegacyVtk, OtherDataset) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("poly.vtk", "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\n"), {"poly.vtk:4:", "POLYDATA"});
 }
 
 TEST(BadLegacyVtk, NodeIndexOutOfRange) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("range.vtk", tet_vtk("4 0 1 2 17")), {"range.vtk:11:", "cell 0", "node 17"});
 }
 
 TEST(BadLegacyVtk, UnsupportedCellType) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("voxel.vtk", tet_vtk("4 0 1 2 3", "11")), {"voxel.vtk:11:", "VTK_VOXEL", "not supported"});
 }
 
 TEST(BadLegacyVtk, WrongNodeCountForTheType) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("count.vtk", tet_vtk("4 0 1 2 3", "12")), {"count.vtk:11:", "has 4 nodes, expected 8"});
 }
 
 TEST(BadLegacyVtk, GarbledNumberAndTruncation) {
-  ScratchDir dir;
+  TempDir dir;
   expect_input_error(dir.write("garbled.vtk", tet_vtk("4 0 1 2 3", "10", "0 0 0\n1 0 0\n0 one 0\n0 0 1")), {"garbled.vtk:8:", "'one'"});
   const std::string text = tet_vtk();
   expect_input_error(dir.write("cut.vtk", text.substr(0, text.find("CELLS") + 14)), {"cut.vtk:", "truncated"});
 }
 
 TEST(BadLegacyVtk, AbsurdCount) {
-  ScratchDir dir;
+  TempDir dir;
   std::string text = tet_vtk();
   text.replace(text.find("POINTS 4"), 8, "POINTS 99999999999");
   expect_input_error(dir.write("huge.vtk", text), {"huge.vtk:5:", "99999999999"});
 }
 
 TEST(BadLegacyVtk, TruncatedBinary) {
-  ScratchDir dir;
-  const std::string text = meshtest::read_file(meshtest::data_file("hybrid_o1.v42b.vtk"));
+  TempDir dir;
+  const std::string text = test_support::read_file(meshtest::data_file("hybrid_o1.v42b.vtk"));
   expect_input_error(dir.write("cut.vtk", text.substr(0, text.find("CELL_TYPES") - 100)), {"cut.vtk: byte ", "truncated"});
 }
 
@@ -343,10 +343,10 @@ std::vector<std::string> committed_meshes() {
   return files;
 }
 
-TEST(Robustness, TruncatedCopiesAreRefusedCleanly) {
-  ScratchDir dir;
+TEST(ReadMeshRobustness, TruncatedCopiesAreRefusedCleanly) {
+  TempDir dir;
   for (const std::string& name : committed_meshes()) {
-    const std::string text = meshtest::read_file(meshtest::data_file(name));
+    const std::string text = test_support::read_file(meshtest::data_file(name));
     for (int k = 1; k < 24; ++k) {
       SCOPED_TRACE(name + " cut " + std::to_string(k));
       read_or_refuse(dir.write("cut_" + name, text.substr(0, text.size() * static_cast<std::size_t>(k) / 24)));
@@ -354,11 +354,11 @@ TEST(Robustness, TruncatedCopiesAreRefusedCleanly) {
   }
 }
 
-TEST(Robustness, CorruptedCopiesAreReadOrRefusedCleanly) {
-  ScratchDir dir;
+TEST(ReadMeshRobustness, CorruptedCopiesAreReadOrRefusedCleanly) {
+  TempDir dir;
   std::mt19937 random(12345);
   for (const std::string& name : committed_meshes()) {
-    const std::string text = meshtest::read_file(meshtest::data_file(name));
+    const std::string text = test_support::read_file(meshtest::data_file(name));
     for (int trial = 0; trial < 40; ++trial) {
       std::string copy = text;
       for (int k = 0; k < 1 + trial % 4; ++k) {

@@ -14,19 +14,11 @@
 namespace {
 
 using namespace surfacetest;
+using test_support::TempDir;
 using tensormass::check_closed_surface;
 using tensormass::enclosed_volume;
 using tensormass::read_surface;
 
-/// The unit corner tetrahedron, faces outward; triangles 0-1 in patch 0, 2-3 in patch 1.
-TriangleSurface unit_tetrahedron() {
-  TriangleSurface s;
-  s.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-  s.triangles = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-  s.patches = {0, 0, 1, 1};
-  s.patch_names = {"bottom", "sides"};
-  return s;
-}
 
 void expect_unit_tetrahedron(TriangleSurface& surface) {
   EXPECT_EQ(surface.point_count(), 4);  // 12 corners merged
@@ -36,7 +28,7 @@ void expect_unit_tetrahedron(TriangleSurface& surface) {
 }
 
 TEST(SurfaceReader, AsciiStlTwoNamedSolidsArePatches) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.write("tet.stl", ascii_stl(unit_tetrahedron()));
   TriangleSurface surface = read_surface(path);
   expect_unit_tetrahedron(surface);
@@ -48,7 +40,7 @@ TEST(SurfaceReader, AsciiStlTwoNamedSolidsArePatches) {
 }
 
 TEST(SurfaceReader, AsciiStlToleratesCaseCrlfAndUnnamedSolid) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text =
       "SOLID\r\n"
       "facet normal 0 0 -1\r\nouter loop\r\nvertex 0 0 0\r\nvertex 0 1 0\r\nvertex 1 0 0\r\nendloop\r\nendfacet\r\n"
@@ -62,7 +54,7 @@ TEST(SurfaceReader, AsciiStlToleratesCaseCrlfAndUnnamedSolid) {
 }
 
 TEST(SurfaceReader, BinaryStl) {
-  ScratchDir dir;
+  TempDir dir;
   TriangleSurface surface =
       read_surface(dir.write("tet.stl", binary_stl(unit_tetrahedron(), "exported by a CAD tool")));
   expect_unit_tetrahedron(surface);
@@ -70,14 +62,14 @@ TEST(SurfaceReader, BinaryStl) {
 }
 
 TEST(SurfaceReader, BinaryStlWhoseHeaderStartsWithSolid) {
-  ScratchDir dir;
+  TempDir dir;
   // Text-only header and facet bytes that happen to be printable are still binary: 84 + 50 n == size.
   TriangleSurface surface = read_surface(dir.write("tet.stl", binary_stl(unit_tetrahedron(), "solid tet")));
   expect_unit_tetrahedron(surface);
 }
 
 TEST(SurfaceReader, BinaryStlIcosphereRoundTrip) {
-  ScratchDir dir;
+  TempDir dir;
   const TriangleSurface ball = make_icosphere(2.0, 3);
   TriangleSurface surface = read_surface(dir.write("ball.stl", binary_stl(ball, "solid ball")));
   EXPECT_EQ(surface.point_count(), ball.point_count());
@@ -87,7 +79,7 @@ TEST(SurfaceReader, BinaryStlIcosphereRoundTrip) {
 }
 
 TEST(SurfaceReader, ObjWithTextureNormalIndicesQuadsAndGroups) {
-  ScratchDir dir;
+  TempDir dir;
   // The unit cube: quads with v/vt/vn, v//vn and v/vt corners, negative indices, two groups.
   const std::string text =
       "# cube\nmtllib cube.mtl\n"
@@ -115,7 +107,7 @@ TEST(SurfaceReader, ObjWithTextureNormalIndicesQuadsAndGroups) {
 }
 
 TEST(SurfaceReader, ObjPolygonIsFanTriangulatedAndDuplicatesMerged) {
-  ScratchDir dir;
+  TempDir dir;
   // A hexagonal prism: two hexagons and six quads; the top ring is listed twice (points 13..18 repeat 7..12).
   std::string text;
   for (int level = 0; level < 3; ++level)
@@ -151,7 +143,7 @@ const char* const kMsh22 =
     "$EndElements\n";
 
 TEST(SurfaceReader, GmshMsh22WithPhysicalNames) {
-  ScratchDir dir;
+  TempDir dir;
   TriangleSurface surface = read_surface(dir.write("tet.msh", kMsh22));
   expect_unit_tetrahedron(surface);
   EXPECT_EQ(surface.patch_names, (std::vector<std::string>{"bottom", "sides"}));
@@ -161,7 +153,7 @@ TEST(SurfaceReader, GmshMsh22WithPhysicalNames) {
 }
 
 TEST(SurfaceReader, GmshMsh41) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text =
       "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
       "$PhysicalNames\n1\n2 7 \"skin\"\n$EndPhysicalNames\n"
@@ -174,7 +166,7 @@ TEST(SurfaceReader, GmshMsh41) {
 }
 
 TEST(SurfaceReader, GmshMshWithoutPhysicalGroups) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text =
       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
       "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"

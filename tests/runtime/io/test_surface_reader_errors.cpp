@@ -10,52 +10,44 @@
 namespace {
 
 using namespace surfacetest;
-
-TriangleSurface tetrahedron() {
-  TriangleSurface s;
-  s.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-  s.triangles = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-  s.patches = {0, 0, 0, 0};
-  s.patch_names = {"tet"};
-  return s;
-}
+using test_support::TempDir;
 
 TEST(SurfaceBadInput, MissingFile) {
-  ScratchDir dir;
-  expect_read_error(dir.path("nowhere.stl"), {"nowhere.stl", "cannot open"});
-  expect_read_error(dir.path("nowhere.msh"), {"nowhere.msh", "cannot open"});
+  TempDir dir;
+  expect_read_error(dir.file("nowhere.stl"), {"nowhere.stl", "cannot open"});
+  expect_read_error(dir.file("nowhere.msh"), {"nowhere.msh", "cannot open"});
 }
 
 TEST(SurfaceBadInput, UnknownExtensionAndEmptyFile) {
-  ScratchDir dir;
+  TempDir dir;
   expect_read_error(dir.write("surface.ply", "ply\n"), {"surface.ply", "'.ply'"});
   expect_read_error(dir.write("empty.stl", ""), {"empty.stl", "empty"});
   expect_read_error(dir.write("blank.obj", "\n \n"), {"blank.obj", "empty"});
 }
 
 TEST(SurfaceBadInput, TruncatedBinaryStl) {
-  ScratchDir dir;
-  std::string data = binary_stl(tetrahedron(), "binary");
+  TempDir dir;
+  std::string data = binary_stl(unit_tetrahedron(), "binary");
   data.resize(data.size() - 10);
   expect_read_error(dir.write("cut.stl", data), {"cut.stl", "truncated", "4 triangles", "284 bytes", "274"});
   // A header starting with "solid" does not make a binary file ASCII.
-  data = binary_stl(tetrahedron(), "solid tet");
+  data = binary_stl(unit_tetrahedron(), "solid tet");
   data.resize(data.size() - 60);
   expect_read_error(dir.write("cut_solid.stl", data), {"cut_solid.stl", "truncated"});
   expect_read_error(dir.write("short.stl", std::string(40, '\0')), {"short.stl", "too short"});
 }
 
 TEST(SurfaceBadInput, BinaryStlTrailingBytesAndNaN) {
-  ScratchDir dir;
-  std::string data = binary_stl(tetrahedron(), "binary") + "extra";
+  TempDir dir;
+  std::string data = binary_stl(unit_tetrahedron(), "binary") + "extra";
   expect_read_error(dir.write("long.stl", data), {"long.stl", "5 more bytes"});
-  TriangleSurface bad = tetrahedron();
+  TriangleSurface bad = unit_tetrahedron();
   bad.points[4] = std::nan("");
   expect_read_error(dir.write("nan.stl", binary_stl(bad, "binary")), {"nan.stl", "byte ", "not a finite"});
 }
 
 TEST(SurfaceBadInput, AsciiStlBadNumberNamesTheLine) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text =
       "solid a\n"
       "facet normal 0 0 1\n"
@@ -76,7 +68,7 @@ TEST(SurfaceBadInput, AsciiStlBadNumberNamesTheLine) {
 }
 
 TEST(SurfaceBadInput, AsciiStlStructure) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string facet =
       "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
   expect_read_error(dir.write("open.stl", "solid a\n" + facet), {"open.stl:", "solid 'a'", "endsolid"});
@@ -91,7 +83,7 @@ TEST(SurfaceBadInput, AsciiStlStructure) {
 }
 
 TEST(SurfaceBadInput, ObjErrors) {
-  ScratchDir dir;
+  TempDir dir;
   expect_read_error(dir.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n"),
                     {"range.obj:5:", "vertex index 4", "out of range", "3 vertices"});
   expect_read_error(dir.write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), {"zero.obj:4:", "index 0"});
@@ -104,7 +96,7 @@ TEST(SurfaceBadInput, ObjErrors) {
 }
 
 TEST(SurfaceBadInput, GmshErrors) {
-  ScratchDir dir;
+  TempDir dir;
   expect_read_error(dir.write("bad.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 x\n"),
                     {"bad.msh", "Gmsh"});
   expect_read_error(dir.write("lines.msh",

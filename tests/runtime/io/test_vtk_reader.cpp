@@ -161,7 +161,7 @@ class VtuEncoding : public testing::TestWithParam<VtuStyle> {};
 
 TEST_P(VtuEncoding, ReadsBackTheMeshItWasWrittenFrom) {
   const Mesh source = tensormass::read_mesh(meshtest::data_file("hybrid_o1.msh41.msh"));
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("mesh.vtu", VtuWriter(GetParam()).file(source));
   const Mesh mesh = tensormass::read_mesh(path);
   meshtest::expect_same_cells(source, mesh);
@@ -189,7 +189,7 @@ TEST(VtuReader, SeveralPiecesAreConcatenated) {
       "<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n"
       "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n"
       "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5</DataArray></Cells>\n</Piece>\n";
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("pieces.vtu", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>" + piece + piece +
                                                        "</UnstructuredGrid></VTKFile>");
   const Mesh mesh = tensormass::read_mesh(path);
@@ -202,7 +202,7 @@ TEST(VtuReader, SeveralPiecesAreConcatenated) {
 // Classic legacy layout with SCALARS + LOOKUP_TABLE, POINT_DATA to skip,
 // a VTK 9 METADATA block and a "group" array when no gmsh:physical exists.
 TEST(LegacyVtkReader, AttributesAreSkippedAndScalarsMakeGroups) {
-  meshtest::ScratchDir dir;
+  test_support::TempDir dir;
   const std::string path = dir.write("legacy.vtk",
                                      "# vtk DataFile Version 3.0\nhand written\nASCII\nDATASET UNSTRUCTURED_GRID\n"
                                      "FIELD FieldData 1\nTIME 1 1 double\n0.5\n"
@@ -215,7 +215,7 @@ TEST(LegacyVtkReader, AttributesAreSkippedAndScalarsMakeGroups) {
                                      "SCALARS quality double\nLOOKUP_TABLE default\n1.5\n2.5\n3.5\n");
   // The vertex (point 4) lies on no tetrahedron: its group cannot be built.
   meshtest::expect_input_error(path, {"legacy.vtk:", "cell 1 (point)", "node 4", "belongs to no 3D element"});
-  const std::string fixed = dir.write("legacy2.vtk", meshtest::read_file(path).replace(meshtest::read_file(path).find("1 4\n"), 4, "1 3\n"));
+  const std::string fixed = dir.write("legacy2.vtk", test_support::read_file(path).replace(test_support::read_file(path).find("1 4\n"), 4, "1 3\n"));
   const Mesh mesh = tensormass::read_mesh(fixed);
   EXPECT_EQ(mesh.cell_count(), 1);
   ASSERT_EQ(mesh.groups.size(), 2u);

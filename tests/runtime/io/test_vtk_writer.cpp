@@ -62,7 +62,7 @@ std::string vtu_expectation(const Mesh& mesh, const std::vector<double>& displac
 }
 
 void expect_meshio_reads_back(const Mesh& mesh, bool displaced) {
-  const tmtest::ScratchDir dir("vtu");
+  const test_support::TempDir dir;
   const std::size_t n = mesh.node_count(), cells = mesh.cell_count();
   const std::vector<double> displacement = displaced ? awkward_values(3 * n, 0.1) : std::vector<double>{};
   const std::vector<Field> point_data{{"displacement", 3, awkward_values(3 * n, 0.2)},
@@ -71,7 +71,7 @@ void expect_meshio_reads_back(const Mesh& mesh, bool displaced) {
   for (std::size_t c = 0; c < cells; ++c) law_id[c] = static_cast<double>(c % 3);
   const std::vector<Field> cell_data{{"law_id", 1, law_id}, {"R_EL & <R_V>", 2, awkward_values(2 * cells, 0.4)}};
   tensormass::io::write_vtu(dir.file("mesh.vtu"), mesh, displacement, point_data, cell_data);
-  tmtest::write_text(dir.file("expected.json"), vtu_expectation(mesh, displacement, point_data, cell_data));
+  dir.write("expected.json", vtu_expectation(mesh, displacement, point_data, cell_data));
   EXPECT_EQ(tmtest::run_check("check_vtu.py", dir.file("mesh.vtu"), dir.file("expected.json")), 0);
   EXPECT_EQ(dir.files(), (std::vector<std::string>{"expected.json", "mesh.vtu"}));
 }
@@ -91,7 +91,7 @@ TEST(VtuWriter, MeshioReadsBack2DMixes) {
 }
 
 TEST(VtuWriter, RejectsFieldsOfTheWrongSizeWithoutWriting) {
-  const tmtest::ScratchDir dir("vtu");
+  const test_support::TempDir dir;
   const Mesh mesh = beam(2, "quad4:1", 1, {2, 1, 1});
   EXPECT_THROW(tensormass::io::write_vtu(dir.file("a.vtu"), mesh, {}, {{"u", 3, {1.0, 2.0}}}, {}),
                std::invalid_argument);
@@ -102,9 +102,9 @@ TEST(VtuWriter, RejectsFieldsOfTheWrongSizeWithoutWriting) {
 }
 
 TEST(VtuWriter, HeaderDeclaresVersion1WithUInt64RawAppendedData) {
-  const tmtest::ScratchDir dir("vtu");
+  const test_support::TempDir dir;
   tensormass::io::write_vtu(dir.file("a.vtu"), beam(2, "quad4:1", 1, {2, 1, 1}), {}, {}, {});
-  const std::string text = tmtest::read_text(dir.file("a.vtu"));
+  const std::string text = test_support::read_file(dir.file("a.vtu"));
   EXPECT_NE(text.find("version=\"1.0\""), std::string::npos);
   EXPECT_NE(text.find("header_type=\"UInt64\""), std::string::npos);
   EXPECT_NE(text.find("<AppendedData encoding=\"raw\">"), std::string::npos);
@@ -112,20 +112,20 @@ TEST(VtuWriter, HeaderDeclaresVersion1WithUInt64RawAppendedData) {
 }
 
 TEST(PvdWriter, ListsEveryFrameWithExactTimes) {
-  const tmtest::ScratchDir dir("pvd");
+  const test_support::TempDir dir;
   tensormass::io::write_pvd(dir.file("series.pvd"), {{0.0, "frame_000000.vtu"}, {0.1, "frame_000001.vtu"},
                                                      {1.0 / 3.0, "a&b.vtu"}});
-  const std::string text = tmtest::read_text(dir.file("series.pvd"));
+  const std::string text = test_support::read_file(dir.file("series.pvd"));
   EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
   EXPECT_NE(text.find("<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"frame_000000.vtu\"/>"), std::string::npos);
   EXPECT_NE(text.find("timestep=\"0.1\""), std::string::npos);
   EXPECT_NE(text.find("timestep=\"0.3333333333333333\""), std::string::npos);
   EXPECT_NE(text.find("file=\"a&amp;b.vtu\""), std::string::npos);
-  const std::string parse = "/usr/bin/python3 -c \"import xml.etree.ElementTree as E; r = E.parse('" +
-                            dir.file("series.pvd") +
-                            "').getroot(); assert [d.get('file') for d in r.iter('DataSet')] == "
-                            "['frame_000000.vtu', 'frame_000001.vtu', 'a&b.vtu']\"";
-  EXPECT_EQ(tmtest::run_command(parse), 0);
+  const test_support::Result parse =
+      test_support::python("-c \"import xml.etree.ElementTree as E; r = E.parse('" + dir.file("series.pvd") +
+                           "').getroot(); assert [d.get('file') for d in r.iter('DataSet')] == "
+                           "['frame_000000.vtu', 'frame_000001.vtu', 'a&b.vtu']\"");
+  EXPECT_EQ(parse.exit_code, 0) << parse.output;
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 /// Geometric checks of generated meshes: conformity (face matching), unique
 /// nodes, shared mid-edge nodes, positive Jacobians and volumes (through the
 /// registry's hooke kernels), boundary areas.
-#ifndef TENSORMASS_TESTS_BEAM_CHECKS_HPP
-#define TENSORMASS_TESTS_BEAM_CHECKS_HPP
+#ifndef TENSORMASS_TESTS_MESHING_BEAM_CHECKS_HPP
+#define TENSORMASS_TESTS_MESHING_BEAM_CHECKS_HPP
 
 #include <gtest/gtest.h>
 
@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_meshes.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/kernels/registry.hpp"
 
@@ -21,9 +22,7 @@ namespace tmtest {
 
 using Point3 = std::array<double, 3>;
 
-inline Point3 node_point(const tensormass::Mesh& mesh, int node) {
-  return {mesh.rest_positions[3 * node], mesh.rest_positions[3 * node + 1], mesh.rest_positions[3 * node + 2]};
-}
+using meshtest::cells_per_type;
 
 /// The boundary pieces of one cell: its faces (3D) or edges (2D), as node lists (corners first).
 inline std::vector<std::vector<int>> cell_facets(const tensormass::Mesh& mesh, const tensormass::ElementBlock& block,
@@ -56,7 +55,7 @@ inline double facet_measure(const tensormass::Mesh& mesh, const std::vector<int>
     return std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
   };
   std::vector<Point3> p;
-  for (int node : corners) p.push_back(node_point(mesh, node));
+  for (int node : corners) p.push_back(meshtest::position(mesh, node));
   if (p.size() == 2) return std::hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
   if (p.size() == 3) return cross_norm(minus(p[1], p[0]), minus(p[2], p[0])) / 2;
   return cross_norm(minus(p[2], p[0]), minus(p[3], p[1])) / 2;
@@ -104,7 +103,7 @@ inline void expect_conforming(const tensormass::Mesh& mesh, const std::array<dou
 /// No two nodes at the same position, and every node used by a cell.
 inline void expect_nodes_unique_and_used(const tensormass::Mesh& mesh) {
   std::set<Point3> positions;
-  for (int node = 0; node < mesh.node_count(); ++node) positions.insert(node_point(mesh, node));
+  for (int node = 0; node < mesh.node_count(); ++node) positions.insert(meshtest::position(mesh, node));
   EXPECT_EQ(static_cast<int>(positions.size()), mesh.node_count()) << "duplicate node positions";
   std::vector<char> used(mesh.node_count(), 0);
   for (const tensormass::ElementBlock& block : mesh.blocks)
@@ -156,12 +155,6 @@ inline std::vector<double> cell_volumes(const tensormass::Mesh& mesh) {
     }
   }
   return volumes;
-}
-
-inline std::map<std::string, int> cells_per_type(const tensormass::Mesh& mesh) {
-  std::map<std::string, int> counts;
-  for (const tensormass::ElementBlock& block : mesh.blocks) counts[block.element->name] += block.count();
-  return counts;
 }
 
 }  // namespace tmtest

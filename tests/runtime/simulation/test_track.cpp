@@ -182,7 +182,7 @@ TEST(Centroid, CsvHasTheHeaderAndRoundTripPrecision) {
   for (std::size_t i = 1; i < u.size(); i += 2) u[i] = -1.0 / 3.0;
   track.record(0.1, u);
   track.write_csv(dir.file("track_body.csv"));
-  const auto lines = track_test::lines(dir.path() / "track_body.csv");
+  const auto lines = track_test::read_lines(dir.path() / "track_body.csv");
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], "time,x,y,z,ux,uy,uz");
   EXPECT_EQ(lines[1].substr(lines[1].size() - 6), ",0,0,0");

@@ -31,7 +31,7 @@ class TrackRun : public ::testing::Test {
     return track_test::tensormass("run " + scene);
   }
   fs::path out(const std::string& name) const { return dir_.path() / "out" / name; }
-  std::string summary() const { return track_test::read(out("summary.json")); }
+  std::string summary() const { return track_test::read_file(out("summary.json")); }
 
   TempDir dir_;
 };
@@ -42,7 +42,7 @@ TEST_F(TrackRun, ImplicitRunWritesOneRowPerStepFromTimeZero) {
   const Result result = run(std::string(kGravity) + "solver: {type: implicit, dt: 0.01, steps: 6}\n");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* name : {"track_body.csv", "track_phase_quad4.csv"}) {
-    const auto lines = track_test::lines(out(name));
+    const auto lines = track_test::read_lines(out(name));
     ASSERT_EQ(lines.size(), 1u + 6u + 1u) << name;
     EXPECT_EQ(lines[0], "time,x,y,z,ux,uy,uz");
     const std::vector<double> first = track_test::numbers(lines[1]);
@@ -57,8 +57,8 @@ TEST_F(TrackRun, ImplicitRunWritesOneRowPerStepFromTimeZero) {
     EXPECT_LT(track_test::numbers(lines.back())[5], -1e-4) << "the beam sags under gravity";
   }
   // Rest centroids: the whole box and the quad half.
-  EXPECT_NEAR(track_test::numbers(track_test::lines(out("track_body.csv"))[1])[1], 2.5, 1e-14);
-  EXPECT_NEAR(track_test::numbers(track_test::lines(out("track_phase_quad4.csv"))[1])[1], 3.75, 1e-14);
+  EXPECT_NEAR(track_test::numbers(track_test::read_lines(out("track_body.csv"))[1])[1], 2.5, 1e-14);
+  EXPECT_NEAR(track_test::numbers(track_test::read_lines(out("track_phase_quad4.csv"))[1])[1], 3.75, 1e-14);
   const std::string s = summary();
   EXPECT_NE(s.find("\"tracks\": {\"body\": \"track_body.csv\", \"phase_quad4\": \"track_phase_quad4.csv\"}"),
             std::string::npos) << s;
@@ -93,13 +93,13 @@ TEST_F(TrackRun, ExplicitSummaryHasTheRealTimeFactor) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NEAR(json_number(summary(), "simulated_seconds"), 2e-4, 1e-18);
   EXPECT_GT(json_number(summary(), "real_time_factor"), 0);
-  EXPECT_EQ(track_test::lines(out("track_body.csv")).size(), 1u + 21u);
+  EXPECT_EQ(track_test::read_lines(out("track_body.csv")).size(), 1u + 21u);
 }
 
 TEST_F(TrackRun, StaticRunHasOneRowPerLoadStepAndNoRealTimeFactor) {
   const Result result = run(std::string(kGravity) + "solver: {type: static, load_steps: 4}\n", "[body]");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  const auto lines = track_test::lines(out("track_body.csv"));
+  const auto lines = track_test::read_lines(out("track_body.csv"));
   ASSERT_EQ(lines.size(), 1u + 5u);
   for (std::size_t k = 1; k < lines.size(); ++k)
     EXPECT_EQ(track_test::numbers(lines[k])[0], static_cast<double>(k - 1) / 4) << "time = load factor";
@@ -115,7 +115,7 @@ TEST_F(TrackRun, RigidTranslationMovesTheCentroidByTheTranslation) {
                             "solver: {type: implicit, dt: 0.01, steps: 3}\n");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* name : {"track_body.csv", "track_phase_quad4.csv"}) {
-    const auto lines = track_test::lines(out(name));
+    const auto lines = track_test::read_lines(out(name));
     ASSERT_EQ(lines.size(), 1u + 4u);
     const std::vector<double> first = track_test::numbers(lines[1]);
     for (std::size_t k = 2; k < lines.size(); ++k) {
@@ -132,7 +132,7 @@ TEST_F(TrackRun, RigidTranslationMovesTheCentroidByTheTranslation) {
 TEST_F(TrackRun, NumericalFailureKeepsTheTrackUpToTheLastGoodStep) {
   const Result result = run(std::string(kGravity) + "solver: {type: explicit, dt: 0.01, steps: 400}\n", "[body]");
   ASSERT_EQ(result.exit_code, 3) << result.output;
-  const auto lines = track_test::lines(out("track_body.csv"));
+  const auto lines = track_test::read_lines(out("track_body.csv"));
   ASSERT_GE(lines.size(), 2u);
   EXPECT_EQ(lines[0], "time,x,y,z,ux,uy,uz");
   EXPECT_LT(lines.size(), 1u + 401u);

@@ -1,61 +1,17 @@
-// TimeProfile::factor and check_groups against a small hand-built mesh.
+// check_groups (scene_groups.cpp) against a small hand-built mesh: every
+// region names a group of the mesh, with facets where a load needs them.
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <numbers>
 
 #include "scene_test_support.hpp"
 
 namespace {
 
 using scene_test::TempDir;
+using test_support::expect_contains;
 using tensormass::Group;
 using tensormass::InputError;
 using tensormass::Mesh;
 using tensormass::Scene;
-using tensormass::TimeProfile;
-
-TEST(SceneProfile, Constant) {
-  const TimeProfile p;
-  EXPECT_EQ(p.kind, "constant");
-  EXPECT_DOUBLE_EQ(p.factor(-1), 1);
-  EXPECT_DOUBLE_EQ(p.factor(0), 1);
-  EXPECT_DOUBLE_EQ(p.factor(123), 1);
-}
-
-TEST(SceneProfile, Ramp) {
-  TimeProfile p;
-  p.kind = "ramp";
-  p.duration = 2.0;
-  EXPECT_DOUBLE_EQ(p.factor(-1), 0);
-  EXPECT_DOUBLE_EQ(p.factor(0), 0);
-  EXPECT_DOUBLE_EQ(p.factor(0.5), 0.25);
-  EXPECT_DOUBLE_EQ(p.factor(2), 1);
-  EXPECT_DOUBLE_EQ(p.factor(10), 1);
-}
-
-TEST(SceneProfile, Sinusoid) {
-  TimeProfile p;
-  p.kind = "sinusoid";
-  p.period = 4.0;
-  EXPECT_NEAR(p.factor(0), 0, 1e-15);
-  EXPECT_NEAR(p.factor(1), 0.5, 1e-15);
-  EXPECT_NEAR(p.factor(2), 1, 1e-15);
-  EXPECT_NEAR(p.factor(4), 0, 1e-15);
-  EXPECT_NEAR(p.factor(0.7), (1 - std::cos(2 * std::numbers::pi * 0.7 / 4)) / 2, 1e-15);
-  p.phase = 1.0;
-  EXPECT_NEAR(p.factor(0), 0.5, 1e-15);
-  EXPECT_NEAR(p.factor(1), 1, 1e-15);
-}
-
-TEST(SceneProfile, ReadFromTheScene) {
-  TempDir dir;
-  const std::string text = scene_test::kBaseScene + "loads:\n  profile: sinusoid\n";
-  const Scene s = tensormass::load_scene(dir.write("scene.yaml", text));
-  EXPECT_EQ(s.loads.profile.kind, "sinusoid");
-  EXPECT_DOUBLE_EQ(s.loads.profile.period, 1.0);
-  EXPECT_NEAR(s.loads.profile.factor(0.5), 1, 1e-15);
-}
 
 Group make_group(const std::string& name, int dim, std::vector<int> nodes, bool with_facet) {
   Group g;
@@ -103,10 +59,6 @@ std::string groups_error(const TempDir& dir, const std::vector<std::string>& ove
   }
   ADD_FAILURE() << "no InputError";
   return {};
-}
-
-void expect_contains(const std::string& message, const std::vector<std::string>& parts) {
-  for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << part << " in: " << message;
 }
 
 TEST(SceneGroups, AllRegionsExist) {
