@@ -5,11 +5,6 @@
 
 #include "commands.hpp"
 #include "tensormass/common/errors.hpp"
-#ifdef TENSORMASS_WITH_BENCH
-#include "kernel_bench.hpp"
-#include "paper_bench.hpp"
-#include "runtime_bench.hpp"
-#endif
 
 namespace {
 
@@ -21,8 +16,12 @@ constexpr const char* kUsage =
     "  demo [LAW [ELEMENT [SPLIT]]]     evaluate one element's energy, force and stiffness\n"
     "  bench kernels [--json FILE] [--quick]\n"
     "                                   time every kernel (median ns per element)\n"
+    "  bench runtime [--quick] [--json FILE] [--only NAME]\n"
+    "                                   whole-solver timings, against CalculiX (docs/results/runtime.md)\n"
     "  bench paper [--quick | --smoke] [--json FILE] [--out DIR]\n"
     "                                   the origin report's Table 1 and Figure 12 (docs/results/paper.md)\n"
+    "                                   (bench runs the tensormass-bench program, built with\n"
+    "                                   -DTENSORMASS_BUILD_BENCH=ON)\n"
     "  run SCENE.yaml [--set a.b=VALUE ...]\n"
     "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
     "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
@@ -55,16 +54,7 @@ int main(int argc, char** argv) {
     if (command == "mesh") return tensormass::cli::mesh_command(args);
     if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
     if (command == "render") return tensormass::cli::render_command(args);
-    if (command == "bench") {
-#ifdef TENSORMASS_WITH_BENCH
-      if (!args.empty() && args[0] == "kernels") return tensormass::bench::kernels_command({args.begin() + 1, args.end()});
-      if (!args.empty() && args[0] == "runtime") return tensormass::bench::runtime_command({args.begin() + 1, args.end()});
-      if (!args.empty() && args[0] == "paper") return tensormass::bench::paper_command({args.begin() + 1, args.end()});
-      return usage_error("bench: expected 'kernels', 'runtime' or 'paper'");
-#else
-      return usage_error("bench: this build has no benchmarks (TENSORMASS_BUILD_BENCH=OFF)");
-#endif
-    }
+    if (command == "bench") return tensormass::cli::bench_command(args);
     return usage_error("unknown command '" + command + "'");
   } catch (const tensormass::NumericalError& error) {
     std::fprintf(stderr, "tensormass: numerical failure: %s\n", error.what());

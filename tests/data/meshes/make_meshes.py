@@ -1,4 +1,4 @@
-"""Regenerates the test meshes of tests/runtime/mesh from the .geo files.
+"""Regenerates the test meshes of tests/runtime/io and tests/runtime/mesh from the .geo files.
 
 Run through make_meshes.sh (Debian's python3 with python3-gmsh and meshio).
 Every mesh is generated once and written by Gmsh in four encodings

@@ -1,12 +1,13 @@
 // The adaptive model end to end (run_scene on a 2D beam): limits of the
 // threshold, accuracy in between, blending continuity, exact downgrade.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
-#include "solvers/solver_test_support.hpp"
+#include "support/cantilever.hpp"
+#include "support/test_support.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/meshing/beam.hpp"
@@ -21,14 +22,14 @@ namespace fs = std::filesystem;
 class AdaptiveBeam : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    directory_ = fs::temp_directory_path() / ("tensormass-adaptivity-" + std::to_string(getpid()));
-    fs::create_directories(directory_);
+    dir_ = std::make_unique<test_support::TempDir>();
+    directory_ = dir_->path();
     BeamSpec spec;
     spec.cells = {30, 5, 1};
     spec.size = {6.0, 1.0, 1.0};
     io::write_msh((directory_ / "beam.msh").string(), make_beam(spec));
   }
-  static void TearDownTestSuite() { fs::remove_all(directory_); }
+  static void TearDownTestSuite() { dir_.reset(); }
 
   /// The origin's experiment: a soft cantilever sagging about a third of its length.
   static Scene scene(const std::string& law, const std::string& criterion = "", double threshold = 0) {
@@ -58,6 +59,7 @@ class AdaptiveBeam : public ::testing::Test {
     return worst;
   }
 
+  static inline std::unique_ptr<test_support::TempDir> dir_;  ///< shared by the suite's tests
   static inline fs::path directory_;
 };
 

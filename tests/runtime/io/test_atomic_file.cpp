@@ -3,31 +3,33 @@
 
 #include <stdexcept>
 
-#include "python_check.hpp"
+#include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 
 namespace {
 
 using tensormass::io::write_atomically;
+using test_support::read_file;
+using test_support::TempDir;
 
 TEST(AtomicFile, WritesTheContentAndLeavesNoTemporary) {
-  const tmtest::ScratchDir dir("atomic");
+  const TempDir dir;
   write_atomically(dir.file("out.txt"), [](std::ostream& out) { out << "hello\n" << 42; });
-  EXPECT_EQ(tmtest::read_text(dir.file("out.txt")), "hello\n42");
+  EXPECT_EQ(read_file(dir.file("out.txt")), "hello\n42");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, ReplacesAnExistingFile) {
-  const tmtest::ScratchDir dir("atomic");
-  tmtest::write_text(dir.file("out.txt"), "old content that is longer");
+  const TempDir dir;
+  dir.write("out.txt", "old content that is longer");
   write_atomically(dir.file("out.txt"), [](std::ostream& out) { out << "new"; });
-  EXPECT_EQ(tmtest::read_text(dir.file("out.txt")), "new");
+  EXPECT_EQ(read_file(dir.file("out.txt")), "new");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, MissingDirectoryThrowsNamingThePath) {
-  const tmtest::ScratchDir dir("atomic");
+  const TempDir dir;
   const std::string path = dir.file("missing/out.txt");
   try {
     write_atomically(path, [](std::ostream& out) { out << "x"; });
@@ -39,7 +41,7 @@ TEST(AtomicFile, MissingDirectoryThrowsNamingThePath) {
 }
 
 TEST(AtomicFile, ThrowingWriterLeavesNoFileAndKeepsItsErrorType) {
-  const tmtest::ScratchDir dir("atomic");
+  const TempDir dir;
   EXPECT_THROW(write_atomically(dir.file("out.txt"),
                                 [](std::ostream& out) {
                                   out << "partial";
@@ -50,20 +52,20 @@ TEST(AtomicFile, ThrowingWriterLeavesNoFileAndKeepsItsErrorType) {
 }
 
 TEST(AtomicFile, FailedWriteKeepsTheOldFile) {
-  const tmtest::ScratchDir dir("atomic");
-  tmtest::write_text(dir.file("out.txt"), "old");
+  const TempDir dir;
+  dir.write("out.txt", "old");
   EXPECT_THROW(write_atomically(dir.file("out.txt"),
                                 [](std::ostream& out) {
                                   out << "partial";
                                   out.setstate(std::ios::badbit);  // as a full disk would
                                 }),
                std::runtime_error);
-  EXPECT_EQ(tmtest::read_text(dir.file("out.txt")), "old");
+  EXPECT_EQ(read_file(dir.file("out.txt")), "old");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, TargetThatIsADirectoryFailsCleanly) {
-  const tmtest::ScratchDir dir("atomic");
+  const TempDir dir;
   std::filesystem::create_directory(dir.file("target"));
   std::filesystem::create_directory(dir.file("target/inside"));  // a non-empty directory cannot be replaced
   EXPECT_THROW(write_atomically(dir.file("target"), [](std::ostream& out) { out << "x"; }), std::runtime_error);

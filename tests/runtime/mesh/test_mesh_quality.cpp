@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh_test_support.hpp"
+#include "support/test_meshes.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"

@@ -1,23 +1,18 @@
-// Helpers of the scene tests: a private temporary directory per test and
-// capture of InputError messages.
+// Helpers of the scene tests: a small valid scene, text replacement and
+// capture of InputError messages (the temporary directory is test_support's).
 #ifndef TENSORMASS_SCENE_TEST_SUPPORT_HPP
 #define TENSORMASS_SCENE_TEST_SUPPORT_HPP
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace scene_test {
-
-namespace fs = std::filesystem;
 
 using test_support::TempDir;
 

@@ -214,4 +214,13 @@ TEST(SceneLoad, SceneInCurrentDirectoryKeepsRelativePaths) {
   EXPECT_EQ(s.output.directory, "out");
 }
 
+TEST(SceneLoad, ProfileReadFromTheScene) {
+  TempDir dir;
+  const std::string text = scene_test::kBaseScene + "loads:\n  profile: sinusoid\n";
+  const Scene s = tensormass::load_scene(dir.write("scene.yaml", text));
+  EXPECT_EQ(s.model.loads.profile.kind, tensormass::ProfileKind::sinusoid);
+  EXPECT_DOUBLE_EQ(s.model.loads.profile.period, 1.0);
+  EXPECT_NEAR(s.model.loads.profile.factor(0.5), 1, 1e-15);
+}
+
 }  // namespace

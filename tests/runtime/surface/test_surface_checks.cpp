@@ -8,7 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "surface_test_support.hpp"
+#include "support/test_surfaces.hpp"
 #include "tensormass/surface/surface.hpp"
 
 namespace {

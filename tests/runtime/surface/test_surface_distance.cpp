@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "surface_test_support.hpp"
+#include "support/test_surfaces.hpp"
 #include "tensormass/io/surface_reader.hpp"
 #include "tensormass/surface/surface.hpp"
 

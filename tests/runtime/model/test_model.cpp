@@ -1,0 +1,125 @@
+// Model: lumped masses, consistent loads, constraints, rest Jacobians.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "support/cantilever.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/model/model.hpp"
+
+namespace tensormass {
+namespace {
+
+struct BeamCase {
+  int dim;
+  std::string cut;
+  int order;
+};
+
+class ModelOnBeams : public ::testing::TestWithParam<BeamCase> {};
+
+double component_sum(const std::vector<double>& values, int dim, int component) {
+  double sum = 0;
+  for (std::size_t i = component; i < values.size(); i += dim) sum += values[i];
+  return sum;
+}
+
+TEST_P(ModelOnBeams, MassAndGravityIntegrateDensityTimesVolume) {
+  const BeamCase c = GetParam();
+  const Mesh mesh = test::beam(c.dim, c.cut, {4, 2, 2}, c.order);
+  const Scene scene = test::cantilever("stvk");
+  const Model model(mesh, scene.model);
+  const double volume = c.dim == 2 ? 2.0 * 1.0 : 2.0 * 1.0 * 1.0;  // L = 4/2, H = 1, W = 2/2
+  for (int a = 0; a < c.dim; ++a)
+    EXPECT_NEAR(component_sum(model.lumped_mass(), c.dim, a), 1000 * volume, 1e-9 * 1000 * volume);
+  for (double m : model.lumped_mass()) EXPECT_GT(m, 0.0);
+  EXPECT_NEAR(component_sum(model.gravity_load(), c.dim, 1), -9.81 * 1000 * volume, 1e-9 * 9810 * volume);
+  EXPECT_NEAR(component_sum(model.gravity_load(), c.dim, 0), 0.0, 1e-9);
+}
+
+TEST_P(ModelOnBeams, PressureOnTipPushesInwardWithTheFaceArea) {
+  const BeamCase c = GetParam();
+  const Mesh mesh = test::beam(c.dim, c.cut, {4, 2, 2}, c.order);
+  Scene scene = test::cantilever("hooke");
+  scene.model.loads.pressures = {{"tip", 250.0, 0}};
+  const Model model(mesh, scene.model);
+  const double area = 1.0;  // H (times W = 1 in 3D, unit thickness in 2D)
+  EXPECT_NEAR(component_sum(model.surface_load(), c.dim, 0), -250.0 * area, 1e-9);
+  EXPECT_NEAR(component_sum(model.surface_load(), c.dim, 1), 0.0, 1e-9);
+}
+
+TEST_P(ModelOnBeams, ClampedDofsAreNotFree) {
+  const BeamCase c = GetParam();
+  const Mesh mesh = test::beam(c.dim, c.cut, {4, 2, 2}, c.order);
+  const Model model(mesh, test::cantilever("hooke").model);
+  const Group& clamp = *mesh.group("clamp");
+  EXPECT_EQ(model.free_dof_count(), model.dof_count() - c.dim * static_cast<int>(clamp.nodes.size()));
+  for (int node : clamp.nodes) EXPECT_EQ(model.free_index()[node * c.dim], -1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Beams, ModelOnBeams,
+                         ::testing::Values(BeamCase{2, "quad4", 1}, BeamCase{2, "tri3", 1}, BeamCase{2, "quad4", 2},
+                                           BeamCase{2, "tri3", 2}, BeamCase{3, "hex8", 1}, BeamCase{3, "tet5", 1},
+                                           BeamCase{3, "tet6", 1}, BeamCase{3, "prism6", 1},
+                                           BeamCase{3, "pyramid5", 1}, BeamCase{3, "hex8", 2},
+                                           BeamCase{3, "tet6", 2}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.dim) + "d_" + info.param.cut + "_order" +
+                                  std::to_string(info.param.order);
+                         });
+
+TEST(Model, InvertedElementAtRestIsNamed) {
+  Mesh mesh = test::beam(3, "hex8", {3, 1, 1});
+  std::swap(mesh.blocks[0].connectivity[0], mesh.blocks[0].connectivity[1]);
+  std::swap(mesh.blocks[0].connectivity[2], mesh.blocks[0].connectivity[3]);
+  std::swap(mesh.blocks[0].connectivity[4], mesh.blocks[0].connectivity[5]);
+  std::swap(mesh.blocks[0].connectivity[6], mesh.blocks[0].connectivity[7]);
+  try {
+    Model model(mesh, test::cantilever("stvk").model);
+    FAIL() << "an inverted element was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("element 0 (hex8"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("non-positive Jacobian"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Model, StaticSceneWithoutConstraintsIsRefusedByValidation) {
+  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1});
+  Scene scene = test::cantilever("stvk");
+  scene.model.fixed.clear();
+  EXPECT_THROW(validate_against_mesh(scene, mesh), InputError);
+}
+
+TEST(Model, UnvalidatedSpecIsRefusedWithoutCrashing) {
+  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1});
+  Scene unknown_group = test::cantilever("stvk");
+  unknown_group.model.fixed = {"no_such_group"};
+  EXPECT_THROW(Model(mesh, unknown_group.model), std::invalid_argument);
+  Scene unknown_law = test::cantilever("no_such_law");
+  EXPECT_THROW(Model(mesh, unknown_law.model), std::invalid_argument);
+}
+
+TEST(Model, DefaultSplitIsTensorForHookeOnLinearElementsOnly) {
+  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1}, 2);
+  const Model quadratic(mesh, test::cantilever("hooke").model);
+  EXPECT_STREQ(quadratic.kernel(0).split, "whole");
+  const Mesh linear_mesh = test::beam(2, "quad4", {4, 2, 1});
+  const Model linear(linear_mesh, test::cantilever("hooke").model);
+  EXPECT_STREQ(linear.kernel(0).split, "tensor");
+}
+
+TEST(Model, SwitchingFromTensorHookeToStvkMatchesAFreshStvkModel) {
+  const Mesh mesh = test::beam(3, "tet6", {2, 1, 1});
+  Model switched(mesh, test::cantilever("hooke").model);
+  const Model reference(mesh, test::cantilever("stvk").model);
+  std::vector<double> u(switched.dof_count());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = 0.01 * std::sin(1.0 + i);
+  for (int cell = 0; cell < switched.cell_count(); ++cell) switched.set_law(cell, "stvk");
+  EXPECT_NEAR(switched.strain_energy(u), reference.strain_energy(u), 1e-12 * reference.strain_energy(u));
+  EXPECT_EQ(switched.law_id(0), reference.law_id(0));
+}
+
+}  // namespace
+}  // namespace tensormass

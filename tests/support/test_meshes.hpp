@@ -1,0 +1,209 @@
+/// \file test_meshes.hpp
+/// Helpers of the tests that read and check meshes (io readers, mesh
+/// quality, mesh-info): paths of the committed test meshes
+/// (tests/data/meshes), a minimal JSON reader for their expected.json, node
+/// positions, cells per type, mesh comparison and a read_mesh InputError
+/// matcher.
+#ifndef TENSORMASS_TESTS_SUPPORT_TEST_MESHES_HPP
+#define TENSORMASS_TESTS_SUPPORT_TEST_MESHES_HPP
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "support/test_support.hpp"
+
+namespace meshtest {
+
+inline std::string data_dir() { return std::string(TENSORMASS_SOURCE_DIR) + "/tests/data/meshes/"; }
+inline std::string data_file(const std::string& name) { return data_dir() + name; }
+
+/// The four Gmsh encodings written by make_meshes.py.
+inline const std::vector<std::string>& encodings() {
+  static const std::vector<std::string> list{"msh22", "msh22b", "msh41", "msh41b"};
+  return list;
+}
+
+/// Runs read_mesh(path); expects an InputError whose message contains every piece.
+inline void expect_input_error(const std::string& path, const std::vector<std::string>& pieces) {
+  try {
+    tensormass::read_mesh(path);
+    ADD_FAILURE() << path << ": read without error";
+  } catch (const tensormass::InputError& error) {
+    test_support::expect_contains(error.what(), pieces);
+  } catch (const std::exception& error) {
+    ADD_FAILURE() << path << ": not an InputError: " << error.what();
+  }
+}
+
+// --- Minimal JSON (objects, arrays, numbers, strings without escapes) ------
+
+struct Json {
+  enum class Kind { null, number, string, array, object } kind = Kind::null;
+  double number = 0;
+  std::string text;
+  std::vector<Json> items;
+  std::map<std::string, Json> members;
+
+  const Json& operator[](const std::string& key) const {
+    static const Json missing;
+    const auto found = members.find(key);
+    return found == members.end() ? missing : found->second;
+  }
+  int integer() const { return static_cast<int>(number); }
+};
+
+class JsonParser {
+ public:
+  explicit JsonParser(std::string text) : text_(std::move(text)) {}
+  Json parse() {
+    Json value = parse_value();
+    skip_space();
+    if (pos_ != text_.size()) throw std::runtime_error("json: trailing characters");
+    return value;
+  }
+
+ private:
+  void skip_space() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+  char next() {
+    skip_space();
+    if (pos_ >= text_.size()) throw std::runtime_error("json: unexpected end");
+    return text_[pos_];
+  }
+  std::string parse_string() {
+    ++pos_;
+    const std::size_t end = text_.find('"', pos_);
+    if (end == std::string::npos) throw std::runtime_error("json: unterminated string");
+    std::string result = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    return result;
+  }
+  Json parse_value() {
+    Json value;
+    const char c = next();
+    if (c == '{') {
+      value.kind = Json::Kind::object;
+      ++pos_;
+      while (next() != '}') {
+        const std::string key = parse_string();
+        if (next() != ':') throw std::runtime_error("json: expected ':'");
+        ++pos_;
+        value.members[key] = parse_value();
+        if (next() == ',') ++pos_;
+      }
+      ++pos_;
+    } else if (c == '[') {
+      value.kind = Json::Kind::array;
+      ++pos_;
+      while (next() != ']') {
+        value.items.push_back(parse_value());
+        if (next() == ',') ++pos_;
+      }
+      ++pos_;
+    } else if (c == '"') {
+      value.kind = Json::Kind::string;
+      value.text = parse_string();
+    } else if (text_.compare(pos_, 4, "null") == 0) {
+      pos_ += 4;
+    } else {
+      value.kind = Json::Kind::number;
+      std::size_t used = 0;
+      value.number = std::stod(text_.substr(pos_, 40), &used);
+      pos_ += used;
+    }
+    return value;
+  }
+  std::string text_;
+  std::size_t pos_ = 0;
+};
+
+inline const Json& expected_meshes() {
+  static const Json json = JsonParser(test_support::read_file(data_file("expected.json"))).parse();
+  return json;
+}
+
+// --- Mesh comparison ----------------------------------------------------------
+
+inline std::array<double, 3> position(const tensormass::Mesh& mesh, int node) {
+  const auto n = static_cast<std::size_t>(node);
+  return {mesh.rest_positions[3 * n], mesh.rest_positions[3 * n + 1], mesh.rest_positions[3 * n + 2]};
+}
+
+/// Cells per reference element name.
+inline std::map<std::string, int> cells_per_type(const tensormass::Mesh& mesh) {
+  std::map<std::string, int> counts;
+  for (const tensormass::ElementBlock& block : mesh.blocks) counts[block.element->name] += block.count();
+  return counts;
+}
+
+/// Sorted coordinates of `nodes`.
+inline std::vector<std::array<double, 3>> positions(const tensormass::Mesh& mesh, const std::vector<int>& nodes) {
+  std::vector<std::array<double, 3>> result;
+  for (int node : nodes) result.push_back(position(mesh, node));
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+/// Same cells (type, order, node coordinates in order), compared by position so
+/// that node numbering may differ.
+inline void expect_same_cells(const tensormass::Mesh& a, const tensormass::Mesh& b) {
+  ASSERT_EQ(a.dim, b.dim);
+  ASSERT_EQ(a.node_count(), b.node_count());
+  ASSERT_EQ(a.blocks.size(), b.blocks.size());
+  for (std::size_t k = 0; k < a.blocks.size(); ++k) {
+    const tensormass::ElementBlock& x = a.blocks[k];
+    const tensormass::ElementBlock& y = b.blocks[k];
+    ASSERT_EQ(x.element, y.element);
+    ASSERT_EQ(x.count(), y.count()) << x.element->name;
+    EXPECT_EQ(x.first_cell, y.first_cell);
+    for (int c = 0; c < x.count(); ++c)
+      for (int j = 0; j < x.nodes_per_cell(); ++j)
+        ASSERT_EQ(position(a, x.cell_nodes(c)[static_cast<std::size_t>(j)]), position(b, y.cell_nodes(c)[static_cast<std::size_t>(j)]))
+            << x.element->name << " cell " << c << " node " << j;
+  }
+}
+
+/// Identical meshes (same numbering), groups included; source ids optional.
+/// Coordinates may differ in the last digit (Gmsh writes ASCII with 16 digits).
+inline void expect_identical(const tensormass::Mesh& a, const tensormass::Mesh& b, bool compare_element_ids) {
+  EXPECT_EQ(a.dim, b.dim);
+  ASSERT_EQ(a.rest_positions.size(), b.rest_positions.size());
+  for (std::size_t i = 0; i < a.rest_positions.size(); ++i)
+    ASSERT_NEAR(a.rest_positions[i], b.rest_positions[i], 1e-15 * std::max(1.0, std::abs(a.rest_positions[i]))) << "coordinate " << i;
+  EXPECT_EQ(a.node_source_ids, b.node_source_ids);
+  ASSERT_EQ(a.blocks.size(), b.blocks.size());
+  for (std::size_t k = 0; k < a.blocks.size(); ++k) {
+    EXPECT_EQ(a.blocks[k].element, b.blocks[k].element);
+    EXPECT_EQ(a.blocks[k].connectivity, b.blocks[k].connectivity);
+    EXPECT_EQ(a.blocks[k].first_cell, b.blocks[k].first_cell);
+    if (compare_element_ids) {
+      EXPECT_EQ(a.blocks[k].source_ids, b.blocks[k].source_ids);
+    }
+  }
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t g = 0; g < a.groups.size(); ++g) {
+    EXPECT_EQ(a.groups[g].name, b.groups[g].name);
+    EXPECT_EQ(a.groups[g].dim, b.groups[g].dim);
+    EXPECT_EQ(a.groups[g].nodes, b.groups[g].nodes);
+    EXPECT_EQ(a.groups[g].cells, b.groups[g].cells);
+    EXPECT_EQ(a.groups[g].facets.offsets, b.groups[g].facets.offsets);
+    EXPECT_EQ(a.groups[g].facets.nodes, b.groups[g].facets.nodes);
+    EXPECT_EQ(a.groups[g].facets.orders, b.groups[g].facets.orders);
+  }
+}
+
+}  // namespace meshtest
+
+#endif
