@@ -8,7 +8,7 @@ $SUDO apt-get update -qq
 # libopenblas0-openmp: CHOLMOD's dense kernels on an optimised BLAS (5x
 # faster factorisations than the reference BLAS, docs/results/runtime.md).
 $SUDO apt-get install -y -qq --no-install-recommends \
-  g++ cmake ninja-build git \
+  g++ cmake ninja-build git clang-format \
   python3 python3-sympy python3-jinja2 python3-pytest python3-numpy \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
