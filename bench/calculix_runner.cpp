@@ -67,8 +67,8 @@ std::string common_law(const Scene& scene) {
   if (scene.model.materials.empty()) throw std::runtime_error("calculix: the scene has no material");
   const std::string law = scene.model.materials.front().law;
   for (const MaterialSpec& m : scene.model.materials)
-    if (m.law != law) throw std::runtime_error("calculix: every material must use the same law (found " + law +
-                                               " and " + m.law + ")");
+    if (m.law != law)
+      throw std::runtime_error("calculix: every material must use the same law (found " + law + " and " + m.law + ")");
   if (law != "stvk" && law != "hooke")
     throw std::runtime_error("calculix: law '" + law + "' has no CalculiX equivalent here (stvk, hooke)");
   return law;
@@ -123,8 +123,8 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
   const int dim = mesh.dim;
 
   std::ostringstream out;
-  out << "*HEADING\ntensormass bench: " << mesh.cell_count() << " cells, " << mesh.node_count() << " nodes, "
-      << law << (nlgeom ? " (NLGEOM)" : " (linear)") << "\n";
+  out << "*HEADING\ntensormass bench: " << mesh.cell_count() << " cells, " << mesh.node_count() << " nodes, " << law
+      << (nlgeom ? " (NLGEOM)" : " (linear)") << "\n";
   out << "*NODE, NSET=NALL\n";
   for (int node = 0; node < mesh.node_count(); ++node) {
     const double* x = &mesh.rest_positions[static_cast<std::size_t>(node) * 3];
@@ -176,8 +176,9 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
     bool used = false;
     for (const int c : material) used = used || c == static_cast<int>(m);
     if (!used) continue;
-    out << "*MATERIAL, NAME=MAT" << m + 1 << "\n*ELASTIC\n" << number(spec.young) << ", " << number(spec.poisson)
-        << "\n*DENSITY\n" << number(spec.density) << "\n";
+    out << "*MATERIAL, NAME=MAT" << m + 1 << "\n*ELASTIC\n"
+        << number(spec.young) << ", " << number(spec.poisson) << "\n*DENSITY\n"
+        << number(spec.density) << "\n";
     out << "*SOLID SECTION, ELSET=E" << m + 1 << ", MATERIAL=MAT" << m + 1 << "\n";
     if (dim == 2) out << "1.\n";  // plane strain, unit thickness (as tensormass)
   }
@@ -238,9 +239,9 @@ CalculixResult run_calculix(const Mesh& mesh, const Scene& scene, const Calculix
     file << deck;
     if (!file.flush()) throw std::runtime_error("calculix: cannot write " + (directory / "job.inp").string());
   }
-  const std::string command = "cd " + quoted(directory.string()) + " && OMP_NUM_THREADS=" +
-                              std::to_string(std::max(1, options.threads)) + " " + quoted(options.executable) +
-                              " -i job > ccx.log 2>&1";
+  const std::string command = "cd " + quoted(directory.string()) +
+                              " && OMP_NUM_THREADS=" + std::to_string(std::max(1, options.threads)) + " " +
+                              quoted(options.executable) + " -i job > ccx.log 2>&1";
   const auto start = std::chrono::steady_clock::now();
   const int status = std::system(command.c_str());
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

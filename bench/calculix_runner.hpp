@@ -32,7 +32,7 @@ struct CalculixOptions {
   /// *CONTROLS, PARAMETERS=FIELD tightened by 8 to 10 orders, so that ccx
   /// converges each increment to round-off (the defaults stop at ~1e-3).
   bool tight_controls = true;
-  bool keep_directory = false;     ///< keep the work directory (deck, .dat, .sta, log)
+  bool keep_directory = false;  ///< keep the work directory (deck, .dat, .sta, log)
 };
 
 struct CalculixResult {

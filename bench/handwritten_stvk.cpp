@@ -195,9 +195,9 @@ void stvk_hex8_gradient_hessian(const double* u, const double* consts, double* g
 
 long stvk_flops_gradient(int nodes, int points) {
   const long n = nodes;
-  const long F = 18 * n;           // 9 entries, n multiply-adds
-  const long E = 9 * 6 + 9;        // F^T F (3 mult + 2 add... counted 6), minus I, halve
-  const long S = 9 * 2 + 3 + 2;    // 2 mu E, + lam tr(E) on the diagonal
+  const long F = 18 * n;         // 9 entries, n multiply-adds
+  const long E = 9 * 6 + 9;      // F^T F (3 mult + 2 add... counted 6), minus I, halve
+  const long S = 9 * 2 + 3 + 2;  // 2 mu E, + lam tr(E) on the diagonal
   const long P = 9 * 6;
   const long f = n * 3 * (6 + 2);  // P dN_j, times wV, accumulate
   return points * (F + E + S + P + f);

@@ -50,16 +50,16 @@ struct Options {
 };
 
 struct Settings {
-  int repetitions;            // samples per kernel and function (odd: a true median)
-  double sample_ns;           // target duration of one sample
-  int max_elements;           // elements per kernel, at most
-  double working_set_bytes;   // consts + u of all elements, at most (about)
+  int repetitions;           // samples per kernel and function (odd: a true median)
+  double sample_ns;          // target duration of one sample
+  int max_elements;          // elements per kernel, at most
+  double working_set_bytes;  // consts + u of all elements, at most (about)
 };
 
 constexpr Settings kFull{31, 2.0e6, 2048, 1024.0 * 1024.0};
 constexpr Settings kQuick{7, 0.2e6, 512, 1024.0 * 1024.0};
 
-constexpr double kYoung = 3.0e3;   // Pa, soft tissue
+constexpr double kYoung = 3.0e3;  // Pa, soft tissue
 constexpr double kPoisson = 0.45;
 
 /// One timed kernel: a registry triple or the baseline.
@@ -292,16 +292,17 @@ bool verify_baseline(const Row& baseline, const Row& reference, const Geometry& 
       worst_hessian = std::max(worst_hessian, relative_difference(mine.hessian, theirs.hessian));
     }
   const bool ok = worst_gradient <= 1e-10 && worst_hessian <= 1e-10;
-  std::printf("baseline check: handwritten stvk/%s vs %s/%s/%s on 4 elements (x1 and x10 strain): "
-              "gradient %.1e, hessian %.1e relative: %s\n",
-              baseline.element.c_str(), reference.law.c_str(), reference.element.c_str(), reference.split.c_str(),
-              worst_gradient, worst_hessian, ok ? "agree (<= 1e-10)" : "DISAGREE");
+  std::printf(
+      "baseline check: handwritten stvk/%s vs %s/%s/%s on 4 elements (x1 and x10 strain): "
+      "gradient %.1e, hessian %.1e relative: %s\n",
+      baseline.element.c_str(), reference.law.c_str(), reference.element.c_str(), reference.split.c_str(),
+      worst_gradient, worst_hessian, ok ? "agree (<= 1e-10)" : "DISAGREE");
   if (!ok)
     std::fprintf(stderr,
                  "tensormass bench: the hand-written stvk/%s baseline disagrees with the generated %s/%s/%s "
                  "(gradient %.3e, hessian %.3e relative, limit 1e-10)\n",
-                 baseline.element.c_str(), reference.law.c_str(), reference.element.c_str(),
-                 reference.split.c_str(), worst_gradient, worst_hessian);
+                 baseline.element.c_str(), reference.law.c_str(), reference.element.c_str(), reference.split.c_str(),
+                 worst_gradient, worst_hessian);
   return ok;
 }
 
@@ -342,7 +343,6 @@ std::vector<std::string> cross_check(const std::vector<Row*>& rows, const Geomet
   }
   return warnings;
 }
-
 
 double gflops(long flops, double ns) { return ns > 0.0 ? static_cast<double>(flops) / ns : 0.0; }
 
@@ -445,8 +445,8 @@ void print_table(const std::vector<const Row*>& rows) {
   for (const Row* r : rows) {
     if (!previous.empty() && previous != r->element) std::printf("\n");
     previous = r->element;
-    std::printf("%-11s %-8s %-11s %5d %6d %11.1f %12.1f %8.2f %8.2f %10ld %10ld\n", r->law.c_str(),
-                r->element.c_str(), r->split.c_str(), r->elements, r->consts, r->ns_gradient, r->ns_gradient_hessian,
+    std::printf("%-11s %-8s %-11s %5d %6d %11.1f %12.1f %8.2f %8.2f %10ld %10ld\n", r->law.c_str(), r->element.c_str(),
+                r->split.c_str(), r->elements, r->consts, r->ns_gradient, r->ns_gradient_hessian,
                 gflops(r->flops_gradient, r->ns_gradient), gflops(r->flops_gradient_hessian, r->ns_gradient_hessian),
                 r->flops_gradient, r->flops_gradient_hessian);
   }
@@ -508,18 +508,20 @@ void print_targets(const std::vector<const Row*>& rows, const Registry& registry
     const double ratio = hex8_best->ns_gradient_hessian / eight;
     std::printf("    best: %s, ratio %.2f  %s\n", hex8_best->split.c_str(), ratio, tally.mark(ratio <= 1.0));
     if (hex8_baseline)
-      std::printf("    (info) vs the hand-written hex8 (2x2x2 points, %.1f ns): ratio %.2f; gradient alone %.1f vs "
-                  "%.1f ns: %.2f\n",
-                  hex8_baseline->ns_gradient_hessian, hex8_best->ns_gradient_hessian / hex8_baseline->ns_gradient_hessian,
-                  hex8_best->ns_gradient, hex8_baseline->ns_gradient, hex8_best->ns_gradient / hex8_baseline->ns_gradient);
+      std::printf(
+          "    (info) vs the hand-written hex8 (2x2x2 points, %.1f ns): ratio %.2f; gradient alone %.1f vs "
+          "%.1f ns: %.2f\n",
+          hex8_baseline->ns_gradient_hessian, hex8_best->ns_gradient_hessian / hex8_baseline->ns_gradient_hessian,
+          hex8_best->ns_gradient, hex8_baseline->ns_gradient, hex8_best->ns_gradient / hex8_baseline->ns_gradient);
   } else {
     std::printf("    no stvk/hex8 kernel: MISS\n");
     ++tally.miss;
   }
 
   // (iii) stvk / hooke for each element and split.
-  std::printf("\n(iii) stvk / hooke, same element and split (target: gradient+hessian ratio <= 2.5; gradient ratio "
-              "for information)\n");
+  std::printf(
+      "\n(iii) stvk / hooke, same element and split (target: gradient+hessian ratio <= 2.5; gradient ratio "
+      "for information)\n");
   std::printf("    %-8s %-7s %10s %10s\n", "element", "split", "g+h ratio", "g ratio");
   for (const tm_element_info* info : registry.elements())
     for (const std::string& split : registry.splits()) {
@@ -532,8 +534,9 @@ void print_targets(const std::vector<const Row*>& rows, const Registry& registry
     }
 
   // (iv) tensor vs whole.
-  std::printf("\n(iv) tensor vs whole (quadrature) split, first-order elements: time ratio tensor/whole (< 1: tensor "
-              "faster)\n");
+  std::printf(
+      "\n(iv) tensor vs whole (quadrature) split, first-order elements: time ratio tensor/whole (< 1: tensor "
+      "faster)\n");
   std::printf("    %-11s %-8s %10s %10s   %s\n", "law", "element", "g+h ratio", "g ratio", "faster (g+h)");
   for (const tm_element_info* info : registry.elements())
     for (const std::string& law : registry.laws()) {
@@ -586,11 +589,13 @@ int kernels_command(const std::vector<std::string>& args) {
   std::printf("tensormass bench kernels%s: single thread, median of %d samples, ns per element\n",
               options.quick ? " (quick)" : "", settings.repetitions);
   std::printf("cpu: %s; build: %s\n", cpu_model().c_str(), TENSORMASS_BENCH_BUILD_INFO);
-  std::printf("elements: random valid ones (mild distortion, 1-5 %% strain); per kernel as many as keep consts + u "
-              "within %.0f KiB (at most %d); outputs go to one scratch buffer\n",
-              settings.working_set_bytes / 1024.0, settings.max_elements);
-  std::printf("GF/s g+h counts flops_hessian for the fused whole split, flops_gradient + flops_hessian otherwise "
-              "(their gradient_hessian calls both)\n\n");
+  std::printf(
+      "elements: random valid ones (mild distortion, 1-5 %% strain); per kernel as many as keep consts + u "
+      "within %.0f KiB (at most %d); outputs go to one scratch buffer\n",
+      settings.working_set_bytes / 1024.0, settings.max_elements);
+  std::printf(
+      "GF/s g+h counts flops_hessian for the fused whole split, flops_gradient + flops_hessian otherwise "
+      "(their gradient_hessian calls both)\n\n");
 
   // Rows, grouped by element in registry order.
   std::vector<Row> rows;
@@ -671,8 +676,9 @@ int kernels_command(const std::vector<std::string>& args) {
     std::printf("\nconsistency warnings (splits should agree with the law's whole split to 1e-8):\n");
     for (const std::string& w : warnings) std::printf("  WARNING %s\n", w.c_str());
   } else {
-    std::printf("consistency: every split agrees with its law's whole split (gradient, hessian <= 1e-8 relative), "
-                "gradient_hessian's gradient matches gradient, K symmetric\n");
+    std::printf(
+        "consistency: every split agrees with its law's whole split (gradient, hessian <= 1e-8 relative), "
+        "gradient_hessian's gradient matches gradient, K symmetric\n");
   }
   print_table(ordered);
   print_targets(ordered, registry);

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "kernel_bench.hpp"
-#include "tensormass/common/errors.hpp"
 #include "paper_bench.hpp"
 #include "runtime_bench.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace {
 

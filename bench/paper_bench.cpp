@@ -32,12 +32,12 @@
 #include "paper_report.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
-#include "tensormass/solvers/integrators.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/meshing/beam.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/scene/scene.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"
@@ -74,11 +74,12 @@ struct Options {
 // Same settings for every run.
 constexpr double kPoisson = 0.3, kDensity = 1000.0, kGravity = 9.81;
 constexpr double kDt = 0.01;
-constexpr int kSteps = 150;         // 1.5 s
-constexpr double kRamp = 1.0;       // gravity ramped in over 1 s ...
-constexpr double kDampingMass = 4;  // ... with Rayleigh mass damping (1/s; critical for the 6 m beam's first mode: about 5.6)
+constexpr int kSteps = 150;    // 1.5 s
+constexpr double kRamp = 1.0;  // gravity ramped in over 1 s ...
+constexpr double kDampingMass =
+    4;  // ... with Rayleigh mass damping (1/s; critical for the 6 m beam's first mode: about 5.6)
 constexpr int kSmokeSteps = 10;
-constexpr double kHuge = 1e300;  // a threshold that no element reaches
+constexpr double kHuge = 1e300;                                  // a threshold that no element reaches
 const std::vector<double> kStrainThresholds{0.015, 0.03, 0.06};  // R_EL, R_V, R_NL (the origin's 1.5, 3, 6 %)
 const std::vector<double> kUpgradeFractions{0.5, 0.2, 0.05};     // R_S: thresholds upgrading these shares
 constexpr int kCalibrationIterations = 12;
@@ -99,7 +100,7 @@ struct Config {
 
 /// What one simulation gives.
 struct RunResult {
-  std::vector<double> step_ms;  // counted steps (all but the first)
+  std::vector<double> step_ms;                                           // counted steps (all but the first)
   double criteria_seconds = 0, assembly_seconds = 0, solve_seconds = 0;  // counted steps
   int upgraded = 0;
   Trajectory trajectory;
@@ -107,8 +108,6 @@ struct RunResult {
 };
 
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-
 
 /// One thread for OpenMP and, when CHOLMOD loaded OpenBLAS, for BLAS too.
 void single_thread() {
@@ -175,7 +174,8 @@ RunResult simulate(const Mesh& mesh, const BeamCase& beam, const Config& config,
       adaptivity->update(s.displacement, s.step);
     }
     const auto now = Clock::now();
-    if (s.step > 1) result.step_ms.push_back(1e3 * std::chrono::duration<double>(now - mark).count());
+    if (s.step > 1)
+      result.step_ms.push_back(1e3 * std::chrono::duration<double>(now - mark).count());
     else {
       after_first = statistics;
       if (adaptivity) criteria_after_first = adaptivity->criteria_seconds();
@@ -241,9 +241,9 @@ std::vector<BeamCase> beam_cases(const Options& options) {
 /// threshold is never reached (nothing switches; the criteria still run).
 struct Overhead {
   std::string criterion;
-  double ms_per_step = 0, criteria_ms = 0, hooke_ms = 0;  // means per step (median over repetitions)
-  double ms_median = 0, hooke_median = 0;                   // medians per step (median over repetitions)
-  double added() const { return criteria_ms / hooke_ms; }   // the criteria's time over pure Hooke's step
+  double ms_per_step = 0, criteria_ms = 0, hooke_ms = 0;   // means per step (median over repetitions)
+  double ms_median = 0, hooke_median = 0;                  // medians per step (median over repetitions)
+  double added() const { return criteria_ms / hooke_ms; }  // the criteria's time over pure Hooke's step
 };
 
 struct BeamOutcome {
@@ -307,10 +307,10 @@ BeamOutcome run_beam(const BeamCase& beam, int steps, int repetitions, bool over
   const std::size_t first_overhead = configs.size();
   if (overhead)
     for (const char* criterion : {"R_EL", "R_V", "R_S", "R_NL"}) configs.push_back({criterion, kHuge});
-  std::printf("R_S thresholds (upgrading about 1/2, 1/5, 1/20 of the elements): %.4g, %.4g, %.4g N "
-              "(calibration %.1f s)\n",
-              outcome.rs_thresholds[0].second, outcome.rs_thresholds[1].second, outcome.rs_thresholds[2].second,
-              since(t0));
+  std::printf(
+      "R_S thresholds (upgrading about 1/2, 1/5, 1/20 of the elements): %.4g, %.4g, %.4g N "
+      "(calibration %.1f s)\n",
+      outcome.rs_thresholds[0].second, outcome.rs_thresholds[1].second, outcome.rs_thresholds[2].second, since(t0));
 
   std::vector<std::vector<double>> means(configs.size()), medians(configs.size()), criteria(configs.size());
   std::vector<std::vector<double>> assembly(configs.size()), solve(configs.size());
@@ -340,8 +340,10 @@ BeamOutcome run_beam(const BeamCase& beam, int steps, int repetitions, bool over
                  (first[0].failure.empty() ? stvk.failure : first[0].failure).c_str());
     outcome.ok = false;
   }
-  outcome.tip_hooke = tip_deflection(mesh, dim, first[0].trajectory.empty() ? std::vector<double>{} : first[0].trajectory.back());
-  outcome.tip_stvk = tip_deflection(mesh, dim, stvk.trajectory.empty() ? std::vector<double>{} : stvk.trajectory.back());
+  outcome.tip_hooke =
+      tip_deflection(mesh, dim, first[0].trajectory.empty() ? std::vector<double>{} : first[0].trajectory.back());
+  outcome.tip_stvk =
+      tip_deflection(mesh, dim, stvk.trajectory.empty() ? std::vector<double>{} : stvk.trajectory.back());
   std::printf("final tip deflection: Hooke %.3f m, StVK %.3f m (%.0f %% of L)\n", outcome.tip_hooke, outcome.tip_stvk,
               100 * outcome.tip_stvk / length);
   std::printf("%-6s %10s %11s %11s %11s %11s %11s %9s %11s   %s\n", "mode", "threshold", "mean ms", "median ms",
@@ -376,11 +378,11 @@ BeamOutcome run_beam(const BeamCase& beam, int steps, int repetitions, bool over
     o.hooke_ms = median(means[0]);
     o.ms_median = median(medians[i]);
     o.hooke_median = median(medians[0]);
-    std::printf("overhead %-5s (threshold never reached): criteria %.4f ms per step = %.1f %% of pure Hooke's step; "
-                "whole step %.4f ms vs Hooke %.4f (%+.1f %%), medians %.4f vs %.4f (%+.1f %%)\n",
-                o.criterion.c_str(), o.criteria_ms, 100 * o.added(), o.ms_per_step, o.hooke_ms,
-                100 * (o.ms_per_step / o.hooke_ms - 1), o.ms_median, o.hooke_median,
-                100 * (o.ms_median / o.hooke_median - 1));
+    std::printf(
+        "overhead %-5s (threshold never reached): criteria %.4f ms per step = %.1f %% of pure Hooke's step; "
+        "whole step %.4f ms vs Hooke %.4f (%+.1f %%), medians %.4f vs %.4f (%+.1f %%)\n",
+        o.criterion.c_str(), o.criteria_ms, 100 * o.added(), o.ms_per_step, o.hooke_ms,
+        100 * (o.ms_per_step / o.hooke_ms - 1), o.ms_median, o.hooke_median, 100 * (o.ms_median / o.hooke_median - 1));
     outcome.overhead.push_back(o);
   }
   std::fflush(stdout);
@@ -430,10 +432,14 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       if (i + 1 >= args.size() || args[i + 1].empty()) return nullptr;
       return &args[++i];
     };
-    if (a == "--quick") options.quick = true;
-    else if (a == "--smoke") options.smoke = true;
-    else if (a == "--no-3d") options.no_3d = true;
-    else if (a == "--no-plots") options.plots = false;
+    if (a == "--quick")
+      options.quick = true;
+    else if (a == "--smoke")
+      options.smoke = true;
+    else if (a == "--no-3d")
+      options.no_3d = true;
+    else if (a == "--no-plots")
+      options.plots = false;
     else if (a == "--help" || a == "-h") {
       std::printf("%s", kUsage);
       exit_code = 0;
@@ -445,8 +451,10 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
         exit_code = 2;
         return false;
       }
-      if (a == "--json") options.json = *v;
-      else if (a == "--out") options.out = *v;
+      if (a == "--json")
+        options.json = *v;
+      else if (a == "--out")
+        options.out = *v;
       else {
         char* end = nullptr;
         const long n = std::strtol(v->c_str(), &end, 10);
@@ -488,9 +496,10 @@ int paper_command(const std::vector<std::string>& args) {
   std::printf("tensormass bench paper (%s): the origin report's Table 1 and Figure 12\n", mode_name.c_str());
   std::printf("machine: %s, load average %s; build: %s; one thread\n", cpu_model().c_str(), load_average().c_str(),
               TENSORMASS_BENCH_BUILD_INFO);
-  std::printf("implicit Euler, dt = %g s, %d steps (first not timed), 1 Newton iteration per step, CHOLMOD; "
-              "nu = %g, rho = %g kg/m^3, gravity %g m/s^2 (-y), clamped at x = 0; %d repetitions\n",
-              kDt, steps, kPoisson, kDensity, kGravity, options.repetitions);
+  std::printf(
+      "implicit Euler, dt = %g s, %d steps (first not timed), 1 Newton iteration per step, CHOLMOD; "
+      "nu = %g, rho = %g kg/m^3, gravity %g m/s^2 (-y), clamped at x = 0; %d repetitions\n",
+      kDt, steps, kPoisson, kDensity, kGravity, options.repetitions);
 
   std::vector<BeamCase> cases = beam_cases(options);
   std::vector<BeamOutcome> outcomes;
@@ -533,9 +542,9 @@ int paper_command(const std::vector<std::string>& args) {
           worst_run = r.mode + " " + fmt("%.4g", *r.threshold);
         }
       }
-      targets.push_back({main_beam + ": adaptive runs outside [Hooke, StVK], " + what + " ms per step, worst (" +
-                             worst_run + ")",
-                         worst_outside, "<=", 0.10});
+      targets.push_back(
+          {main_beam + ": adaptive runs outside [Hooke, StVK], " + what + " ms per step, worst (" + worst_run + ")",
+           worst_outside, "<=", 0.10});
     }
     if (const PaperRow* el = find_row(rows, main_beam, "R_EL", 0.015))
       targets.push_back({main_beam + ": R_EL 0.015 error / Hooke's error", el->error / hooke->error, "<=", 0.5});
@@ -582,16 +591,17 @@ int paper_command(const std::vector<std::string>& args) {
   if (!outcomes.empty())
     for (std::size_t i = 0; i < outcomes[0].overhead.size(); ++i) {
       const Overhead& o = outcomes[0].overhead[i];
-      json << (i ? ", " : "") << "\n  {\"beam\": " << json_string(main_beam) << ", \"criterion\": "
-           << json_string(o.criterion) << ", \"ms_per_step\": " << json_number(o.ms_per_step)
-           << ", \"hooke_ms_per_step\": " << json_number(o.hooke_ms) << ", \"criteria_ms\": "
-           << json_number(o.criteria_ms) << ", \"ms_per_step_median\": " << json_number(o.ms_median)
+      json << (i ? ", " : "") << "\n  {\"beam\": " << json_string(main_beam)
+           << ", \"criterion\": " << json_string(o.criterion) << ", \"ms_per_step\": " << json_number(o.ms_per_step)
+           << ", \"hooke_ms_per_step\": " << json_number(o.hooke_ms)
+           << ", \"criteria_ms\": " << json_number(o.criteria_ms)
+           << ", \"ms_per_step_median\": " << json_number(o.ms_median)
            << ", \"hooke_ms_per_step_median\": " << json_number(o.hooke_median) << "}";
     }
   json << "\n],\n\"targets\": [";
   for (std::size_t i = 0; i < targets.size(); ++i)
-    json << (i ? ", " : "") << "\n  {\"what\": " << json_string(targets[i].what) << ", \"value\": "
-         << json_number(targets[i].value) << ", \"op\": " << json_string(targets[i].op)
+    json << (i ? ", " : "") << "\n  {\"what\": " << json_string(targets[i].what)
+         << ", \"value\": " << json_number(targets[i].value) << ", \"op\": " << json_string(targets[i].op)
          << ", \"limit\": " << json_number(targets[i].limit) << ", \"pass\": " << (targets[i].pass() ? "true" : "false")
          << "}";
   json << "\n],\n\"rows\": " << rows_json(rows) << "\n}\n";
@@ -607,7 +617,8 @@ int paper_command(const std::vector<std::string>& args) {
     std::ostringstream md;
     md << paper_markdown_header(mode_name, cpu_model(), load_average(), TENSORMASS_BENCH_BUILD_INFO, steps, kDt,
                                 options.repetitions, repetitions_3d(options.repetitions));
-    md << "\n## Beams\n\n| beam | elements | L (m) | E (Pa) | final tip deflection, StVK (m) | Hooke (m) | R_S thresholds "
+    md << "\n## Beams\n\n| beam | elements | L (m) | E (Pa) | final tip deflection, StVK (m) | Hooke (m) | R_S "
+          "thresholds "
           "(1/2, 1/5, 1/20 of the elements) |\n|---|---|---|---|---|---|---|\n";
     for (std::size_t b = 0; b < cases.size(); ++b) {
       const BeamOutcome& o = outcomes[b];
@@ -632,7 +643,8 @@ int paper_command(const std::vector<std::string>& args) {
       md << "| " << t.what << " | " << t.op << " " << fmt("%g", t.limit) << " | " << fmt("%.3f", t.value) << " | "
          << (t.pass() ? "PASS" : "**MISS**") << " |\n";
     if (!outcomes.empty() && !outcomes[0].overhead.empty()) {
-      md << "\n## Criteria overhead (" << main_beam << ", issue 4)\n\n"
+      md << "\n## Criteria overhead (" << main_beam
+         << ", issue 4)\n\n"
             "Adaptive runs whose threshold no element reaches (nothing switches, the criterion runs on every "
             "element every step) against pure Hooke, same repetitions.\n\n"
             "The criteria's own time (Adaptivity::criteria_seconds, per step) over pure Hooke's mean step is the "
@@ -645,15 +657,16 @@ int paper_command(const std::vector<std::string>& args) {
         md << "| " << o.criterion << " | " << fmt("%.4f", o.criteria_ms) << " | " << fmt("%.1f %%", 100 * o.added())
            << " | " << fmt("%.4f", o.ms_per_step) << " | " << fmt("%.4f", o.hooke_ms) << " | "
            << fmt("%+.1f %%", 100 * (o.ms_per_step / o.hooke_ms - 1)) << " | " << fmt("%.4f", o.ms_median) << " | "
-           << fmt("%.4f", o.hooke_median) << " | " << fmt("%+.1f %%", 100 * (o.ms_median / o.hooke_median - 1))
-           << " | " << fmt("%.0f", 1e6 * o.criteria_ms / (outcomes[0].rows.empty() ? 1 : outcomes[0].rows[0].elements))
+           << fmt("%.4f", o.hooke_median) << " | " << fmt("%+.1f %%", 100 * (o.ms_median / o.hooke_median - 1)) << " | "
+           << fmt("%.0f", 1e6 * o.criteria_ms / (outcomes[0].rows.empty() ? 1 : outcomes[0].rows[0].elements))
            << " |\n";
     }
     md << paper_markdown_footer();
     if (!write_file(out / "paper.md", md.str())) return 1;
     if (options.plots) {
       const std::string command = "/usr/bin/python3 '" + std::string(TENSORMASS_PAPER_SOURCE_DIR) +
-                                  "/bench/plot_paper.py' '" + (out / "paper.json").string() + "' '" + out.string() + "'";
+                                  "/bench/plot_paper.py' '" + (out / "paper.json").string() + "' '" + out.string() +
+                                  "'";
       if (std::system(command.c_str()) != 0)
         std::fprintf(stderr, "tensormass bench paper: the plots failed (%s)\n", command.c_str());
     }

@@ -37,18 +37,18 @@ double mean(const std::vector<double>& values);
 
 /// One run of the experiment (one JSON row).
 struct PaperRow {
-  std::string beam;                  ///< "quad 60x10", "hex 30x6x6", ...
+  std::string beam;  ///< "quad 60x10", "hex 30x6x6", ...
   int elements = 0;
-  std::string mode;                  ///< hooke, stvk, R_EL, R_V, R_S, R_NL
-  std::optional<double> threshold;   ///< none for the pure runs
-  double ms_per_step = 0;            ///< median over repetitions of the run's mean ms per step
-  double ms_per_step_median = 0;     ///< median over repetitions of the run's median ms per step
-  double error = 0;                  ///< trajectory_error against the pure StVK run
-  int upgraded = 0;                  ///< elements under StVK at the end (pure stvk: all; hooke: 0)
-  double criteria_ms = 0;            ///< criteria time per step (median over repetitions)
-  double assembly_ms = 0;            ///< assembly time per step (median over repetitions)
-  double solve_ms = 0;               ///< factorisation + solve time per step (median over repetitions)
-  std::vector<double> samples;       ///< mean ms per step of each repetition
+  std::string mode;                 ///< hooke, stvk, R_EL, R_V, R_S, R_NL
+  std::optional<double> threshold;  ///< none for the pure runs
+  double ms_per_step = 0;           ///< median over repetitions of the run's mean ms per step
+  double ms_per_step_median = 0;    ///< median over repetitions of the run's median ms per step
+  double error = 0;                 ///< trajectory_error against the pure StVK run
+  int upgraded = 0;                 ///< elements under StVK at the end (pure stvk: all; hooke: 0)
+  double criteria_ms = 0;           ///< criteria time per step (median over repetitions)
+  double assembly_ms = 0;           ///< assembly time per step (median over repetitions)
+  double solve_ms = 0;              ///< factorisation + solve time per step (median over repetitions)
+  std::vector<double> samples;      ///< mean ms per step of each repetition
 };
 
 /// Escapes a string for JSON (quotes, backslash, control characters).

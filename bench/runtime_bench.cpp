@@ -29,12 +29,12 @@
 #include "calculix_runner.hpp"
 #include "machine_info.hpp"
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/meshing/beam.hpp"
-#include "tensormass/solvers/integrators.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"
@@ -80,8 +80,6 @@ double mean(const std::vector<double>& values) {
   for (const double v : values) sum += v;
   return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
 }
-
-
 
 /// OpenBLAS's thread control when the BLAS that CHOLMOD loaded is OpenBLAS.
 struct BlasThreads {
@@ -263,7 +261,7 @@ double tip_deflection(const Mesh& mesh, const Model& model, const std::vector<do
 
 /// Statistics of the steps after the first (warm-up) one of a dynamic run.
 struct StepFigures {
-  int steps = 0;                 // counted steps
+  int steps = 0;  // counted steps
   double step_ms_mean = 0, step_ms_median = 0;
   double assembly_ms = 0, solve_ms = 0, rest_ms = 0;  // per counted step
   double linear_iterations = 0;                       // per counted step
@@ -316,7 +314,7 @@ constexpr CcxSettings kCcxFull{{25, 10, 10}, 10, 3};
 constexpr CcxSettings kCcxQuick{{10, 5, 5}, 10, 3};
 constexpr std::array<double, 3> kCcxSize{2.5, 1.0, 1.0};
 constexpr double kCcxYoung = 1.0e6;
-constexpr double kCcxGravity = 4.0;  // m/s^2: tip deflection about 10 % of L (see the output)
+constexpr double kCcxGravity = 4.0;         // m/s^2: tip deflection about 10 % of L (see the output)
 constexpr double kAgreementFailure = 1e-4;  // beyond this the bench fails (exit 1)
 
 bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Target>& targets) {
@@ -332,10 +330,11 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
   std::printf("beam %d x %d x %d cubes x 6 tets (tet6, Kuhn) = %d tet4, %d nodes; L x H x W = %g x %g x %g m\n",
               settings.cells[0], settings.cells[1], settings.cells[2], mesh.cell_count(), mesh.node_count(),
               kCcxSize[0], kCcxSize[1], kCcxSize[2]);
-  std::printf("StVK E = %g Pa, nu = %g, rho = %g kg/m^3, gravity %g m/s^2 (-y), clamped at x = 0; %d load steps / "
-              "fixed increments; tensormass Newton tol 1e-10 (relative residual), CHOLMOD; ccx C3D4 NLGEOM, "
-              "*STATIC DIRECT, tight *CONTROLS; %d thread(s) each (OMP_NUM_THREADS=%d for ccx)\n",
-              kCcxYoung, kPoisson, kDensity, kCcxGravity, settings.increments, threads, threads);
+  std::printf(
+      "StVK E = %g Pa, nu = %g, rho = %g kg/m^3, gravity %g m/s^2 (-y), clamped at x = 0; %d load steps / "
+      "fixed increments; tensormass Newton tol 1e-10 (relative residual), CHOLMOD; ccx C3D4 NLGEOM, "
+      "*STATIC DIRECT, tight *CONTROLS; %d thread(s) each (OMP_NUM_THREADS=%d for ccx)\n",
+      kCcxYoung, kPoisson, kDensity, kCcxGravity, settings.increments, threads, threads);
   json.add("tets", mesh.cell_count()).add("nodes", mesh.node_count()).add("increments", settings.increments);
   json.add("threads", threads).add("gravity", kCcxGravity).add("young", kCcxYoung);
 
@@ -390,7 +389,8 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
   for (int node = 0; node < mesh.node_count(); ++node) {
     double d2 = 0.0, u2 = 0.0;
     for (int a = 0; a < 3; ++a) {
-      const double tm = u_tm[static_cast<std::size_t>(node) * 3 + a], cx = u_ccx[static_cast<std::size_t>(node) * 3 + a];
+      const double tm = u_tm[static_cast<std::size_t>(node) * 3 + a],
+                   cx = u_ccx[static_cast<std::size_t>(node) * 3 + a];
       d2 += (tm - cx) * (tm - cx);
       u2 += cx * cx;
     }
@@ -427,8 +427,8 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
   json.add("ratio_ccx_over_tensormass_solve_only", ratio_solve);
   json.add("tensormass_total_samples_s", tm_total).add("ccx_wall_samples_s", ccx_wall);
 
-  targets.push_back({"ccx wall / tensormass wall, " + std::to_string(mesh.cell_count()) + " tets", ratio, ">=", 5.0,
-                     true});
+  targets.push_back(
+      {"ccx wall / tensormass wall, " + std::to_string(mesh.cell_count()) + " tets", ratio, ">=", 5.0, true});
   targets.push_back({"displacement agreement with ccx (relative)", agreement, "<=", 1e-5, true});
   if (!(agreement <= kAgreementFailure)) {
     std::fprintf(stderr, "tensormass bench runtime: tensormass and CalculiX disagree (%.3e > %.0e)\n", agreement,
@@ -455,11 +455,13 @@ constexpr double kCgTolerance = 1e-8;
 
 bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
   std::printf("\n== 2. Implicit Euler steps, StVK tet4 beams (tet6 cut), 1 Newton iteration per step ==\n");
-  std::printf("E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), dt = %g s, clamped; CG: Jacobi, tolerance %g, "
-              "warm-started; one uncounted warm-up step per run\n",
-              kImplicitYoung, kPoisson, kDensity, kImplicitDt, kCgTolerance);
-  std::printf("reference = one assembly (gradient + Hessian) + N_cg x one K.multiply (medians), timed in the same "
-              "process right after each run, at its final state; ratio = median step / reference\n\n");
+  std::printf(
+      "E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), dt = %g s, clamped; CG: Jacobi, tolerance %g, "
+      "warm-started; one uncounted warm-up step per run\n",
+      kImplicitYoung, kPoisson, kDensity, kImplicitDt, kCgTolerance);
+  std::printf(
+      "reference = one assembly (gradient + Hessian) + N_cg x one K.multiply (medians), timed in the same "
+      "process right after each run, at its final state; ratio = median step / reference\n\n");
   std::printf("%-5s %7s %7s %-8s %3s %9s %9s %9s %9s %9s %7s %9s %9s %7s %9s\n", "mesh", "tets", "dofs", "solver",
               "thr", "step ms", "median", "assembly", "solve", "rest", "N_lin", "asm ref", "spmv ms", "ratio",
               "1st step");
@@ -488,15 +490,16 @@ bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, s
           // The reference, at the final state, same threads.
           SparseMatrix K = assembler.pattern();
           std::vector<double> g(model.dof_count());
-          const double t_assembly = time_median(c->repetitions >= 3 ? 5 : 3, [&] {
-            assembler.assemble(state.displacement, g, &K);
-          });
+          const double t_assembly =
+              time_median(c->repetitions >= 3 ? 5 : 3, [&] { assembler.assemble(state.displacement, g, &K); });
           std::vector<double> x(K.rows), y(K.rows);
           for (int i = 0; i < K.rows; ++i) x[i] = 1.0 + 1e-3 * (i % 7);
           constexpr int kBatch = 20;
-          const double t_spmv = time_median(5, [&] {
-                                  for (int b = 0; b < kBatch; ++b) K.multiply(x, y);
-                                }) / kBatch;
+          const double t_spmv = time_median(5,
+                                            [&] {
+                                              for (int b = 0; b < kBatch; ++b) K.multiply(x, y);
+                                            }) /
+                                kBatch;
           const double reference_ms = 1e3 * (t_assembly + f.linear_iterations * t_spmv);
           step_mean.push_back(f.step_ms_mean);
           step_median.push_back(f.step_ms_median);
@@ -528,14 +531,15 @@ bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, s
         if (cg) row.add("ratio_step_over_reference", median(ratio));
         json.push_back(row);
         if (cg && threads == 1 && std::string(c->label) == "10k")
-          targets.push_back({"CG step / (assembly + N_cg spmv), " + std::to_string(mesh.cell_count()) +
-                                 " tets, 1 thread",
-                             median(ratio), "<=", 1.5, true});
+          targets.push_back(
+              {"CG step / (assembly + N_cg spmv), " + std::to_string(mesh.cell_count()) + " tets, 1 thread",
+               median(ratio), "<=", 1.5, true});
       }
   }
-  std::printf("(step ms: mean of the counted steps, median: their median; assembly/solve/rest: per counted step, "
-              "rest = mean step - assembly - solve; N_lin: linear iterations per step; ratio: CG only; all columns: "
-              "median over the runs)\n");
+  std::printf(
+      "(step ms: mean of the counted steps, median: their median; assembly/solve/rest: per counted step, "
+      "rest = mean step - assembly - solve; N_lin: linear iterations per step; ratio: CG only; all columns: "
+      "median over the runs)\n");
   return true;
 }
 
@@ -590,8 +594,7 @@ JsonObject report_laws(const char* integrator, const std::vector<LawRun>& runs, 
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const LawRun& r = runs[i];
     std::printf("%-9s %-7s %11.4f %11.4f %12.4f %10.4f %14.4f   %s\n", i == 0 ? integrator : "", r.law.c_str(),
-                median(r.mean_ms), median(r.median_ms), median(r.assembly_ms), median(r.solve_ms), -r.tip,
-                origin[i]);
+                median(r.mean_ms), median(r.median_ms), median(r.assembly_ms), median(r.solve_ms), -r.tip, origin[i]);
     JsonObject row;
     row.add("law", r.law).add("step_ms_mean", median(r.mean_ms)).add("step_ms_median", median(r.median_ms));
     row.add("assembly_ms", median(r.assembly_ms)).add("solve_ms", median(r.solve_ms)).add("tip_deflection", -r.tip);
@@ -616,9 +619,10 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
   std::printf("\n== 3. The origin report's 2D beam: 60 x 10 quad4 (600 elements), one core ==\n");
   const Mesh mesh = beam_mesh(2, "quad4", {60, 10, 1}, {6.0, 1.0, 1.0});
   Threads scope(1);
-  std::printf("L x H = 6 x 1 m, plane strain, E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), clamped at x = 0; "
-              "median of %d runs, Hooke and StVK alternating; each run has one uncounted warm-up step\n",
-              kQuadYoung, kPoisson, kDensity, repetitions);
+  std::printf(
+      "L x H = 6 x 1 m, plane strain, E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), clamped at x = 0; "
+      "median of %d runs, Hooke and StVK alternating; each run has one uncounted warm-up step\n",
+      kQuadYoung, kPoisson, kDensity, repetitions);
   std::printf("implicit: backward Euler, dt = 0.01 s, %d counted steps, 1 Newton iteration per step, CHOLMOD\n", steps);
 
   std::vector<LawRun> implicit_runs = make_law_runs(mesh, [&](Scene& scene) {
@@ -628,9 +632,8 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
     scene.solver.newton_iterations = 1;
     scene.solver.linear.type = LinearSolverType::cholmod;
   });
-  run_laws(mesh, implicit_runs, repetitions, [](LawRun& r, State& state) {
-    return run_implicit(*r.model, *r.assembler, r.scene, state);
-  });
+  run_laws(mesh, implicit_runs, repetitions,
+           [](LawRun& r, State& state) { return run_implicit(*r.model, *r.assembler, r.scene, state); });
 
   // Explicit (symplectic Euler, lumped mass): no linear solve, so the law's
   // cost shows fully. dt = half the estimated stable step at rest.
@@ -750,8 +753,7 @@ int runtime_command(const std::vector<std::string>& args) {
   const std::string blas = loaded_blas();
   std::printf("BLAS (CHOLMOD's supernodal kernels): %s\n", blas.c_str());
   const std::string load_start = load_average();
-  std::printf("load average at start: %s (other processes share these cores: timings are noisy)\n",
-              load_start.c_str());
+  std::printf("load average at start: %s (other processes share these cores: timings are noisy)\n", load_start.c_str());
 
   std::vector<Target> targets;
   JsonObject report;

@@ -7,9 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <vector>
-
 #include <tensormass/kernels/registry.hpp>
+#include <vector>
 
 int main() {
   const double L = 0.2, W = 0.05, H = 0.05;               // beam size (m)
@@ -36,15 +35,18 @@ int main() {
   for (int l = 0; l < nz; ++l)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
-        hexes.push_back({id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
-                         id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)});
+        hexes.push_back({id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l), id(i, j, l + 1),
+                         id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)});
 
   // Parameters by name, in the kernel's order.
   std::vector<double> params(k.params);
   for (int p = 0; p < k.params; ++p) {
-    if (std::strcmp(k.param_names[p], "young") == 0) params[p] = young;
-    else if (std::strcmp(k.param_names[p], "poisson") == 0) params[p] = poisson;
-    else return std::fprintf(stderr, "unexpected parameter %s\n", k.param_names[p]), 1;
+    if (std::strcmp(k.param_names[p], "young") == 0)
+      params[p] = young;
+    else if (std::strcmp(k.param_names[p], "poisson") == 0)
+      params[p] = poisson;
+    else
+      return std::fprintf(stderr, "unexpected parameter %s\n", k.param_names[p]), 1;
   }
 
   // Element constants, lumped mass (row sums of the consistent mass: rho *

@@ -8,9 +8,9 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/gmsh_writer.hpp"
+#include "tensormass/meshing/beam.hpp"
 
 namespace tensormass::cli {
 namespace {
@@ -54,8 +54,10 @@ T parse_number(const std::string& option, const std::string& text) {
   std::size_t used = 0;
   T value{};
   try {
-    if constexpr (std::is_same_v<T, int>) value = std::stoi(text, &used);
-    else value = std::stod(text, &used);
+    if constexpr (std::is_same_v<T, int>)
+      value = std::stoi(text, &used);
+    else
+      value = std::stod(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
@@ -75,16 +77,22 @@ std::size_t parse_list(const std::string& option, const std::string& text, std::
 
 /// Applies one option; `value` is its argument.
 void apply_option(BeamOptions& options, const std::string& name, const std::string& value) {
-  if (name == "--dim") options.spec.dim = parse_number<int>(name, value);
-  else if (name == "--cells") options.cells_count = parse_list(name, value, options.spec.cells);
-  else if (name == "--size") options.size_count = parse_list(name, value, options.spec.size);
+  if (name == "--dim")
+    options.spec.dim = parse_number<int>(name, value);
+  else if (name == "--cells")
+    options.cells_count = parse_list(name, value, options.spec.cells);
+  else if (name == "--size")
+    options.size_count = parse_list(name, value, options.spec.size);
   else if (name == "--type" || name == "--mix") {
     if (options.type_given) throw InputError("beam: give one of --type or --mix, once");
     options.type_given = true;
     options.spec.phases = name == "--type" ? std::vector<BeamPhase>{{value, 1.0}} : parse_beam_mix(value);
-  } else if (name == "--order") options.spec.order = parse_number<int>(name, value);
-  else if (name == "--format") options.format = io::parse_msh_format(value);
-  else options.output = value;  // -o, --output
+  } else if (name == "--order")
+    options.spec.order = parse_number<int>(name, value);
+  else if (name == "--format")
+    options.format = io::parse_msh_format(value);
+  else
+    options.output = value;  // -o, --output
 }
 
 bool known_option(const std::string& name) {
@@ -131,9 +139,9 @@ std::string summary(const std::string& path, const Mesh& mesh) {
   for (std::size_t g = 0; g < mesh.groups.size(); ++g) {
     const Group& group = mesh.groups[g];
     text += (g ? ", " : "") + group.name + " (";
-    text += group.dim == mesh.dim ? std::to_string(group.cells.size()) + " cells"
-                                  : std::to_string(group.facets.count()) + " facets, " +
-                                        std::to_string(group.nodes.size()) + " nodes";
+    text += group.dim == mesh.dim
+                ? std::to_string(group.cells.size()) + " cells"
+                : std::to_string(group.facets.count()) + " facets, " + std::to_string(group.nodes.size()) + " nodes";
     text += ")";
   }
   return text;

@@ -43,7 +43,8 @@ int demo_command(const Arguments& args) {
     std::vector<double> plus = u, minus = u;
     plus[i] += h;
     minus[i] -= h;
-    const double fd = (kernel.energy(plus.data(), consts.data()) - kernel.energy(minus.data(), consts.data())) / (2 * h);
+    const double fd =
+        (kernel.energy(plus.data(), consts.data()) - kernel.energy(minus.data(), consts.data())) / (2 * h);
     worst = std::max(worst, std::abs(fd - g[i]));
     force_norm = std::max(force_norm, std::abs(g[i]));
   }

@@ -78,7 +78,8 @@ RegionOfInterest parse_roi(const std::string& text, double size) {
   for (int a = 0; a < 3; ++a) roi.centre[a] = parse_real("--roi", parts[a]);
   roi.radius = parse_real("--roi", parts[3]);
   roi.size = parts.size() == 5 ? parse_real("--roi", parts[4]) : size / 2;
-  if (roi.radius <= 0 || roi.size <= 0) throw InputError("mesh: --roi: radius and size must be positive, got '" + text + "'");
+  if (roi.radius <= 0 || roi.size <= 0)
+    throw InputError("mesh: --roi: radius and size must be positive, got '" + text + "'");
   return roi;
 }
 
@@ -154,11 +155,13 @@ void print_report(const MeshOptions& options, const Mesh& mesh, const OctreeMesh
   for (const ElementTypeQuality& type : quality.types)
     std::printf("  %-10s %8d %7.1f%% %10.4f %10.2f %9d\n", type.element->name, type.count,
                 100 * type.volume / quality.volume, type.min_scaled_jacobian, type.max_edge_ratio, type.inverted);
-  std::printf("octree          %d leaves, core %d cells (%d hexahedra, %d transitions, %d removed), %d caps, %d gap tets\n",
-              report.leaves, report.core_cells, report.core_hexahedra, report.transition_cells,
-              report.removed_for_conformity, report.caps, report.gap_tetrahedra);
+  std::printf(
+      "octree          %d leaves, core %d cells (%d hexahedra, %d transitions, %d removed), %d caps, %d gap tets\n",
+      report.leaves, report.core_cells, report.core_hexahedra, report.transition_cells, report.removed_for_conformity,
+      report.caps, report.gap_tetrahedra);
   std::printf("boundary layer  %d prisms, %.4g thick\n", report.boundary_prisms, report.boundary_layer_thickness);
-  const double error = report.surface_volume != 0 ? (report.mesh_volume - report.surface_volume) / report.surface_volume : 0;
+  const double error =
+      report.surface_volume != 0 ? (report.mesh_volume - report.surface_volume) / report.surface_volume : 0;
   std::printf("volume          %.9g (surface %.9g, relative difference %.2e)\n", report.mesh_volume,
               report.surface_volume, error);
   std::printf("conformity      %d interior faces, %zu boundary faces, %d faces used more than twice\n",
@@ -177,7 +180,8 @@ void print_report(const MeshOptions& options, const Mesh& mesh, const OctreeMesh
     total += seconds;
   }
   std::printf("total %.2f\n", total);
-  for (const std::string& warning : report.warnings) std::fprintf(stderr, "tensormass mesh: warning: %s\n", warning.c_str());
+  for (const std::string& warning : report.warnings)
+    std::fprintf(stderr, "tensormass mesh: warning: %s\n", warning.c_str());
 }
 
 }  // namespace

@@ -35,10 +35,14 @@ struct Options {
 Options parse_options(const Arguments& args) {
   Options options;
   for (const std::string& arg : args) {
-    if (arg == "--json") options.json = true;
-    else if (!arg.empty() && arg[0] == '-') throw InputError("mesh-info: unknown option '" + arg + "' (usage: tensormass mesh-info FILE [--json])");
-    else if (options.path.empty()) options.path = arg;
-    else throw InputError("mesh-info: more than one FILE ('" + options.path + "', '" + arg + "')");
+    if (arg == "--json")
+      options.json = true;
+    else if (!arg.empty() && arg[0] == '-')
+      throw InputError("mesh-info: unknown option '" + arg + "' (usage: tensormass mesh-info FILE [--json])");
+    else if (options.path.empty())
+      options.path = arg;
+    else
+      throw InputError("mesh-info: more than one FILE ('" + options.path + "', '" + arg + "')");
   }
   if (options.path.empty()) throw InputError("mesh-info: missing FILE (usage: tensormass mesh-info FILE [--json])");
   return options;
@@ -47,12 +51,14 @@ Options parse_options(const Arguments& args) {
 std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
-    if (c == '"' || c == '\\') out += std::string("\\") + c;
+    if (c == '"' || c == '\\')
+      out += std::string("\\") + c;
     else if (static_cast<unsigned char>(c) < 0x20) {
       char buffer[8];
       std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
       out += buffer;
-    } else out += c;
+    } else
+      out += c;
   }
   return out + "\"";
 }
@@ -69,7 +75,9 @@ long source_id(const Mesh& mesh, int cell) {
   return mesh.blocks[static_cast<std::size_t>(b)].source_ids[static_cast<std::size_t>(local)];
 }
 
-const char* element_name(const Mesh& mesh, int cell) { return mesh.blocks[static_cast<std::size_t>(mesh.locate(cell).first)].element->name; }
+const char* element_name(const Mesh& mesh, int cell) {
+  return mesh.blocks[static_cast<std::size_t>(mesh.locate(cell).first)].element->name;
+}
 
 void print_text(const Mesh& mesh, const MeshQuality& quality) {
   std::printf("mesh            %s\n", mesh.source.c_str());
@@ -100,8 +108,8 @@ void print_text(const Mesh& mesh, const MeshQuality& quality) {
 }
 
 void print_json(const Mesh& mesh, const MeshQuality& quality) {
-  std::printf("{\n  \"file\": %s,\n  \"dimension\": %d,\n  \"nodes\": %d,\n  \"cells\": %d,\n", json_string(mesh.source).c_str(),
-              mesh.dim, mesh.node_count(), mesh.cell_count());
+  std::printf("{\n  \"file\": %s,\n  \"dimension\": %d,\n  \"nodes\": %d,\n  \"cells\": %d,\n",
+              json_string(mesh.source).c_str(), mesh.dim, mesh.node_count(), mesh.cell_count());
   std::printf("  \"element_types\": {");
   for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
     std::printf("%s\"%s\": %d", b ? ", " : "", mesh.blocks[b].element->name, mesh.blocks[b].count());
@@ -121,12 +129,12 @@ void print_json(const Mesh& mesh, const MeshQuality& quality) {
         json_number(t.max_scaled_jacobian).c_str(), json_number(t.max_edge_ratio).c_str(), t.inverted,
         json_number(t.volume).c_str());
   }
-  std::printf("\n  },\n  \"max_edge_ratio\": %s,\n  \"volume\": %s,\n  \"inverted\": [", json_number(quality.max_edge_ratio).c_str(),
-              json_number(quality.volume).c_str());
+  std::printf("\n  },\n  \"max_edge_ratio\": %s,\n  \"volume\": %s,\n  \"inverted\": [",
+              json_number(quality.max_edge_ratio).c_str(), json_number(quality.volume).c_str());
   for (std::size_t i = 0; i < quality.inverted_cells.size(); ++i) {
     const int cell = quality.inverted_cells[i];
-    std::printf("%s\n    {\"cell\": %d, \"element\": \"%s\", \"source_id\": %ld}", i ? "," : "", cell, element_name(mesh, cell),
-                source_id(mesh, cell));
+    std::printf("%s\n    {\"cell\": %d, \"element\": \"%s\", \"source_id\": %ld}", i ? "," : "", cell,
+                element_name(mesh, cell), source_id(mesh, cell));
   }
   std::printf("%s]\n}\n", quality.inverted_cells.empty() ? "" : "\n  ");
 }
@@ -146,7 +154,8 @@ int mesh_info_command(const Arguments& args) {
   std::fflush(stdout);
   if (!quality.inverted_cells.empty())
     std::fprintf(stderr, "tensormass: warning: %zu inverted element(s) in %s (first: %s); a simulation rejects them\n",
-                 quality.inverted_cells.size(), mesh.source.c_str(), mesh.describe_cell(quality.inverted_cells.front()).c_str());
+                 quality.inverted_cells.size(), mesh.source.c_str(),
+                 mesh.describe_cell(quality.inverted_cells.front()).c_str());
   return 0;
 }
 

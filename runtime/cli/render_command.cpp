@@ -113,7 +113,8 @@ std::string find_script() {
   if (fs::is_regular_file(TENSORMASS_RENDER_SOURCE_SCRIPT, error)) return TENSORMASS_RENDER_SOURCE_SCRIPT;
   const fs::path binary = fs::read_symlink("/proc/self/exe", error);  // PREFIX/bin/tensormass
   if (!error) {
-    const fs::path installed = binary.parent_path().parent_path() / TENSORMASS_INSTALL_DATADIR / "tensormass" / "render.py";
+    const fs::path installed =
+        binary.parent_path().parent_path() / TENSORMASS_INSTALL_DATADIR / "tensormass" / "render.py";
     if (fs::is_regular_file(installed, error)) return installed.string();
   }
   return {};

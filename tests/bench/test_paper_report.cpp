@@ -82,9 +82,9 @@ std::vector<PaperRow> sample_rows() {
     r.samples = {ms, ms * 1.1};
     return r;
   };
-  return {row("hooke", std::nullopt, 1.0, 0.04, 0),   row("stvk", std::nullopt, 1.2, 0.0, 600),
-          row("R_EL", 0.06, 1.05, 0.03, 100),         row("R_EL", 0.015, 1.15, 0.01, 500),
-          row("R_EL", 0.03, 1.1, 0.02, 300),          row("R_NL", 0.03, 1.1, 0.015, 400)};
+  return {row("hooke", std::nullopt, 1.0, 0.04, 0), row("stvk", std::nullopt, 1.2, 0.0, 600),
+          row("R_EL", 0.06, 1.05, 0.03, 100),       row("R_EL", 0.015, 1.15, 0.01, 500),
+          row("R_EL", 0.03, 1.1, 0.02, 300),        row("R_NL", 0.03, 1.1, 0.015, 400)};
 }
 
 TEST(PaperJson, RowsHaveTheSchemaKeys) {

@@ -211,8 +211,8 @@ inline Matrix3 embed(const Matrix3& a, int dim) {
 /// parameters and the constants `precompute` filled in.
 struct Element {
   const tm_kernel* kernel = nullptr;
-  Vector rest;     ///< nodes by dim
-  Vector params;   ///< young, poisson
+  Vector rest;    ///< nodes by dim
+  Vector params;  ///< young, poisson
   Vector consts;
   double size = 0.0;  ///< the element's characteristic length (metres)
   int status = -1;    ///< precompute's return value

@@ -131,8 +131,8 @@ TEST_P(SplitAgreement, SplitsAgreeWithWhole) {
       ASSERT_EQ(a.rest, b.rest);
       for (const double strain : {0.0, 0.02, 0.1}) {
         SCOPED_TRACE("strain " + std::to_string(strain));
-        const Vector u = strain == 0.0 ? Vector(a.rest.size(), 0.0)
-                                       : random_displacement(a, seed + 500, strain, strain / 5);
+        const Vector u =
+            strain == 0.0 ? Vector(a.rest.size(), 0.0) : random_displacement(a, seed + 500, strain, strain / 5);
         EXPECT_LE(relative_error(energy(b, u), energy(a, u)), 1e-12) << "energy";
         EXPECT_LE(relative_error(gradient(b, u), gradient(a, u)), 1e-12) << "gradient";
         EXPECT_LE(relative_error(hessian(b, u), hessian(a, u)), 1e-12) << "hessian";

@@ -116,7 +116,8 @@ Mesh macneal_harder_tet4() {
   const Mesh hexes = macneal_harder_hex8();
   auto colour = [](int node) {
     const int corner = node % 8;
-    const int parity = static_cast<int>(kCubeCorners[corner][0] + kCubeCorners[corner][1] + kCubeCorners[corner][2]) % 2;
+    const int parity =
+        static_cast<int>(kCubeCorners[corner][0] + kCubeCorners[corner][1] + kCubeCorners[corner][2]) % 2;
     return node < 8 ? parity : 1 - parity;
   };
   Mesh mesh;
@@ -167,7 +168,7 @@ Mesh macneal_harder_pyramid5() {
 Mesh macneal_harder_quad4() {
   Mesh mesh;
   mesh.dim = 2;
-  const double points[8][2] = {{0, 0}, {0.24, 0}, {0.24, 0.12}, {0, 0.12},
+  const double points[8][2] = {{0, 0},       {0.24, 0},    {0.24, 0.12}, {0, 0.12},
                                {0.04, 0.02}, {0.18, 0.03}, {0.16, 0.08}, {0.08, 0.08}};
   for (const auto& point : points) mesh.add_node(point);
   mesh.elements = {{4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -200,7 +201,9 @@ Mesh macneal_harder_prism6() {
   for (int layer = 0; layer < 3; ++layer)
     for (int node = 0; node < base; ++node) {
       const double point[3] = {triangles.x(node, 0), triangles.x(node, 1),
-                               layer == 0 ? 0.0 : layer == 1 ? middle[node] : 0.12};
+                               layer == 0   ? 0.0
+                               : layer == 1 ? middle[node]
+                                            : 0.12};
       mesh.add_node(point);
     }
   for (int layer = 0; layer < 2; ++layer)
@@ -310,8 +313,8 @@ TEST_P(MacNealHarderPatch, InnerNodesAndStressAreExact) {
   EXPECT_LE(max_abs_difference(u, exact), 1e-10 * max_abs(exact)) << "inner displacements";
 
   // Constant stress at every quadrature point of every element.
-  const Vector expected_point = dim == 3 ? Vector{2000, 400, 400, 400, 2000, 400, 400, 400, 2000}
-                                         : Vector{1600, 400, 400, 1600};
+  const Vector expected_point =
+      dim == 3 ? Vector{2000, 400, 400, 400, 2000, 400, 400, 400, 2000} : Vector{1600, 400, 400, 1600};
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
     Vector ue;
     for (const int node : mesh.elements[e])
@@ -326,9 +329,7 @@ TEST_P(MacNealHarderPatch, InnerNodesAndStressAreExact) {
 }
 
 std::vector<const tm_kernel*> patch_kernels() {
-  return kernels_where([](const tm_kernel& k) {
-    return std::string(k.law) == "hooke";
-  });
+  return kernels_where([](const tm_kernel& k) { return std::string(k.law) == "hooke"; });
 }
 
 INSTANTIATE_TEST_SUITE_P(Hooke, MacNealHarderPatch, testing::ValuesIn(patch_kernels()), KernelParamName());

@@ -264,7 +264,8 @@ TEST_P(KernelPhysics, PrecomputeRejectsInvertedAndDegenerateElements) {
   const std::string element = kernel.element;
   if (element == "tri3" || element == "tet4") {  // swapping two vertices of a simplex inverts it
     Vector swapped = good.rest;
-    for (int a = 0; a < dim; ++a) std::swap(swapped[static_cast<std::size_t>(dim + a)], swapped[static_cast<std::size_t>(2 * dim + a)]);
+    for (int a = 0; a < dim; ++a)
+      std::swap(swapped[static_cast<std::size_t>(dim + a)], swapped[static_cast<std::size_t>(2 * dim + a)]);
     EXPECT_EQ(kernel.precompute(swapped.data(), good.params.data(), consts.data()), 1) << "two nodes swapped";
   }
   // The good shape is still accepted after the rejections.
@@ -293,7 +294,8 @@ TEST_P(KernelPhysics, PrecomputeRejectsObliqueFlatElements) {
     Vector flat = e.rest;
     for (int j = 0; j < nodes; ++j) {
       double distance = 0.0;
-      for (int a = 0; a < dim; ++a) distance += (e.rest[static_cast<std::size_t>(j * dim + a)] - e.rest[static_cast<std::size_t>(a)]) * normal[a];
+      for (int a = 0; a < dim; ++a)
+        distance += (e.rest[static_cast<std::size_t>(j * dim + a)] - e.rest[static_cast<std::size_t>(a)]) * normal[a];
       for (int a = 0; a < dim; ++a) flat[static_cast<std::size_t>(j * dim + a)] -= distance * normal[a];
     }
     Vector consts(static_cast<std::size_t>(kernel.consts));
@@ -387,8 +389,9 @@ TEST_P(ObjectiveLaw, RotatedDeformedStateRotatesForces) {
   EXPECT_LE(relative_error(gradient(e, u_rotated), g_expected), 1e-10);
 }
 
-INSTANTIATE_TEST_SUITE_P(StvkAndNeohookean, ObjectiveLaw,
-                         testing::ValuesIn(kernels_where([](const tm_kernel& k) { return std::string(k.law) != "hooke"; })),
+INSTANTIATE_TEST_SUITE_P(StvkAndNeohookean, ObjectiveLaw, testing::ValuesIn(kernels_where([](const tm_kernel& k) {
+                           return std::string(k.law) != "hooke";
+                         })),
                          KernelParamName());
 
 // --- Hooke: uniform strain on one distorted element, a quadratic energy -----
@@ -443,8 +446,9 @@ TEST_P(HookeLaw, HookeIsQuadratic) {
   EXPECT_LE(relative_error(energy(e, u), 0.5 * uKu), 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(Hooke, HookeLaw,
-                         testing::ValuesIn(kernels_where([](const tm_kernel& k) { return std::string(k.law) == "hooke"; })),
+INSTANTIATE_TEST_SUITE_P(Hooke, HookeLaw, testing::ValuesIn(kernels_where([](const tm_kernel& k) {
+                           return std::string(k.law) == "hooke";
+                         })),
                          KernelParamName());
 
 // --- One element type, every law at rest ------------------------------------

@@ -24,10 +24,9 @@ struct ExpectedElement {
 
 const std::map<std::string, ExpectedElement>& expected_elements() {
   static const std::map<std::string, ExpectedElement> table = {
-      {"tri3", {2, 1, 3, 5}},     {"quad4", {2, 1, 4, 9}},    {"tet4", {3, 1, 4, 10}},
-      {"hex8", {3, 1, 8, 12}},    {"prism6", {3, 1, 6, 13}},  {"pyramid5", {3, 1, 5, 14}},
-      {"tri6", {2, 2, 6, 22}},    {"quad8", {2, 2, 8, 23}},   {"tet10", {3, 2, 10, 24}},
-      {"hex20", {3, 2, 20, 25}},
+      {"tri3", {2, 1, 3, 5}},    {"quad4", {2, 1, 4, 9}},     {"tet4", {3, 1, 4, 10}}, {"hex8", {3, 1, 8, 12}},
+      {"prism6", {3, 1, 6, 13}}, {"pyramid5", {3, 1, 5, 14}}, {"tri6", {2, 2, 6, 22}}, {"quad8", {2, 2, 8, 23}},
+      {"tet10", {3, 2, 10, 24}}, {"hex20", {3, 2, 20, 25}},
   };
   return table;
 }
@@ -54,7 +53,8 @@ TEST(Registry, OffersTheExpectedTriples) {
   for (const auto& [element, facts] : expected_elements())
     for (const std::string& law : kLaws)
       for (const std::string& split : kSplits) {
-        const bool expected = split != "tensor" || ((law == "hooke" || law == "stvk") && contains(kFirstOrder, element));
+        const bool expected =
+            split != "tensor" || ((law == "hooke" || law == "stvk") && contains(kFirstOrder, element));
         const tm_kernel* kernel = registry().find(law, element, split);
         EXPECT_EQ(kernel != nullptr, expected) << law << "/" << element << "/" << split;
         if (expected) ++expected_count;
@@ -97,7 +97,8 @@ TEST(Registry, KernelsAreUniqueAndComplete) {
     EXPECT_EQ(registry().find(kernel->law, kernel->element, kernel->split), kernel);
     EXPECT_EQ(&registry().get(kernel->law, kernel->element, kernel->split), kernel);
   }
-  for (int i = 0; i < tm_kernel_count(); ++i) EXPECT_EQ(tm_kernel_at(i), registry().kernels()[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < tm_kernel_count(); ++i)
+    EXPECT_EQ(tm_kernel_at(i), registry().kernels()[static_cast<std::size_t>(i)]);
   EXPECT_EQ(tm_kernel_at(-1), nullptr);
   EXPECT_EQ(tm_kernel_at(tm_kernel_count()), nullptr);
 }
@@ -149,7 +150,8 @@ TEST_P(ElementInfo, FactsMatchTheElement) {
   for (int k = 0; k < info->nodes; ++k) EXPECT_EQ(info->vtk_order[k], k);
   std::vector<int> gmsh(info->gmsh_order, info->gmsh_order + info->nodes);
   std::sort(gmsh.begin(), gmsh.end());
-  for (int k = 0; k < info->nodes; ++k) EXPECT_EQ(gmsh[static_cast<std::size_t>(k)], k) << "gmsh_order is a permutation";
+  for (int k = 0; k < info->nodes; ++k)
+    EXPECT_EQ(gmsh[static_cast<std::size_t>(k)], k) << "gmsh_order is a permutation";
   EXPECT_EQ(info->edge_size, info->order == 1 ? 2 : 3);
   for (int i = 0; i < info->edge_count * info->edge_size; ++i) {
     EXPECT_GE(info->edges[i], 0);

@@ -29,9 +29,7 @@ struct Reference {
   double weights[Q];
 };
 
-Reference<2, 3, 1> tri3() {
-  return {{{{-1.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}}}, {0.5}};
-}
+Reference<2, 3, 1> tri3() { return {{{{-1.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}}}, {0.5}}; }
 
 Reference<3, 4, 1> tet4() {
   return {{{{-1.0, -1.0, -1.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}, {1.0 / 6.0}};
@@ -263,7 +261,7 @@ TEST(TensorSplit, PrecomputeRefusesAnInvertedElement) {
   std::vector<double> consts(1 + 6 + tensor::Layout<2, 3, Strain::green>::total);
   const std::vector<double> CC = isotropic_elasticity<2>();
   EXPECT_EQ((tensor::precompute<2, 3, 1, Strain::green>(inverted.data(), reference.gradients, reference.weights,
-                                                          CC.data(), consts.data())),
+                                                        CC.data(), consts.data())),
             1);
 }
 
@@ -275,13 +273,13 @@ TEST(TensorSplit, LinearStiffnessOfAUnitTriangle) {
   std::vector<double> consts(1 + 6 + tensor::Layout<2, 3, Strain::linear>::total);
   const std::vector<double> CC = isotropic_elasticity<2>();
   ASSERT_EQ((tensor::precompute<2, 3, 1, Strain::linear>(X.data(), reference.gradients, reference.weights, CC.data(),
-                                                           consts.data())),
+                                                         consts.data())),
             0);
   const double* K = consts.data() + 7;
   EXPECT_NEAR(K[2 * 6 + 2], 0.5 * (kLambda + 2 * kMu), 1e-15);
-  EXPECT_NEAR(K[3 * 6 + 3], 0.5 * kMu, 1e-15);           // node 1, y; node 1, y: mu (dN1/dx)^2 area
-  EXPECT_NEAR(K[2 * 6 + 5], 0.5 * kLambda, 1e-15);       // node 1, x; node 2, y: lambda dN1/dx dN2/dy area
-  EXPECT_NEAR(K[3 * 6 + 4], 0.5 * kMu, 1e-15);           // node 1, y; node 2, x: mu dN1/dx dN2/dy area
+  EXPECT_NEAR(K[3 * 6 + 3], 0.5 * kMu, 1e-15);      // node 1, y; node 1, y: mu (dN1/dx)^2 area
+  EXPECT_NEAR(K[2 * 6 + 5], 0.5 * kLambda, 1e-15);  // node 1, x; node 2, y: lambda dN1/dx dN2/dy area
+  EXPECT_NEAR(K[3 * 6 + 4], 0.5 * kMu, 1e-15);      // node 1, y; node 2, x: mu dN1/dx dN2/dy area
 }
 
 // --- Energy, gradient and Hessian -------------------------------------------

@@ -30,7 +30,8 @@ TEST(CompareTracks, PrintsMaxAndRmsDistanceInMillimetres) {
   ASSERT_EQ(json.exit_code, 0) << json.output;
   const Result check = test_support::python(
       "-c \"import json,sys; d=json.loads(sys.argv[1]); "
-      "assert abs(d['max_mm']-2)<1e-9 and abs(d['rms_mm']-1.5**0.5)<1e-9 and d['samples']==5\" '" + json.output + "'");
+      "assert abs(d['max_mm']-2)<1e-9 and abs(d['rms_mm']-1.5**0.5)<1e-9 and d['samples']==5\" '" +
+      json.output + "'");
   EXPECT_EQ(check.exit_code, 0) << json.output << check.output;
 }
 

@@ -19,8 +19,8 @@ using test_support::TempDir;
 TEST(PlotTrack, TwoTracksMakeAPngAndPrintTheMaxDifference) {
   TempDir dir;
   const std::string a = dir.write("a.csv", track(0.010)), b = dir.write("b.csv", track(0.015));
-  const Result result = run_script("plot_track.py", a + " " + b + " --label hooke --label stvk -o " + dir.file("plot.png") +
-                                                    " --title 'tumour centroid'");
+  const Result result = run_script("plot_track.py", a + " " + b + " --label hooke --label stvk -o " +
+                                                        dir.file("plot.png") + " --title 'tumour centroid'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   ASSERT_TRUE(fs::exists(dir.path() / "plot.png"));
   EXPECT_GT(fs::file_size(dir.path() / "plot.png"), 1000u);

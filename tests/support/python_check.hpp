@@ -29,8 +29,10 @@ std::string json_list(const std::vector<T>& values) {
   std::string text = "[";
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (i) text += ",";
-    if constexpr (std::is_floating_point_v<T>) text += exact(values[i]);
-    else text += std::to_string(values[i]);
+    if constexpr (std::is_floating_point_v<T>)
+      text += exact(values[i]);
+    else
+      text += std::to_string(values[i]);
   }
   return text + "]";
 }
@@ -44,8 +46,8 @@ inline int run_check(const std::string& script_name, const std::string& file, co
 /// The meshio name of a reference element (as check_msh.py counts cells).
 inline std::string meshio_name(const std::string& element) {
   static const std::map<std::string, std::string> names{
-      {"tri3", "triangle"}, {"tri6", "triangle6"}, {"quad4", "quad"},     {"quad8", "quad8"},
-      {"tet4", "tetra"},    {"tet10", "tetra10"},  {"hex8", "hexahedron"}, {"hex20", "hexahedron20"},
+      {"tri3", "triangle"}, {"tri6", "triangle6"},  {"quad4", "quad"},      {"quad8", "quad8"},
+      {"tet4", "tetra"},    {"tet10", "tetra10"},   {"hex8", "hexahedron"}, {"hex20", "hexahedron20"},
       {"prism6", "wedge"},  {"pyramid5", "pyramid"}};
   return names.at(element);
 }

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh.hpp"
-#include "support/test_support.hpp"
 
 namespace meshtest {
 
@@ -170,7 +170,8 @@ inline void expect_same_cells(const tensormass::Mesh& a, const tensormass::Mesh&
     EXPECT_EQ(x.first_cell, y.first_cell);
     for (int c = 0; c < x.count(); ++c)
       for (int j = 0; j < x.nodes_per_cell(); ++j)
-        ASSERT_EQ(position(a, x.cell_nodes(c)[static_cast<std::size_t>(j)]), position(b, y.cell_nodes(c)[static_cast<std::size_t>(j)]))
+        ASSERT_EQ(position(a, x.cell_nodes(c)[static_cast<std::size_t>(j)]),
+                  position(b, y.cell_nodes(c)[static_cast<std::size_t>(j)]))
             << x.element->name << " cell " << c << " node " << j;
   }
 }
@@ -181,7 +182,8 @@ inline void expect_identical(const tensormass::Mesh& a, const tensormass::Mesh& 
   EXPECT_EQ(a.dim, b.dim);
   ASSERT_EQ(a.rest_positions.size(), b.rest_positions.size());
   for (std::size_t i = 0; i < a.rest_positions.size(); ++i)
-    ASSERT_NEAR(a.rest_positions[i], b.rest_positions[i], 1e-15 * std::max(1.0, std::abs(a.rest_positions[i]))) << "coordinate " << i;
+    ASSERT_NEAR(a.rest_positions[i], b.rest_positions[i], 1e-15 * std::max(1.0, std::abs(a.rest_positions[i])))
+        << "coordinate " << i;
   EXPECT_EQ(a.node_source_ids, b.node_source_ids);
   ASSERT_EQ(a.blocks.size(), b.blocks.size());
   for (std::size_t k = 0; k < a.blocks.size(); ++k) {

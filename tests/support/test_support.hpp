@@ -127,7 +127,9 @@ inline Result python(const std::string& arguments) { return shell("/usr/bin/pyth
 
 #ifdef TENSORMASS_SOURCE_DIR
 /// A path in the source tree, relative to its root.
-inline std::string source_path(const std::string& relative) { return std::string(TENSORMASS_SOURCE_DIR) + "/" + relative; }
+inline std::string source_path(const std::string& relative) {
+  return std::string(TENSORMASS_SOURCE_DIR) + "/" + relative;
+}
 #endif
 
 #ifdef TENSORMASS_BINARY

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/surface_reader.hpp"
 #include "tensormass/surface/surface.hpp"
-#include "support/test_support.hpp"
 
 namespace surfacetest {
 

@@ -8,7 +8,6 @@ namespace {
 constexpr int kParallelCells = 4096;
 constexpr int kChunkCells = 128;  // fixed: the summation order must not depend on the thread count
 
-
 /// g = w g_new + (1 - w) g_old (and the same for K) for a blending cell.
 void blend_cell(const Model& model, int cell, const double* u, double* g, double* K, double* old_g,
                 std::vector<double>& old_K) {
@@ -148,8 +147,8 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
   }
 }
 
-void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient,
-                              SparseMatrix* stiffness, CellBuffers& buffers) const {
+void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                              CellBuffers& buffers) const {
   const Model& model = *model_;
   const int d = model.dim();
   const tm_kernel& kernel = model.kernel(cell);

@@ -28,23 +28,17 @@ struct GmshType {
 };
 
 constexpr GmshType kGmshTypes[] = {
-    {1, "2-node line", 1, 2},           {2, "3-node triangle", 2, 3},
-    {3, "4-node quadrangle", 2, 4},     {4, "4-node tetrahedron", 3, 4},
-    {5, "8-node hexahedron", 3, 8},     {6, "6-node prism", 3, 6},
-    {7, "5-node pyramid", 3, 5},        {8, "3-node line", 1, 3},
-    {9, "6-node triangle", 2, 6},       {10, "9-node quadrangle", 2, 9},
-    {11, "10-node tetrahedron", 3, 10}, {12, "27-node hexahedron", 3, 27},
-    {13, "18-node prism", 3, 18},       {14, "14-node pyramid", 3, 14},
-    {15, "1-node point", 0, 1},         {16, "8-node quadrangle", 2, 8},
-    {17, "20-node hexahedron", 3, 20},  {18, "15-node prism", 3, 15},
-    {19, "13-node pyramid", 3, 13},     {20, "9-node triangle", 2, 9},
-    {21, "10-node triangle", 2, 10},    {22, "12-node triangle", 2, 12},
-    {23, "15-node triangle", 2, 15},    {24, "15-node triangle", 2, 15},
-    {25, "21-node triangle", 2, 21},    {26, "4-node line", 1, 4},
-    {27, "5-node line", 1, 5},          {28, "6-node line", 1, 6},
-    {29, "20-node tetrahedron", 3, 20}, {30, "35-node tetrahedron", 3, 35},
-    {31, "56-node tetrahedron", 3, 56}, {92, "64-node hexahedron", 3, 64},
-    {93, "125-node hexahedron", 3, 125},
+    {1, "2-node line", 1, 2},           {2, "3-node triangle", 2, 3},       {3, "4-node quadrangle", 2, 4},
+    {4, "4-node tetrahedron", 3, 4},    {5, "8-node hexahedron", 3, 8},     {6, "6-node prism", 3, 6},
+    {7, "5-node pyramid", 3, 5},        {8, "3-node line", 1, 3},           {9, "6-node triangle", 2, 6},
+    {10, "9-node quadrangle", 2, 9},    {11, "10-node tetrahedron", 3, 10}, {12, "27-node hexahedron", 3, 27},
+    {13, "18-node prism", 3, 18},       {14, "14-node pyramid", 3, 14},     {15, "1-node point", 0, 1},
+    {16, "8-node quadrangle", 2, 8},    {17, "20-node hexahedron", 3, 20},  {18, "15-node prism", 3, 15},
+    {19, "13-node pyramid", 3, 13},     {20, "9-node triangle", 2, 9},      {21, "10-node triangle", 2, 10},
+    {22, "12-node triangle", 2, 12},    {23, "15-node triangle", 2, 15},    {24, "15-node triangle", 2, 15},
+    {25, "21-node triangle", 2, 21},    {26, "4-node line", 1, 4},          {27, "5-node line", 1, 5},
+    {28, "6-node line", 1, 6},          {29, "20-node tetrahedron", 3, 20}, {30, "35-node tetrahedron", 3, 35},
+    {31, "56-node tetrahedron", 3, 56}, {92, "64-node hexahedron", 3, 64},  {93, "125-node hexahedron", 3, 125},
 };
 
 const GmshType* find_gmsh_type(long id) {
@@ -125,13 +119,20 @@ Mesh GmshReader::read() {
     if (token.size() < 2 || token.front() != '$')
       in_.fail("expected a section name such as $Nodes, found '" + std::string(token.substr(0, 40)) + "'");
     const std::string name(token.substr(1));
-    if (name == "MeshFormat") read_format();
-    else if (name == "PhysicalNames") read_physical_names();
-    else if (name == "Entities" && major_ == 4) read_entities();
-    else if (name == "Nodes") major_ == 4 ? read_nodes_41() : read_nodes_22();
-    else if (name == "Elements") major_ == 4 ? read_elements_41() : read_elements_22();
-    else if (name == "PartitionedEntities") in_.fail("partitioned meshes are not supported");
-    else in_.skip_past("$End" + name, "$End" + name);
+    if (name == "MeshFormat")
+      read_format();
+    else if (name == "PhysicalNames")
+      read_physical_names();
+    else if (name == "Entities" && major_ == 4)
+      read_entities();
+    else if (name == "Nodes")
+      major_ == 4 ? read_nodes_41() : read_nodes_22();
+    else if (name == "Elements")
+      major_ == 4 ? read_elements_41() : read_elements_22();
+    else if (name == "PartitionedEntities")
+      in_.fail("partitioned meshes are not supported");
+    else
+      in_.skip_past("$End" + name, "$End" + name);
   }
   if (!have_nodes_) throw InputError(in_.path() + ": no $Nodes section");
   if (!have_elements_) throw InputError(in_.path() + ": no $Elements section");
@@ -141,11 +142,15 @@ Mesh GmshReader::read() {
 void GmshReader::read_format() {
   const Location where = in_.here();
   const std::string version(in_.token("the format version"));
-  if (version == "4.1") major_ = 4;
-  else if (version.size() >= 2 && version.substr(0, 2) == "2.") major_ = 2;
-  else in_.fail_at(where, "MSH format " + version + " is not supported (2.2 or 4.1; re-save the mesh with Gmsh)");
+  if (version == "4.1")
+    major_ = 4;
+  else if (version.size() >= 2 && version.substr(0, 2) == "2.")
+    major_ = 2;
+  else
+    in_.fail_at(where, "MSH format " + version + " is not supported (2.2 or 4.1; re-save the mesh with Gmsh)");
   const long file_type = in_.integer("the file type");
-  if (file_type != 0 && file_type != 1) in_.fail("file type must be 0 (ASCII) or 1 (binary), found " + std::to_string(file_type));
+  if (file_type != 0 && file_type != 1)
+    in_.fail("file type must be 0 (ASCII) or 1 (binary), found " + std::to_string(file_type));
   const long data_size = in_.integer("the data size");
   if (data_size != 8) in_.fail("data size " + std::to_string(data_size) + " is not supported (8)");
   binary_ = file_type == 1;
@@ -154,9 +159,12 @@ void GmshReader::read_format() {
     in_.set_binary(true);
     const Location marker = in_.location();
     const std::int32_t one = in_.value<std::int32_t>("the endianness marker", std::endian::little);
-    if (one == 1) order_ = std::endian::little;
-    else if (one == 0x01000000) order_ = std::endian::big;
-    else in_.fail_at(marker, "bad endianness marker " + std::to_string(one) + " (expected the integer 1)");
+    if (one == 1)
+      order_ = std::endian::little;
+    else if (one == 0x01000000)
+      order_ = std::endian::big;
+    else
+      in_.fail_at(marker, "bad endianness marker " + std::to_string(one) + " (expected the integer 1)");
   }
   in_.expect("$EndMeshFormat");
 }
@@ -184,7 +192,8 @@ long GmshReader::binary_size(std::string_view what, std::size_t min_bytes_each) 
 long GmshReader::binary_tag(std::string_view what) {
   const Location where = in_.here();
   const auto tag = in_.value<std::uint64_t>(what, order_);
-  if (tag > static_cast<std::uint64_t>(LONG_MAX)) in_.fail_at(where, std::string(what) + " " + std::to_string(tag) + " is too large");
+  if (tag > static_cast<std::uint64_t>(LONG_MAX))
+    in_.fail_at(where, std::string(what) + " " + std::to_string(tag) + " is too large");
   return static_cast<long>(tag);
 }
 
@@ -259,9 +268,12 @@ void GmshReader::read_nodes_41() {
     in_.integer("the maximum node tag");
   }
   for (long b = 0; b < blocks; ++b) {
-    const int entity_dim = binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
-    if (binary_) binary_int("an entity tag");
-    else in_.integer("an entity tag");
+    const int entity_dim =
+        binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
+    if (binary_)
+      binary_int("an entity tag");
+    else
+      in_.integer("an entity tag");
     const long parametric = binary_ ? binary_int("the parametric flag") : in_.integer("the parametric flag");
     const long count = binary_ ? binary_size("nodes in the block", 32) : in_.count("nodes in the block", 8);
     if (entity_dim < 0 || entity_dim > 3) in_.fail("entity dimension " + std::to_string(entity_dim) + " is not 0..3");
@@ -301,7 +313,8 @@ void GmshReader::add_element(const GmshType& type, long id, std::span<const long
   const Mapping mapping = mapping_for(type.id, where);
   ours_.assign(file_nodes.begin(), file_nodes.end());
   if (mapping.order)
-    for (std::size_t k = 0; k < file_nodes.size(); ++k) ours_[static_cast<std::size_t>(mapping.order[k])] = file_nodes[k];
+    for (std::size_t k = 0; k < file_nodes.size(); ++k)
+      ours_[static_cast<std::size_t>(mapping.order[k])] = file_nodes[k];
   builder_.add_element(*mapping.shape, id, ours_, groups, where);
 }
 
@@ -348,7 +361,8 @@ void GmshReader::read_elements_22_binary(long total) {
       in_.fail_at(where, "element block of " + std::to_string(count) + " elements, but " +
                              std::to_string(total - done) + " remain of the declared " + std::to_string(total));
     if (tags < 0 || tags > 1000) in_.fail_at(where, "bad tag count " + std::to_string(tags));
-    in_.checked_count(static_cast<unsigned long long>(count), "elements", 4 * static_cast<std::size_t>(1 + tags + type->nodes), where);
+    in_.checked_count(static_cast<unsigned long long>(count), "elements",
+                      4 * static_cast<std::size_t>(1 + tags + type->nodes), where);
     nodes.resize(static_cast<std::size_t>(type->nodes));
     for (long i = 0; i < count; ++i) {
       const Location element_where = in_.here();
@@ -383,13 +397,15 @@ void GmshReader::read_elements_41() {
   std::vector<long> nodes;
   for (long b = 0; b < blocks; ++b) {
     const Location where = in_.here();
-    const int entity_dim = binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
+    const int entity_dim =
+        binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
     const long entity = binary_ ? binary_int("an entity tag") : in_.integer("an entity tag");
     const long type_id = binary_ ? binary_int("an element type") : in_.integer("an element type");
     const GmshType* type = find_gmsh_type(type_id);
     mapping_for(type_id, where);
     const std::size_t bytes_each = (binary_ ? 8 : 2) * static_cast<std::size_t>(1 + type->nodes);
-    const long count = binary_ ? binary_size("elements in the block", bytes_each) : in_.count("elements in the block", bytes_each);
+    const long count =
+        binary_ ? binary_size("elements in the block", bytes_each) : in_.count("elements in the block", bytes_each);
     std::vector<long> groups;
     if (const auto found = entity_groups_.find({entity_dim, entity}); found != entity_groups_.end())
       for (long tag : found->second) groups.push_back(group_key(entity_dim, tag));

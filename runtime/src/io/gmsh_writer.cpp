@@ -37,8 +37,8 @@ struct Entity {
 
 /// Everything both formats print.
 struct MshModel {
-  std::vector<MshElement> elements;  ///< element tag = index + 1
-  std::vector<Entity> entities;      ///< in order of creation, tags per dimension from 1
+  std::vector<MshElement> elements;       ///< element tag = index + 1
+  std::vector<Entity> entities;           ///< in order of creation, tags per dimension from 1
   std::vector<std::array<int, 2>> names;  ///< (dim, group index), sorted
 };
 
@@ -46,8 +46,8 @@ int physical_tag(std::size_t group) { return static_cast<int>(group) + 1; }
 
 /// Gmsh type of a facet with `count` nodes, corners first then mid-edge nodes.
 int facet_type(int count, int order) {
-  static const std::map<std::array<int, 2>, int> types{
-      {{2, 1}, 1}, {{3, 2}, 8}, {{3, 1}, 2}, {{6, 2}, 9}, {{4, 1}, 3}, {{8, 2}, 16}};
+  static const std::map<std::array<int, 2>, int> types{{{2, 1}, 1}, {{3, 2}, 8}, {{3, 1}, 2},
+                                                       {{6, 2}, 9}, {{4, 1}, 3}, {{8, 2}, 16}};
   const auto found = types.find({count, order});
   if (found == types.end())
     throw std::invalid_argument("msh: no Gmsh facet type with " + std::to_string(count) + " nodes of order " +

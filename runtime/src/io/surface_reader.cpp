@@ -1,7 +1,6 @@
 // read_surface: triangle surfaces from STL (ASCII or binary), OBJ and Gmsh
 // .msh files; coincident points merged, unused points and patches dropped.
-#include "io/gmsh_session.hpp"
-#include "io/input_cursor.hpp"
+#include "tensormass/io/surface_reader.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -19,8 +18,9 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "io/gmsh_session.hpp"
+#include "io/input_cursor.hpp"
 #include "tensormass/common/errors.hpp"
-#include "tensormass/io/surface_reader.hpp"
 
 namespace tensormass {
 

@@ -5,8 +5,8 @@
 // OFFSETS/CONNECTIVITY layout of version 5). The XML is read by a tiny
 // tokenizer: elements, attributes and content ranges, nothing more.
 #include <algorithm>
-#include <cctype>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -100,11 +100,11 @@ int region_priority(std::string_view name) {
 
 /// An unstructured grid as read, before mapping to our elements.
 struct Grid {
-  std::vector<double> points;     ///< point count by 3
-  std::vector<long> offsets{0};   ///< cells + 1: cell c's nodes are connectivity[offsets[c] .. offsets[c+1])
+  std::vector<double> points;    ///< point count by 3
+  std::vector<long> offsets{0};  ///< cells + 1: cell c's nodes are connectivity[offsets[c] .. offsets[c+1])
   std::vector<long> connectivity;
-  std::vector<long> types;        ///< VTK cell type per cell
-  std::vector<long> regions;      ///< group value per cell; empty when the file has none
+  std::vector<long> types;    ///< VTK cell type per cell
+  std::vector<long> regions;  ///< group value per cell; empty when the file has none
   std::vector<Location> cell_where;
   Location points_where;
 };
@@ -113,15 +113,16 @@ Mesh build_mesh(const InputCursor& in, const Grid& grid) {
   MeshBuilder builder(in.path(), "cell");
   const std::size_t point_count = grid.points.size() / 3;
   builder.reserve_nodes(point_count);
-  for (std::size_t i = 0; i < point_count; ++i) builder.add_node(static_cast<long>(i), &grid.points[3 * i], grid.points_where);
+  for (std::size_t i = 0; i < point_count; ++i)
+    builder.add_node(static_cast<long>(i), &grid.points[3 * i], grid.points_where);
   std::vector<long> ours;
   for (std::size_t c = 0; c + 1 < grid.offsets.size(); ++c) {
     const Mapping mapping = vtk_mapping(grid.types[c]);
     const std::string cell = "cell " + std::to_string(c);
     if (!mapping.shape)
       in.fail_at(grid.cell_where[c], cell + " has VTK type " + std::to_string(grid.types[c]) + " (" +
-                                         vtk_type_name(grid.types[c]) + "), which is not supported; supported: " +
-                                         supported_list());
+                                         vtk_type_name(grid.types[c]) +
+                                         "), which is not supported; supported: " + supported_list());
     const long count = grid.offsets[c + 1] - grid.offsets[c];
     if (count != mapping.shape->nodes)
       in.fail_at(grid.cell_where[c], cell + " (" + vtk_type_name(grid.types[c]) + ") has " + std::to_string(count) +
@@ -130,7 +131,8 @@ Mesh build_mesh(const InputCursor& in, const Grid& grid) {
     ours.assign(first, first + count);
     if (mapping.order)
       for (long k = 0; k < count; ++k) ours[static_cast<std::size_t>(mapping.order[k])] = first[k];
-    const std::span<const long> groups = grid.regions.empty() ? std::span<const long>() : std::span<const long>(&grid.regions[c], 1);
+    const std::span<const long> groups =
+        grid.regions.empty() ? std::span<const long>() : std::span<const long>(&grid.regions[c], 1);
     builder.add_element(*mapping.shape, static_cast<long>(c), ours, groups, grid.cell_where[c]);
   }
   return builder.build([](long key) { return GroupInfo{"region_" + std::to_string(key), -1}; });
@@ -140,15 +142,19 @@ Mesh build_mesh(const InputCursor& in, const Grid& grid) {
 void check_offsets(const InputCursor& in, const Grid& grid, Location where) {
   for (std::size_t c = 0; c + 1 < grid.offsets.size(); ++c)
     if (grid.offsets[c + 1] < grid.offsets[c] || grid.offsets[c + 1] > static_cast<long>(grid.connectivity.size()))
-      in.fail_at(where, "cell offsets are not increasing within the connectivity size (cell " + std::to_string(c) + ")");
+      in.fail_at(where,
+                 "cell offsets are not increasing within the connectivity size (cell " + std::to_string(c) + ")");
   if (grid.offsets.back() != static_cast<long>(grid.connectivity.size()))
     in.fail_at(where, "the offsets end at " + std::to_string(grid.offsets.back()) + " but the connectivity has " +
                           std::to_string(grid.connectivity.size()) + " entries");
 }
 
-bool is_integer_value(double value) { return std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15; }
+bool is_integer_value(double value) {
+  return std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15;
+}
 
-std::vector<long> to_integers(const InputCursor& in, const std::vector<double>& values, Location where, std::string_view what) {
+std::vector<long> to_integers(const InputCursor& in, const std::vector<double>& values, Location where,
+                              std::string_view what) {
   std::vector<long> result(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!is_integer_value(values[i]))
@@ -183,8 +189,11 @@ std::size_t legacy_type_size(std::string_view type) {
   const std::string name = lower(type);
   if (name == "unsigned_char" || name == "char" || name == "vtktypeint8" || name == "vtktypeuint8") return 1;
   if (name == "unsigned_short" || name == "short" || name == "vtktypeint16" || name == "vtktypeuint16") return 2;
-  if (name == "unsigned_int" || name == "int" || name == "float" || name == "vtktypeint32" || name == "vtktypeuint32") return 4;
-  if (name == "unsigned_long" || name == "long" || name == "double" || name == "vtktypeint64" || name == "vtktypeuint64") return 8;
+  if (name == "unsigned_int" || name == "int" || name == "float" || name == "vtktypeint32" || name == "vtktypeuint32")
+    return 4;
+  if (name == "unsigned_long" || name == "long" || name == "double" || name == "vtktypeint64" ||
+      name == "vtktypeuint64")
+    return 8;
   return 0;
 }
 
@@ -252,11 +261,18 @@ double LegacyReader::value(std::string_view type, std::size_t size) {
   if (name == "float") return in_.value<float>("a float", std::endian::big);
   if (name == "double") return in_.value<double>("a double", std::endian::big);
   switch (size) {
-    case 1: return is_unsigned ? in_.value<std::uint8_t>("a byte", std::endian::big) : in_.value<std::int8_t>("a byte", std::endian::big);
-    case 2: return is_unsigned ? in_.value<std::uint16_t>("a short", std::endian::big) : in_.value<std::int16_t>("a short", std::endian::big);
-    case 4: return is_unsigned ? in_.value<std::uint32_t>("an int", std::endian::big) : in_.value<std::int32_t>("an int", std::endian::big);
-    default: return is_unsigned ? static_cast<double>(in_.value<std::uint64_t>("a long", std::endian::big))
-                                : static_cast<double>(in_.value<std::int64_t>("a long", std::endian::big));
+    case 1:
+      return is_unsigned ? in_.value<std::uint8_t>("a byte", std::endian::big)
+                         : in_.value<std::int8_t>("a byte", std::endian::big);
+    case 2:
+      return is_unsigned ? in_.value<std::uint16_t>("a short", std::endian::big)
+                         : in_.value<std::int16_t>("a short", std::endian::big);
+    case 4:
+      return is_unsigned ? in_.value<std::uint32_t>("an int", std::endian::big)
+                         : in_.value<std::int32_t>("an int", std::endian::big);
+    default:
+      return is_unsigned ? static_cast<double>(in_.value<std::uint64_t>("a long", std::endian::big))
+                         : static_cast<double>(in_.value<std::int64_t>("a long", std::endian::big));
   }
 }
 
@@ -274,10 +290,12 @@ std::vector<double> LegacyReader::values(long count, std::string_view type, std:
 
 Mesh LegacyReader::read() {
   const std::string_view first = in_.rest_of_line();
-  if (!lower(first).starts_with("# vtk datafile version")) in_.fail_at({1, false}, "not a legacy VTK file (the first line must be '# vtk DataFile Version x.y')");
+  if (!lower(first).starts_with("# vtk datafile version"))
+    in_.fail_at({1, false}, "not a legacy VTK file (the first line must be '# vtk DataFile Version x.y')");
   in_.rest_of_line();  // title
   const std::string format = lower(in_.rest_of_line());
-  if (format != "ascii" && format != "binary") in_.fail_at({3, false}, "expected ASCII or BINARY on line 3, found '" + format.substr(0, 40) + "'");
+  if (format != "ascii" && format != "binary")
+    in_.fail_at({3, false}, "expected ASCII or BINARY on line 3, found '" + format.substr(0, 40) + "'");
   binary_ = format == "binary";
   in_.set_binary(binary_);
   while (header(words_)) {
@@ -285,20 +303,32 @@ Mesh LegacyReader::read() {
     const std::string keyword = lower(words_[0]);
     if (keyword == "dataset") {
       if (words_.size() < 2 || lower(words_[1]) != "unstructured_grid")
-        in_.fail_at(where_, "only DATASET UNSTRUCTURED_GRID is supported, found '" + std::string(words_.size() > 1 ? words_[1] : "") + "'");
-    } else if (keyword == "points") read_points();
-    else if (keyword == "cells") read_cells();
-    else if (keyword == "cell_types") read_cell_types();
+        in_.fail_at(where_, "only DATASET UNSTRUCTURED_GRID is supported, found '" +
+                                std::string(words_.size() > 1 ? words_[1] : "") + "'");
+    } else if (keyword == "points")
+      read_points();
+    else if (keyword == "cells")
+      read_cells();
+    else if (keyword == "cell_types")
+      read_cell_types();
     else if (keyword == "cell_data" || keyword == "point_data") {
       in_cell_data_ = keyword == "cell_data";
       data_count_ = word_count(1, "data tuples", 1);
-    } else if (keyword == "scalars") read_scalars();
-    else if (keyword == "field") read_field();
-    else if (keyword == "vectors" || keyword == "normals") read_attribute(3, 2);
-    else if (keyword == "tensors") read_attribute(9, 2);
-    else if (keyword == "tensors6") read_attribute(6, 2);
-    else if (keyword == "metadata") skip_metadata();
-    else in_.fail_at(where_, "unsupported keyword '" + std::string(words_[0].substr(0, 40)) + "' (unstructured grids with POINTS, CELLS, CELL_TYPES and cell data)");
+    } else if (keyword == "scalars")
+      read_scalars();
+    else if (keyword == "field")
+      read_field();
+    else if (keyword == "vectors" || keyword == "normals")
+      read_attribute(3, 2);
+    else if (keyword == "tensors")
+      read_attribute(9, 2);
+    else if (keyword == "tensors6")
+      read_attribute(6, 2);
+    else if (keyword == "metadata")
+      skip_metadata();
+    else
+      in_.fail_at(where_, "unsupported keyword '" + std::string(words_[0].substr(0, 40)) +
+                              "' (unstructured grids with POINTS, CELLS, CELL_TYPES and cell data)");
   }
   if (!have_points_) throw InputError(in_.path() + ": no POINTS section");
   if (!have_cells_ || !have_types_) throw InputError(in_.path() + ": no CELLS or CELL_TYPES section");
@@ -320,8 +350,10 @@ void LegacyReader::read_points() {
 void LegacyReader::read_cells() {
   const long first = word_count(1, "cells", 1);
   const long second = word_count(2, "cell list entries", 1);
-  if (in_.data().substr(in_.position()).starts_with("OFFSETS")) read_cells_split(first, second);
-  else read_cells_classic(first, second);
+  if (in_.data().substr(in_.position()).starts_with("OFFSETS"))
+    read_cells_split(first, second);
+  else
+    read_cells_classic(first, second);
   check_offsets(in_, grid_, where_);
   have_cells_ = true;
 }
@@ -337,22 +369,27 @@ void LegacyReader::read_cells_classic(long cells, long size) {
       in_.fail_at(grid_.cell_where.back(), "cell " + std::to_string(c) + ": bad node count " + std::to_string(n));
     for (long k = 0; k < static_cast<long>(n); ++k) {
       const double node = value("int", 4);
-      if (!is_integer_value(node)) in_.fail_at(grid_.cell_where.back(), "cell " + std::to_string(c) + ": bad node index");
+      if (!is_integer_value(node))
+        in_.fail_at(grid_.cell_where.back(), "cell " + std::to_string(c) + ": bad node index");
       grid_.connectivity.push_back(static_cast<long>(node));
     }
     used += 1 + static_cast<long>(n);
     grid_.offsets.push_back(static_cast<long>(grid_.connectivity.size()));
   }
-  if (used != size) in_.fail_at(where_, "CELLS declares " + std::to_string(size) + " list entries but the cells use " + std::to_string(used));
+  if (used != size)
+    in_.fail_at(where_,
+                "CELLS declares " + std::to_string(size) + " list entries but the cells use " + std::to_string(used));
 }
 
 void LegacyReader::read_cells_split(long offsets, long size) {
   if (offsets < 1) in_.fail_at(where_, "CELLS: the offsets array needs at least one entry");
   const Location cells_where = where_;
-  if (!header(words_) || lower(words_[0]) != "offsets" || words_.size() < 2) in_.fail_at(where_, "expected OFFSETS TYPE");
+  if (!header(words_) || lower(words_[0]) != "offsets" || words_.size() < 2)
+    in_.fail_at(where_, "expected OFFSETS TYPE");
   grid_.offsets = to_integers(in_, values(offsets, words_[1]), where_, "OFFSETS");
   if (grid_.offsets.front() != 0) in_.fail_at(where_, "OFFSETS must start at 0");
-  if (!header(words_) || lower(words_[0]) != "connectivity" || words_.size() < 2) in_.fail_at(where_, "expected CONNECTIVITY TYPE");
+  if (!header(words_) || lower(words_[0]) != "connectivity" || words_.size() < 2)
+    in_.fail_at(where_, "expected CONNECTIVITY TYPE");
   std::vector<Location> value_where;
   grid_.connectivity = to_integers(in_, values(size, words_[1], &value_where), where_, "CONNECTIVITY");
   for (std::size_t c = 0; c + 1 < grid_.offsets.size(); ++c) {
@@ -408,7 +445,8 @@ void LegacyReader::read_field() {
 
 void LegacyReader::read_attribute(long values_per_item, std::size_t type_word) {
   if (words_.size() <= type_word) in_.fail_at(where_, std::string(words_[0]) + ": expected a data type");
-  if (data_count_ > static_cast<long>(in_.remaining()) / values_per_item) in_.fail_at(where_, "attribute larger than the rest of the file");
+  if (data_count_ > static_cast<long>(in_.remaining()) / values_per_item)
+    in_.fail_at(where_, "attribute larger than the rest of the file");
   values(values_per_item * data_count_, words_[type_word]);
 }
 
@@ -443,11 +481,16 @@ std::string decode_entities(std::string_view text) {
     }
     const std::size_t end = text.find(';', i);
     const std::string_view entity = end == std::string_view::npos ? std::string_view() : text.substr(i, end - i + 1);
-    if (entity == "&lt;") result += '<';
-    else if (entity == "&gt;") result += '>';
-    else if (entity == "&amp;") result += '&';
-    else if (entity == "&quot;") result += '"';
-    else if (entity == "&apos;") result += '\'';
+    if (entity == "&lt;")
+      result += '<';
+    else if (entity == "&gt;")
+      result += '>';
+    else if (entity == "&amp;")
+      result += '&';
+    else if (entity == "&quot;")
+      result += '"';
+    else if (entity == "&apos;")
+      result += '\'';
     else {
       result += '&';
       continue;
@@ -502,14 +545,20 @@ void XmlDocument::parse() {
     const std::size_t lt = text_.find('<', pos);
     if (lt == std::string_view::npos) break;
     const std::string_view rest = text_.substr(lt);
-    if (rest.starts_with("<!--")) pos = skip_to(lt, "-->", "comment");
-    else if (rest.starts_with("<?")) pos = skip_to(lt, "?>", "processing instruction");
-    else if (rest.starts_with("<!")) pos = skip_to(lt, ">", "declaration");
-    else if (rest.starts_with("</")) pos = end_tag(lt, open);
-    else pos = start_tag(lt, open);
+    if (rest.starts_with("<!--"))
+      pos = skip_to(lt, "-->", "comment");
+    else if (rest.starts_with("<?"))
+      pos = skip_to(lt, "?>", "processing instruction");
+    else if (rest.starts_with("<!"))
+      pos = skip_to(lt, ">", "declaration");
+    else if (rest.starts_with("</"))
+      pos = end_tag(lt, open);
+    else
+      pos = start_tag(lt, open);
   }
   if (appended_begin == std::string::npos && !open.empty())
-    fail(text_.size(), "unexpected end of file (truncated file?) inside <" + elements[static_cast<std::size_t>(open.back())].name + ">");
+    fail(text_.size(), "unexpected end of file (truncated file?) inside <" +
+                           elements[static_cast<std::size_t>(open.back())].name + ">");
   if (elements.empty()) fail(0, "not an XML VTK file (no elements)");
 }
 
@@ -518,7 +567,9 @@ std::size_t XmlDocument::start_tag(std::size_t lt, std::vector<int>& open) {
   element.begin = lt;
   element.parent = open.empty() ? -1 : open.back();
   std::size_t i = lt + 1;
-  auto is_name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':' || c == '-' || c == '.'; };
+  auto is_name_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':' || c == '-' || c == '.';
+  };
   auto skip_space = [&] {
     while (i < text_.size() && std::isspace(static_cast<unsigned char>(text_[i]))) ++i;
   };
@@ -534,7 +585,8 @@ std::size_t XmlDocument::start_tag(std::size_t lt, std::vector<int>& open) {
     if (key.empty() || i >= text_.size() || text_[i] != '=') fail(i, "malformed attribute in <" + element.name + ">");
     ++i;
     skip_space();
-    if (i >= text_.size() || (text_[i] != '"' && text_[i] != '\'')) fail(i, "attribute " + key + " of <" + element.name + "> is not quoted");
+    if (i >= text_.size() || (text_[i] != '"' && text_[i] != '\''))
+      fail(i, "attribute " + key + " of <" + element.name + "> is not quoted");
     const char quote = text_[i++];
     const std::size_t end = text_.find(quote, i);
     if (end == std::string_view::npos) fail(i, "unterminated attribute " + key);
@@ -563,7 +615,8 @@ std::size_t XmlDocument::end_tag(std::size_t lt, std::vector<int>& open) {
   while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.remove_suffix(1);
   if (open.empty() || elements[static_cast<std::size_t>(open.back())].name != name)
     fail(lt, "unexpected </" + std::string(name.substr(0, 40)) + ">" +
-                 (open.empty() ? std::string() : " (open: <" + elements[static_cast<std::size_t>(open.back())].name + ">)"));
+                 (open.empty() ? std::string()
+                               : " (open: <" + elements[static_cast<std::size_t>(open.back())].name + ">)"));
   elements[static_cast<std::size_t>(open.back())].content_end = lt;
   open.pop_back();
   return gt + 1;
@@ -678,7 +731,8 @@ Mesh VtuReader::read() {
   if (byte_order != "LittleEndian" && byte_order != "BigEndian") fail(root, "unknown byte_order '" + byte_order + "'");
   order_ = byte_order == "BigEndian" ? std::endian::big : std::endian::little;
   const std::string header_type = root.attribute("header_type", "UInt32");
-  if (header_type != "UInt32" && header_type != "UInt64") fail(root, "header_type '" + header_type + "' is not UInt32 or UInt64");
+  if (header_type != "UInt32" && header_type != "UInt64")
+    fail(root, "header_type '" + header_type + "' is not UInt32 or UInt64");
   header_size_ = header_type == "UInt64" ? 8 : 4;
   const XmlElement* grid = xml_.child(&root, "UnstructuredGrid");
   if (!grid) fail(root, "no <UnstructuredGrid> element");
@@ -693,8 +747,8 @@ long VtuReader::count_attribute(const XmlElement& e, std::string_view key, std::
   long n = 0;
   if (!parse_integer(e.attribute(key), n) || n < 0) fail(e, "<" + e.name + "> needs a count " + std::string(key));
   if (static_cast<std::size_t>(n) > in_.data().size() / min_bytes_each)
-    fail(e, std::string(key) + "=" + std::to_string(n) + " is more than the file (" + std::to_string(in_.data().size()) +
-                " bytes) can hold: truncated file or bad count");
+    fail(e, std::string(key) + "=" + std::to_string(n) + " is more than the file (" +
+                std::to_string(in_.data().size()) + " bytes) can hold: truncated file or bad count");
   return in_.checked_count(static_cast<unsigned long long>(n), key, 0, where(e));
 }
 
@@ -720,10 +774,11 @@ void VtuReader::read_piece(const XmlElement& piece) {
   const XmlElement* connectivity = data_array(cells_element, "connectivity");
   const XmlElement* offsets = data_array(cells_element, "offsets");
   const XmlElement* types = data_array(cells_element, "types");
-  if (!connectivity || !offsets || !types) fail(*cells_element, "<Cells> needs DataArrays connectivity, offsets and types");
+  if (!connectivity || !offsets || !types)
+    fail(*cells_element, "<Cells> needs DataArrays connectivity, offsets and types");
   const std::vector<long> ends = to_integers(in_, read_array(*offsets, cells, 1), where(*offsets), "offsets");
-  const std::vector<long> nodes =
-      to_integers(in_, read_array(*connectivity, ends.empty() ? 0 : ends.back(), 1), where(*connectivity), "connectivity");
+  const std::vector<long> nodes = to_integers(in_, read_array(*connectivity, ends.empty() ? 0 : ends.back(), 1),
+                                              where(*connectivity), "connectivity");
   const std::vector<long> cell_types = to_integers(in_, read_array(*types, cells, 1), where(*types), "types");
   const long first = grid_.offsets.back();
   for (long end : ends) grid_.offsets.push_back(first + end);
@@ -754,18 +809,24 @@ std::vector<double> VtuReader::read_array(const XmlElement& e, long expected, lo
     fail(e, "DataArray '" + array.name + "' must have " + std::to_string(components) + " component(s)");
   const std::string format = e.attribute("format", "ascii");
   std::vector<double> values;
-  if (format == "ascii") values = ascii_values(array);
-  else if (format == "binary") values = inline_values(array);
-  else if (format == "appended") values = appended_values(array);
-  else fail(e, "DataArray '" + array.name + "' has unknown format '" + format + "'");
+  if (format == "ascii")
+    values = ascii_values(array);
+  else if (format == "binary")
+    values = inline_values(array);
+  else if (format == "appended")
+    values = appended_values(array);
+  else
+    fail(e, "DataArray '" + array.name + "' has unknown format '" + format + "'");
   if (static_cast<long>(values.size()) != expected)
-    fail(e, "DataArray '" + array.name + "' has " + std::to_string(values.size()) + " values, expected " + std::to_string(expected));
+    fail(e, "DataArray '" + array.name + "' has " + std::to_string(values.size()) + " values, expected " +
+                std::to_string(expected));
   return values;
 }
 
 std::vector<double> VtuReader::ascii_values(const Array& array) const {
   std::vector<double> values;
-  const std::string_view text = in_.data().substr(array.element->content_begin, array.element->content_end - array.element->content_begin);
+  const std::string_view text =
+      in_.data().substr(array.element->content_begin, array.element->content_end - array.element->content_begin);
   std::size_t i = 0;
   while (i < text.size()) {
     while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
@@ -775,7 +836,8 @@ std::vector<double> VtuReader::ascii_values(const Array& array) const {
     double value = 0;
     if (!parse_real(text.substr(begin, i - begin), value))
       in_.fail_at({in_.line_at(array.element->content_begin + begin), false},
-                  "bad number '" + std::string(text.substr(begin, std::min<std::size_t>(i - begin, 40))) + "' in DataArray '" + array.name + "'");
+                  "bad number '" + std::string(text.substr(begin, std::min<std::size_t>(i - begin, 40))) +
+                      "' in DataArray '" + array.name + "'");
     values.push_back(value);
   }
   return values;
@@ -788,9 +850,11 @@ std::size_t VtuReader::header_value(std::span<const unsigned char> bytes) const 
 
 std::vector<double> VtuReader::convert(const Array& array, std::span<const unsigned char> bytes) const {
   if (bytes.size() % array.size != 0)
-    fail(*array.element, "DataArray '" + array.name + "' holds " + std::to_string(bytes.size()) + " bytes, not a multiple of its type size");
+    fail(*array.element, "DataArray '" + array.name + "' holds " + std::to_string(bytes.size()) +
+                             " bytes, not a multiple of its type size");
   std::vector<double> values(bytes.size() / array.size);
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = load_value(bytes.data() + i * array.size, array.type, order_);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = load_value(bytes.data() + i * array.size, array.type, order_);
   return values;
 }
 
@@ -807,12 +871,16 @@ std::vector<double> VtuReader::inline_values(const Array& array) const {
     fail(*array.element, bad);
   const std::size_t bytes = header_value(header);
   if (text[header_chars - 1] == '=') {  // header and data encoded separately (VTK)
-    if (base64_length(bytes) > text.size() - header_chars) fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
-    if (!base64_decode(std::string_view(text).substr(header_chars, base64_length(bytes)), data)) fail(*array.element, bad);
+    if (base64_length(bytes) > text.size() - header_chars)
+      fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
+    if (!base64_decode(std::string_view(text).substr(header_chars, base64_length(bytes)), data))
+      fail(*array.element, bad);
     data.resize(std::min(data.size(), bytes));
   } else {  // header and data encoded together (meshio)
-    if (base64_length(header_size_ + bytes) > text.size()) fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
-    if (!base64_decode(std::string_view(text).substr(0, base64_length(header_size_ + bytes)), data)) fail(*array.element, bad);
+    if (base64_length(header_size_ + bytes) > text.size())
+      fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
+    if (!base64_decode(std::string_view(text).substr(0, base64_length(header_size_ + bytes)), data))
+      fail(*array.element, bad);
     data.erase(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(header_size_));
     data.resize(std::min(data.size(), bytes));
   }
@@ -821,7 +889,8 @@ std::vector<double> VtuReader::inline_values(const Array& array) const {
 }
 
 std::vector<double> VtuReader::appended_values(const Array& array) const {
-  if (xml_.appended_begin == std::string::npos) fail(*array.element, "DataArray '" + array.name + "' is appended but the file has no <AppendedData>");
+  if (xml_.appended_begin == std::string::npos)
+    fail(*array.element, "DataArray '" + array.name + "' is appended but the file has no <AppendedData>");
   long offset = 0;
   if (!parse_integer(array.element->attribute("offset"), offset) || offset < 0)
     fail(*array.element, "DataArray '" + array.name + "' needs an offset");
@@ -838,19 +907,23 @@ std::vector<double> VtuReader::appended_values(const Array& array) const {
                           std::to_string(data.size() - start - header_size_) + " are left");
     return convert(array, {bytes + header_size_, size});
   }
-  if (xml_.appended_encoding != "base64") fail(*array.element, "unknown AppendedData encoding '" + xml_.appended_encoding + "'");
+  if (xml_.appended_encoding != "base64")
+    fail(*array.element, "unknown AppendedData encoding '" + xml_.appended_encoding + "'");
   const std::string_view text = data.substr(start);
   const std::size_t header_chars = base64_length(header_size_);
   std::vector<unsigned char> header;
   std::vector<unsigned char> bytes;
   const std::string bad = "invalid or truncated base64 appended data of '" + array.name + "'";
-  if (text.size() < header_chars || !base64_decode(text.substr(0, header_chars), header) || header.size() < header_size_) in_.fail_at(at, bad);
+  if (text.size() < header_chars || !base64_decode(text.substr(0, header_chars), header) ||
+      header.size() < header_size_)
+    in_.fail_at(at, bad);
   const std::size_t size = header_value(header);
   const bool separate = text[header_chars - 1] == '=';
   const std::size_t first = separate ? header_chars : 0;
   const std::size_t length = separate ? base64_length(size) : base64_length(header_size_ + size);
   if (length > text.size() - first || !base64_decode(text.substr(first, length), bytes)) in_.fail_at(at, bad);
-  if (!separate) bytes.erase(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(std::min(bytes.size(), header_size_)));
+  if (!separate)
+    bytes.erase(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(std::min(bytes.size(), header_size_)));
   if (bytes.size() < size) in_.fail_at(at, bad);
   bytes.resize(size);
   return convert(array, bytes);

@@ -41,7 +41,8 @@ const tm_kernel& Registry::get(std::string_view law, std::string_view element, s
   std::string available;
   for (const tm_kernel* kernel : kernels_)
     if (kernel->element == element || kernel->law == law)
-      available += std::string(available.empty() ? "" : ", ") + kernel->law + "/" + kernel->element + "/" + kernel->split;
+      available +=
+          std::string(available.empty() ? "" : ", ") + kernel->law + "/" + kernel->element + "/" + kernel->split;
   throw std::invalid_argument("no kernel for law '" + std::string(law) + "', element '" + std::string(element) +
                               "', split '" + std::string(split) + "'" +
                               (available.empty() ? std::string() : " (related: " + available + ")"));

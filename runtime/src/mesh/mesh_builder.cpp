@@ -55,7 +55,8 @@ class MeshBuilder::NodeIndex {
     dense_mode_ = span <= 4 * ids.size() + 1024;
     if (dense_mode_) dense_.assign(span, -1);
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      int& slot = dense_mode_ ? dense_[static_cast<std::size_t>(ids[i] - min_id_)] : sparse_.try_emplace(ids[i], -1).first->second;
+      int& slot = dense_mode_ ? dense_[static_cast<std::size_t>(ids[i] - min_id_)]
+                              : sparse_.try_emplace(ids[i], -1).first->second;
       if (slot >= 0)
         throw InputError(format_location(source, where[i]) + ": duplicate node id " + std::to_string(ids[i]) +
                          " (first defined at " + format_location(source, where[static_cast<std::size_t>(slot)]) + ")");
@@ -106,7 +107,8 @@ std::vector<int> find_duplicates(const std::vector<const Shape*>& shapes, const 
     const auto [lo, hi] = seen.equal_range(h);
     for (auto it = lo; it != hi; ++it) {
       const auto other = static_cast<std::size_t>(it->second);
-      if (shapes[other] == shapes[e] && std::equal(begin, end, nodes.begin() + static_cast<std::ptrdiff_t>(offsets[other]))) {
+      if (shapes[other] == shapes[e] &&
+          std::equal(begin, end, nodes.begin() + static_cast<std::ptrdiff_t>(offsets[other]))) {
         first[e] = it->second;
         break;
       }
@@ -175,12 +177,14 @@ MeshBuilder::Resolved MeshBuilder::resolve() const {
   for (std::size_t e = 0; e < shapes_.size(); ++e)
     for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) {
       r.raw[k] = index.find(element_nodes_[k]);
-      if (r.raw[k] < 0) fail_element(e, "refers to node " + std::to_string(element_nodes_[k]) + ", which the file does not define");
+      if (r.raw[k] < 0)
+        fail_element(e, "refers to node " + std::to_string(element_nodes_[k]) + ", which the file does not define");
     }
   r.renumber.assign(node_ids_.size(), -1);
   for (std::size_t e = 0; e < shapes_.size(); ++e)
     if (shapes_[e]->dim == r.dim)
-      for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k) r.renumber[static_cast<std::size_t>(r.raw[k])] = 0;
+      for (std::size_t k = node_offsets_[e]; k < node_offsets_[e + 1]; ++k)
+        r.renumber[static_cast<std::size_t>(r.raw[k])] = 0;
   int next = 0;
   for (int& number : r.renumber)
     if (number == 0) number = next++;
@@ -190,7 +194,8 @@ MeshBuilder::Resolved MeshBuilder::resolve() const {
 }
 
 void MeshBuilder::fill_nodes(Mesh& mesh, const Resolved& r) const {
-  const auto count = static_cast<std::size_t>(std::count_if(r.renumber.begin(), r.renumber.end(), [](int n) { return n >= 0; }));
+  const auto count =
+      static_cast<std::size_t>(std::count_if(r.renumber.begin(), r.renumber.end(), [](int n) { return n >= 0; }));
   mesh.rest_positions.resize(3 * count);
   mesh.node_source_ids.resize(count);
   for (std::size_t i = 0; i < r.renumber.size(); ++i) {
@@ -242,7 +247,8 @@ void MeshBuilder::fill_groups(Mesh& mesh, const Resolved& r, const std::function
   // (key, first element) pairs: key order, then file order; duplicates once.
   std::vector<std::pair<long, int>> members;
   for (std::size_t e = 0; e < shapes_.size(); ++e)
-    for (std::size_t k = group_offsets_[e]; k < group_offsets_[e + 1]; ++k) members.emplace_back(element_groups_[k], r.first[e]);
+    for (std::size_t k = group_offsets_[e]; k < group_offsets_[e + 1]; ++k)
+      members.emplace_back(element_groups_[k], r.first[e]);
   std::sort(members.begin(), members.end());
   members.erase(std::unique(members.begin(), members.end()), members.end());
   std::map<std::string, std::size_t> by_name;
@@ -284,7 +290,8 @@ void MeshBuilder::flatten_2d(Mesh& mesh) const {
     double& z = mesh.rest_positions[3 * static_cast<std::size_t>(n) + 2];
     if (std::abs(z) > tolerance)
       throw InputError(source_ + ": the highest elements are 2D, but node " +
-                       std::to_string(mesh.node_source_ids[static_cast<std::size_t>(n)]) + " has z = " + std::to_string(z) +
+                       std::to_string(mesh.node_source_ids[static_cast<std::size_t>(n)]) +
+                       " has z = " + std::to_string(z) +
                        "; 2D meshes must lie in the plane z = 0 (for a 3D mesh, the file must hold its volume "
                        "elements: with Gmsh, add a Physical Volume or set Mesh.SaveAll = 1)");
     z = 0;

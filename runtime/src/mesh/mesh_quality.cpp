@@ -102,7 +102,8 @@ double scaled_jacobian(const CornerFrames& frames, int dim, std::span<const doub
 const tm_kernel* volume_kernel(const tm_element_info& element) {
   const tm_kernel* found = nullptr;
   for (const tm_kernel* kernel : Registry::instance().kernels())
-    if (std::strcmp(kernel->element, element.name) == 0 && (!found || std::strcmp(kernel->split, "whole") == 0)) found = kernel;
+    if (std::strcmp(kernel->element, element.name) == 0 && (!found || std::strcmp(kernel->split, "whole") == 0))
+      found = kernel;
   return found;
 }
 
@@ -110,15 +111,18 @@ double quadrature_volume(const tm_kernel* kernel, int dim, std::span<const doubl
   if (!kernel) return std::numeric_limits<double>::quiet_NaN();
   std::vector<double> rest(static_cast<std::size_t>(kernel->nodes * kernel->dim));
   for (int n = 0; n < kernel->nodes; ++n)
-    for (int c = 0; c < kernel->dim; ++c) rest[static_cast<std::size_t>(n * kernel->dim + c)] = xyz[static_cast<std::size_t>(3 * n + c)];
+    for (int c = 0; c < kernel->dim; ++c)
+      rest[static_cast<std::size_t>(n * kernel->dim + c)] = xyz[static_cast<std::size_t>(3 * n + c)];
   std::vector<double> params(static_cast<std::size_t>(kernel->params), 1.0);
   for (int p = 0; p < kernel->params; ++p)
     if (std::strcmp(kernel->param_names[p], "poisson") == 0) params[static_cast<std::size_t>(p)] = 0.25;
   std::vector<double> consts(static_cast<std::size_t>(kernel->consts));
-  if (kernel->precompute(rest.data(), params.data(), consts.data()) != 0) return std::numeric_limits<double>::quiet_NaN();
+  if (kernel->precompute(rest.data(), params.data(), consts.data()) != 0)
+    return std::numeric_limits<double>::quiet_NaN();
   double volume = 0;
   const int stride = 1 + dim * kernel->nodes;
-  for (int q = 0; q < kernel->quadrature_points; ++q) volume += consts[static_cast<std::size_t>(kernel->derived_params + q * stride)];
+  for (int q = 0; q < kernel->quadrature_points; ++q)
+    volume += consts[static_cast<std::size_t>(kernel->derived_params + q * stride)];
   return volume;
 }
 
@@ -161,7 +165,8 @@ std::vector<double> cell_coordinates(const Mesh& mesh, const ElementBlock& block
   std::vector<double> xyz;
   xyz.reserve(3 * static_cast<std::size_t>(block.nodes_per_cell()));
   for (int node : block.cell_nodes(local))
-    for (int c = 0; c < 3; ++c) xyz.push_back(mesh.rest_positions[3 * static_cast<std::size_t>(node) + static_cast<std::size_t>(c)]);
+    for (int c = 0; c < 3; ++c)
+      xyz.push_back(mesh.rest_positions[3 * static_cast<std::size_t>(node) + static_cast<std::size_t>(c)]);
   return xyz;
 }
 

@@ -36,8 +36,8 @@ std::string cut_list(int dim) {
 /// The message for a cut name that is not valid in `dim`.
 std::string bad_cut_message(int dim, const std::string& cut) {
   static const std::map<std::string, std::string> hints{
-      {"tri6", "tri3 with --order 2"}, {"quad8", "quad4 with --order 2"},  {"hex20", "hex8 with --order 2"},
-      {"tet10", "tet5 or tet6 with --order 2"}, {"tet4", "tet5 or tet6"}, {"wedge", "prism6"}};
+      {"tri6", "tri3 with --order 2"},          {"quad8", "quad4 with --order 2"}, {"hex20", "hex8 with --order 2"},
+      {"tet10", "tet5 or tet6 with --order 2"}, {"tet4", "tet5 or tet6"},          {"wedge", "prism6"}};
   std::string message = "unknown cell type '" + cut + "'";
   if (is_cut(5 - dim, cut)) message = "'" + cut + "' is a " + std::to_string(5 - dim) + "D cell type";
   if (const auto hint = hints.find(cut); hint != hints.end()) message += " (use " + hint->second + ")";
@@ -59,8 +59,7 @@ void check_phases(const BeamSpec& spec) {
         throw InputError("beam: " + phase.cut + " appears twice in the mix (one phase per cell type)");
     total += phase.fraction;
   }
-  if (std::abs(total - 1.0) > 1e-6)
-    throw InputError("beam: mix fractions sum to " + std::to_string(total) + ", not 1");
+  if (std::abs(total - 1.0) > 1e-6) throw InputError("beam: mix fractions sum to " + std::to_string(total) + ", not 1");
 }
 
 void check_order(const BeamSpec& spec) {
@@ -69,7 +68,8 @@ void check_order(const BeamSpec& spec) {
   if (spec.order == 1) return;
   for (const BeamPhase& phase : spec.phases)
     if (phase.cut == "prism6" || phase.cut == "pyramid5")
-      throw InputError("beam: " + phase.cut + " has no quadratic version (order 2 works with tri3, quad4, hex8, "
+      throw InputError("beam: " + phase.cut +
+                       " has no quadratic version (order 2 works with tri3, quad4, hex8, "
                        "tet5, tet6)");
   for (std::size_t p = 0; p + 1 < spec.phases.size(); ++p) {
     const std::string& a = spec.phases[p].cut;
@@ -88,9 +88,7 @@ using detail::dot;
 using detail::minus;
 
 /// Coordinate of grid line `index` of `count` cells over [0, length]; exact at both ends.
-double grid_coordinate(int index, int count, double length) {
-  return index == count ? length : length * index / count;
-}
+double grid_coordinate(int index, int count, double length) { return index == count ? length : length * index / count; }
 
 /// How a square face between cubes is cut: kept whole, or split by the
 /// diagonal from its (0,0) to (1,1) corner ("low_high") or (1,0) to (0,1) ("cross"),
@@ -258,7 +256,9 @@ void BeamBuilder::cut_cube(int i, int j, int k) {
 
 // --- 3D: cuts ----------------------------------------------------------------------
 
-void BeamBuilder::cut_hex(const std::array<int, 8>& c) { add_cell("hex8", {c[0], c[1], c[3], c[2], c[4], c[5], c[7], c[6]}); }
+void BeamBuilder::cut_hex(const std::array<int, 8>& c) {
+  add_cell("hex8", {c[0], c[1], c[3], c[2], c[4], c[5], c[7], c[6]});
+}
 
 /// Central tet on the corners of even grid parity, one tet on each odd corner.
 void BeamBuilder::cut_tet5(const std::array<int, 8>& c, int parity) {
@@ -339,7 +339,8 @@ void BeamBuilder::add_prism(std::array<int, 3> bottom, std::array<int, 3> top) {
 
 /// The node in the middle of edge a-b, shared by every cell on that edge.
 int BeamBuilder::mid_node(int a, int b) {
-  const std::uint64_t key = static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
+  const std::uint64_t key =
+      static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
   if (const auto found = mid_nodes_.find(key); found != mid_nodes_.end()) return found->second;
   const Point pa = point(a), pb = point(b);
   const int node = add_node({(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2},
@@ -403,7 +404,8 @@ Mesh BeamBuilder::assemble() {
   for (const CellList& list : lists_) {
     if (list.phase.empty()) continue;
     ElementBlock block{list.element, list.connectivity, {}, static_cast<int>(cell_phase.size())};
-    for (std::size_t cell = 0; cell < list.phase.size(); ++cell) block.source_ids.push_back(block.first_cell + cell + 1);
+    for (std::size_t cell = 0; cell < list.phase.size(); ++cell)
+      block.source_ids.push_back(block.first_cell + cell + 1);
     cell_phase.insert(cell_phase.end(), list.phase.begin(), list.phase.end());
     mesh.blocks.push_back(std::move(block));
   }
@@ -523,7 +525,8 @@ std::vector<int> beam_phase_bounds(const BeamSpec& spec) {
 }
 
 void check_beam_spec(const BeamSpec& spec) {
-  if (spec.dim != 2 && spec.dim != 3) throw InputError("beam: dimension must be 2 or 3, got " + std::to_string(spec.dim));
+  if (spec.dim != 2 && spec.dim != 3)
+    throw InputError("beam: dimension must be 2 or 3, got " + std::to_string(spec.dim));
   double cubes = 1;
   for (int a = 0; a < spec.dim; ++a) {
     if (spec.cells[a] < 1)

@@ -1,13 +1,12 @@
 // Tetrahedra between the octree core and the input surface, by Gmsh.
 #include "meshing/gap_mesher.hpp"
 
-#include "io/gmsh_session.hpp"
-
 #include <algorithm>
 #include <exception>
 #include <string>
 #include <unordered_map>
 
+#include "io/gmsh_session.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail {
@@ -76,7 +75,8 @@ GapMesh fill_gap(const std::vector<double>& positions, const std::vector<std::ar
     gmsh::option::setNumber("Mesh.Optimize", 1);
     gmsh::model::add("gap");
     SurfaceNodes surface_nodes;
-    std::vector<int> loops{gmsh::model::geo::addSurfaceLoop({add_discrete_surface(1, positions, outer, surface_nodes)})};
+    std::vector<int> loops{
+        gmsh::model::geo::addSurfaceLoop({add_discrete_surface(1, positions, outer, surface_nodes)})};
     if (!inner.empty())
       loops.push_back(gmsh::model::geo::addSurfaceLoop({add_discrete_surface(2, positions, inner, surface_nodes)}));
     const std::size_t surface_tags = surface_nodes.node_of_tag.size() - 1;

@@ -11,8 +11,8 @@
 namespace tensormass::detail {
 
 struct GapMesh {
-  std::vector<double> new_positions;       ///< #N by 3: nodes Gmsh added inside the gap
-  std::vector<std::array<int, 4>> tets;    ///< node indices: < positions' count, or count + k for new node k
+  std::vector<double> new_positions;     ///< #N by 3: nodes Gmsh added inside the gap
+  std::vector<std::array<int, 4>> tets;  ///< node indices: < positions' count, or count + k for new node k
 };
 
 /// Tetrahedralises the volume bounded by `outer` (outward triangles) and

@@ -59,8 +59,8 @@ void Octree::split(const OctreeCell& leaf) {
                             2 * leaf.index[2] + ((c >> 2) & 1)));
 }
 
-void Octree::refine(const std::function<void(const std::vector<OctreeCell>&, std::vector<char>&,
-                                             std::vector<char>&)>& decide) {
+void Octree::refine(
+    const std::function<void(const std::vector<OctreeCell>&, std::vector<char>&, std::vector<char>&)>& decide) {
   for (int depth = 0; depth <= max_depth_; ++depth) {
     std::vector<OctreeCell> cells;
     for (std::uint64_t key : leaves_) {

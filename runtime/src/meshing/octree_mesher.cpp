@@ -14,12 +14,12 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "common/vector3.hpp"
 #include "meshing/gap_mesher.hpp"
 #include "meshing/octree.hpp"
-#include "common/vector3.hpp"
 #include "tensormass/common/errors.hpp"
-#include "tensormass/mesh/mesh_quality.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/mesh/mesh_quality.hpp"
 
 namespace tensormass {
 namespace {
@@ -31,7 +31,7 @@ using detail::Octree;
 using detail::OctreeCell;
 using Key = std::uint64_t;
 using Lattice = std::array<std::int64_t, 3>;
-constexpr Key kApexFlag = Key{1} << 63;  ///< node key of a cap apex: its face centre's key with this bit
+constexpr Key kApexFlag = Key{1} << 63;               ///< node key of a cap apex: its face centre's key with this bit
 constexpr double kHalfDiagonal = 0.8660254037844386;  // sqrt(3) / 2
 /// Largest angle between a point's normal (the prisms' extrusion direction)
 /// and the normal of a triangle around it: cos 60 deg.
@@ -268,8 +268,7 @@ Lattice CoreMesher::face_centre(const OctreeCell& cell, int face) const {
 
 /// The neighbour region across `face`; core_count counts the core cells
 /// touching the face there (for `finer`: among the 4 children facing it).
-Across CoreMesher::across(const OctreeCell& cell, int face, int& core_count,
-                          std::vector<Key>* core_neighbours) const {
+Across CoreMesher::across(const OctreeCell& cell, int face, int& core_count, std::vector<Key>* core_neighbours) const {
   const int a = face / 2;
   const int step = face % 2 ? 1 : -1;
   OctreeCell next = cell;
@@ -348,8 +347,8 @@ void CoreMesher::refresh_present() {
     const OctreeCell cell = cell_of_key(key);
     const Lattice o = tree_->lattice_origin(cell);
     const std::int64_t s = tree_->lattice_span(cell.depth);
-    for (int c = 0; c < 8; ++c) present_.insert(lattice_key(o[0] + (c & 1) * s, o[1] + ((c >> 1) & 1) * s,
-                                                            o[2] + ((c >> 2) & 1) * s));
+    for (int c = 0; c < 8; ++c)
+      present_.insert(lattice_key(o[0] + (c & 1) * s, o[1] + ((c >> 1) & 1) * s, o[2] + ((c >> 2) & 1) * s));
   }
 }
 
@@ -536,7 +535,8 @@ void CoreMesher::cut() {
     if (all_plain) {
       static constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                             {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-      for (const auto& c : kCorner) hexes_.push_back(node(lattice_key(o[0] + c[0] * s, o[1] + c[1] * s, o[2] + c[2] * s)));
+      for (const auto& c : kCorner)
+        hexes_.push_back(node(lattice_key(o[0] + c[0] * s, o[1] + c[1] * s, o[2] + c[2] * s)));
       ++report_.core_hexahedra;
     } else {
       const int centre = node(lattice_key(o[0] + s / 2, o[1] + s / 2, o[2] + s / 2));
@@ -545,7 +545,8 @@ void CoreMesher::cut() {
           if (piece.nodes.size() == 3)
             add_tet(node(piece.nodes[0]), node(piece.nodes[1]), node(piece.nodes[2]), centre);
           else
-            add_pyramid({node(piece.nodes[0]), node(piece.nodes[1]), node(piece.nodes[2]), node(piece.nodes[3])}, centre);
+            add_pyramid({node(piece.nodes[0]), node(piece.nodes[1]), node(piece.nodes[2]), node(piece.nodes[3])},
+                        centre);
         }
       ++report_.transition_cells;
     }
@@ -580,7 +581,8 @@ void CoreMesher::fill_gap() {
   positions_.insert(positions_.end(), surface_.points.begin(), surface_.points.end());
   std::vector<std::array<int, 3>> outer;
   for (int t = 0; t < surface_.triangle_count(); ++t)
-    outer.push_back({surface_first_node_ + surface_.triangles[3 * t], surface_first_node_ + surface_.triangles[3 * t + 1],
+    outer.push_back({surface_first_node_ + surface_.triangles[3 * t],
+                     surface_first_node_ + surface_.triangles[3 * t + 1],
                      surface_first_node_ + surface_.triangles[3 * t + 2]});
   if (options_.boundary_layer > 0) outer = add_boundary_layer(outer);
   if (inner_triangles_.empty())
@@ -731,7 +733,8 @@ Mesh CoreMesher::assemble() {
   mesh.rest_positions = positions_;
   for (int n = 0; n < mesh.node_count(); ++n) mesh.node_source_ids.push_back(n + 1);
   // Registry order: tet4 < pyramid5 < hex8 is whatever the registry says; add in its order.
-  std::map<std::string, std::vector<int>*> lists{{"tet4", &tets_}, {"pyramid5", &pyramids_}, {"prism6", &prisms_}, {"hex8", &hexes_}};
+  std::map<std::string, std::vector<int>*> lists{
+      {"tet4", &tets_}, {"pyramid5", &pyramids_}, {"prism6", &prisms_}, {"hex8", &hexes_}};
   for (const tm_element_info* element : Registry::instance().elements()) {
     const auto where = lists.find(element->name);
     if (where != lists.end()) add_block(mesh, element->name, *where->second);

@@ -42,7 +42,8 @@ Model::Model(const Mesh& mesh, const ModelSpec& spec) : mesh_(&mesh), dim_(mesh.
   cell_offsets_.push_back(0);
   for (const ElementBlock& block : mesh.blocks) {
     cell_connectivity_.insert(cell_connectivity_.end(), block.connectivity.begin(), block.connectivity.end());
-    for (int local = 0; local < block.count(); ++local) cell_offsets_.push_back(cell_offsets_.back() + block.element->nodes);
+    for (int local = 0; local < block.count(); ++local)
+      cell_offsets_.push_back(cell_offsets_.back() + block.element->nodes);
   }
   load_profile_ = spec.loads.profile;
   bind_kernels(spec);
@@ -185,19 +186,29 @@ using InversionCheck = bool (*)(const double*, const double*, int, int);
 InversionCheck inversion_check(int dim, int nodes) {
   if (dim == 2) {
     switch (nodes) {
-      case 3: return inverted_at_a_point<2, 3>;
-      case 4: return inverted_at_a_point<2, 4>;
-      case 6: return inverted_at_a_point<2, 6>;
-      case 8: return inverted_at_a_point<2, 8>;
+      case 3:
+        return inverted_at_a_point<2, 3>;
+      case 4:
+        return inverted_at_a_point<2, 4>;
+      case 6:
+        return inverted_at_a_point<2, 6>;
+      case 8:
+        return inverted_at_a_point<2, 8>;
     }
   } else {
     switch (nodes) {
-      case 4: return inverted_at_a_point<3, 4>;
-      case 5: return inverted_at_a_point<3, 5>;
-      case 6: return inverted_at_a_point<3, 6>;
-      case 8: return inverted_at_a_point<3, 8>;
-      case 10: return inverted_at_a_point<3, 10>;
-      case 20: return inverted_at_a_point<3, 20>;
+      case 4:
+        return inverted_at_a_point<3, 4>;
+      case 5:
+        return inverted_at_a_point<3, 5>;
+      case 6:
+        return inverted_at_a_point<3, 6>;
+      case 8:
+        return inverted_at_a_point<3, 8>;
+      case 10:
+        return inverted_at_a_point<3, 10>;
+      case 20:
+        return inverted_at_a_point<3, 20>;
     }
   }
   throw std::logic_error("no inversion check for " + std::to_string(nodes) + "-node elements");

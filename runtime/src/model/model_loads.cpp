@@ -54,8 +54,8 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
       for (int j = 0; j < n; ++j) {
         // Row sum for linear elements; HRZ (diagonal scaled to the element's
         // mass) for quadratic ones, whose row sums are zero or negative at corners.
-        const double mass = element.order == 1 ? density * integral_n[j]
-                                               : density * volume * integral_n2[j] / diagonal_sum;
+        const double mass =
+            element.order == 1 ? density * integral_n[j] : density * volume * integral_n2[j] / diagonal_sum;
         if (!(mass > 0.0))
           throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) + " gets a non-positive lumped mass");
         for (int a = 0; a < dim_; ++a) {
@@ -192,10 +192,10 @@ void Model::apply_nodal_forces_and_pressure(const ModelSpec& spec) {
             ts[a] += dN[j][1] * mesh_->rest_positions[3 * nodes[j] + a];
           }
         // Area-weighted normal: tr x ts in 3D, tr x z in 2D (unit thickness).
-        std::array<double, 3> normal = dim_ == 2 ? std::array<double, 3>{tr[1], -tr[0], 0.0}
-                                                 : std::array<double, 3>{tr[1] * ts[2] - tr[2] * ts[1],
-                                                                         tr[2] * ts[0] - tr[0] * ts[2],
-                                                                         tr[0] * ts[1] - tr[1] * ts[0]};
+        std::array<double, 3> normal =
+            dim_ == 2 ? std::array<double, 3>{tr[1], -tr[0], 0.0}
+                      : std::array<double, 3>{tr[1] * ts[2] - tr[2] * ts[1], tr[2] * ts[0] - tr[0] * ts[2],
+                                              tr[0] * ts[1] - tr[1] * ts[0]};
         for (int j = 0; j < count; ++j)
           for (int a = 0; a < 3; ++a) nodal[j][a] += rule.weights[q] * N[j] * normal[a];
         for (int a = 0; a < 3; ++a) total[a] += rule.weights[q] * normal[a];
@@ -204,14 +204,15 @@ void Model::apply_nodal_forces_and_pressure(const ModelSpec& spec) {
       for (int a = 0; a < 3; ++a) outward += total[a] * (facet_centre[a] - cell_centre[a]);
       const double sign = outward >= 0 ? -load.pressure : load.pressure;  // positive pressure pushes inward
       for (int j = 0; j < count; ++j)
-        for (int a = 0; a < dim_; ++a) surface_load_[static_cast<std::size_t>(nodes[j]) * dim_ + a] += sign * nodal[j][a];
+        for (int a = 0; a < dim_; ++a)
+          surface_load_[static_cast<std::size_t>(nodes[j]) * dim_ + a] += sign * nodal[j][a];
     }
   }
 }
 
 void Model::collect_constraints(const ModelSpec& spec) {
   std::map<int, PrescribedDof> by_dof;  // a later constraint on a dof wins
-  profiles_.push_back(TimeProfile{});  // 0: constant, for fixed groups
+  profiles_.push_back(TimeProfile{});   // 0: constant, for fixed groups
   for (const std::string& region : spec.fixed)
     for (int node : model_group(*mesh_, region).nodes)
       for (int a = 0; a < dim_; ++a) by_dof[node * dim_ + a] = {node * dim_ + a, 0.0, 0};

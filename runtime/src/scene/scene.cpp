@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <functional>
 
+#include "scene/yaml_reader.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/simulation/track.hpp"
-#include "scene/yaml_reader.hpp"
 
 namespace tensormass {
 
@@ -361,8 +361,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   try {
     YAML::Node root = scene_yaml::read_yaml_file(path);
     if (!root.IsMap())
-      Value(source, root, {}).fail_here("a scene is a map of keys (mesh, materials, solver, ...), got " +
-                                        Value(source, root, {}).describe());
+      Value(source, root, {})
+          .fail_here("a scene is a map of keys (mesh, materials, solver, ...), got " +
+                     Value(source, root, {}).describe());
     for (const std::string& text : overrides) scene_yaml::apply_override(root, text, scene_keys(), source);
     const Value top(source, root, {});
     scene_yaml::check_keys(top, scene_keys());

@@ -76,7 +76,6 @@ void check_groups(const Scene& scene, const Mesh& mesh) {
   }
 }
 
-
 /// Every cell has a material, and the registry a kernel for it.
 void check_materials(const Scene& scene, const Mesh& mesh) {
   for (const ElementBlock& block : mesh.blocks)

@@ -87,10 +87,10 @@ class Value {
   std::vector<std::pair<Value, Value>> entries() const;
   void expect_map() const;
 
-  double number() const;      ///< a finite number
-  int integer() const;        ///< an int (1e3 is accepted as 1000)
-  std::string text() const;   ///< a non-empty scalar string
-  std::string scalar() const; ///< the raw scalar ("" when absent)
+  double number() const;       ///< a finite number
+  int integer() const;         ///< an int (1e3 is accepted as 1000)
+  std::string text() const;    ///< a non-empty scalar string
+  std::string scalar() const;  ///< the raw scalar ("" when absent)
 
   int line() const { return source_->line(path_, place_); }
   const Path& path() const { return path_; }

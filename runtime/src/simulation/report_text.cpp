@@ -34,8 +34,10 @@ std::string format_report(const Scene& scene, const RunReport& report) {
        << report.dofs << " dofs (" << report.free_dofs << " free)\n";
   text << "  laws      " << list(report.cells_per_law) << "\n";
   text << "  solver    " << solver_type_name(scene.solver.type);
-  if (dynamic) text << format(", dt %g s, %g steps", scene.solver.dt, scene.solver.steps);
-  else text << format(", %g load steps, tolerance %g", scene.solver.load_steps, scene.solver.tolerance);
+  if (dynamic)
+    text << format(", dt %g s, %g steps", scene.solver.dt, scene.solver.steps);
+  else
+    text << format(", %g load steps, tolerance %g", scene.solver.load_steps, scene.solver.tolerance);
   text << ", linear: " << report.linear_solver << "\n";
   if (scene.solver.type == SolverType::explicit_euler) text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
   text << format("  time      %.3f s; per step mean %.4g ms, median %.4g ms\n", report.wall_seconds, mean, median);
@@ -64,7 +66,8 @@ std::string format_report(const Scene& scene, const RunReport& report) {
       steps << (shown++ ? ", " : "") << "step " << record.step << " +" << record.upgrades;
       if (record.downgrades) steps << " -" << record.downgrades;
     }
-    if (shown) text << "  switched  " << steps.str() << (hidden ? " and " + std::to_string(hidden) + " more" : "") << "\n";
+    if (shown)
+      text << "  switched  " << steps.str() << (hidden ? " and " + std::to_string(hidden) + " more" : "") << "\n";
   }
   if (dynamic)
     text << format("  speed     real-time factor %.3g (%.4g s simulated in %.4g s)\n", report.real_time_factor(),

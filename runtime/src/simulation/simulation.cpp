@@ -1,4 +1,3 @@
-#include "tensormass/io/read_mesh.hpp"
 #include "tensormass/simulation/simulation.hpp"
 
 #include <omp.h>
@@ -16,12 +15,13 @@
 #include "simulation/summary_json.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/io/read_mesh.hpp"
 #include "tensormass/io/vtk_writer.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model.hpp"
-#include "tensormass/kernels/registry.hpp"
 #include "tensormass/simulation/track.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 
@@ -83,7 +83,8 @@ void count_cells(const Model& model, RunReport& report) {
   for (int cell = 0; cell < model.cell_count(); ++cell) ++per_law[model.kernel(cell).law];
   report.cells_per_law.assign(per_law.begin(), per_law.end());
   report.cells_per_type.clear();
-  for (const ElementBlock& block : model.mesh().blocks) report.cells_per_type.push_back({block.element->name, block.count()});
+  for (const ElementBlock& block : model.mesh().blocks)
+    report.cells_per_type.push_back({block.element->name, block.count()});
 }
 
 /// One track per `output.track` group (the groups were checked before).
@@ -149,13 +150,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   last_good.displacement.assign(model.dof_count(), 0.0);
   last_good.velocity.assign(model.dof_count(), 0.0);
   std::vector<io::SeriesEntry> series;
-  detail::Progress progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)), options.progress);
+  detail::Progress progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
+                            options.progress);
   auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
   std::size_t counted_steps = 0;
   double stepping_ms = 0;
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
-  int resolves = 0;  // static: repeats of the current load step after switches
+  int resolves = 0;               // static: repeats of the current load step after switches
   constexpr int kMaxResolves = 20;
   const StepObserver observer = [&](const State& state) {
     if (adaptivity) {
@@ -205,9 +207,15 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
   try {
     switch (scene.solver.type) {
-      case SolverType::static_newton: solve_static(run, state, observer); break;
-      case SolverType::implicit_euler: solve_implicit(run, state, observer); break;
-      case SolverType::explicit_euler: solve_explicit(run, state, observer); break;
+      case SolverType::static_newton:
+        solve_static(run, state, observer);
+        break;
+      case SolverType::implicit_euler:
+        solve_implicit(run, state, observer);
+        break;
+      case SolverType::explicit_euler:
+        solve_explicit(run, state, observer);
+        break;
     }
   } catch (const NumericalError& failure) {
     progress.finish();

@@ -28,13 +28,23 @@ std::string quoted(const std::string& text) {
   out << '"';
   for (char c : text) {
     switch (c) {
-      case '"': out << "\\\""; break;
-      case '\\': out << "\\\\"; break;
-      case '\n': out << "\\n"; break;
-      case '\t': out << "\\t"; break;
+      case '"':
+        out << "\\\"";
+        break;
+      case '\\':
+        out << "\\\\";
+        break;
+      case '\n':
+        out << "\\n";
+        break;
+      case '\t':
+        out << "\\t";
+        break;
       default:
-        if (static_cast<unsigned char>(c) < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
-        else out << c;
+        if (static_cast<unsigned char>(c) < 0x20)
+          out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+        else
+          out << c;
     }
   }
   out << '"';
@@ -54,8 +64,8 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
                    const std::string& failure) {
   const SolveStatistics& s = report.statistics;
   const auto [mean, median] = mean_and_median(s.step_ms);
-  const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds - report.output_seconds -
-                                         report.criteria_seconds);
+  const double other = std::max(0.0, report.wall_seconds - s.assembly_seconds - s.solve_seconds -
+                                         report.output_seconds - report.criteria_seconds);
   const bool dynamic = scene.solver.is_dynamic();
   std::ostringstream j;
   j << "{\n";
@@ -63,17 +73,21 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   if (!failure.empty()) j << "  \"error\": " << quoted(failure) << ",\n";
   j << "  \"scene\": " << quoted(scene.path) << ",\n";
   j << "  \"mesh\": " << quoted(scene.mesh) << ",\n";
-  j << "  \"solver\": {\"type\": " << quoted(std::string(solver_type_name(scene.solver.type))) << ", \"linear\": " << quoted(report.linear_solver);
-  if (dynamic) j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
-  else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
+  j << "  \"solver\": {\"type\": " << quoted(std::string(solver_type_name(scene.solver.type)))
+    << ", \"linear\": " << quoted(report.linear_solver);
+  if (dynamic)
+    j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
+  else
+    j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
   j << ", \"threads\": " << omp_get_max_threads() << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
     << ", \"free_dofs\": " << report.free_dofs << ",\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";
   j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";
-  j << "  \"time_per_phase_s\": {\"criteria\": " << number(report.criteria_seconds) << ", \"assembly\": " << number(s.assembly_seconds)
-    << ", \"solve\": " << number(s.solve_seconds) << ", \"output\": " << number(report.output_seconds)
-    << ", \"other\": " << number(other) << ", \"total\": " << number(report.wall_seconds) << "},\n";
+  j << "  \"time_per_phase_s\": {\"criteria\": " << number(report.criteria_seconds)
+    << ", \"assembly\": " << number(s.assembly_seconds) << ", \"solve\": " << number(s.solve_seconds)
+    << ", \"output\": " << number(report.output_seconds) << ", \"other\": " << number(other)
+    << ", \"total\": " << number(report.wall_seconds) << "},\n";
   j << "  \"newton_iterations\": {\"total\": " << s.newton_iterations << ", \"per_step\": [";
   for (std::size_t i = 0; i < s.newton_per_step.size(); ++i) j << (i ? ", " : "") << s.newton_per_step[i];
   j << "]},\n";
@@ -103,8 +117,8 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     j << "  \"adaptivity\": {\"criteria\": [";
     for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
       j << (i ? ", " : "") << "{\"name\": " << quoted(scene.adaptivity.criteria[i].name)
-        << ", \"threshold\": " << number(scene.adaptivity.criteria[i].threshold) << ", \"seconds\": "
-        << number(i < report.criterion_seconds.size() ? report.criterion_seconds[i] : 0.0) << "}";
+        << ", \"threshold\": " << number(scene.adaptivity.criteria[i].threshold)
+        << ", \"seconds\": " << number(i < report.criterion_seconds.size() ? report.criterion_seconds[i] : 0.0) << "}";
     j << "], \"per_step\": [";
     for (std::size_t i = 0; i < report.adaptivity.size(); ++i) {
       const AdaptivityRecord& r = report.adaptivity[i];
@@ -125,8 +139,8 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     << ", \"time_loop_seconds\": " << (dynamic ? number(report.loop_seconds) : "null")
     << ", \"real_time_factor\": " << (dynamic ? number(report.real_time_factor()) : "null") << ",\n";
   if (scene.solver.type == SolverType::explicit_euler) j << "  \"stable_dt_s\": " << number(s.stable_dt) << ",\n";
-  j << "  \"max_displacement\": {\"value\": " << number(report.max_displacement) << ", \"node\": "
-    << report.max_displacement_node << "},\n";
+  j << "  \"max_displacement\": {\"value\": " << number(report.max_displacement)
+    << ", \"node\": " << report.max_displacement_node << "},\n";
   j << "  \"warnings\": [";
   for (std::size_t i = 0; i < s.warnings.size(); ++i) j << (i ? ", " : "") << quoted(s.warnings[i]);
   j << "],\n  \"tracks\": {";

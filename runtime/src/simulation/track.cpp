@@ -24,8 +24,9 @@ GroupTrack::GroupTrack(const Mesh& mesh, std::string name, std::span<const int> 
     const auto [b, local] = mesh.locate(cell);
     const ElementBlock& block = mesh.blocks[static_cast<std::size_t>(b)];
     const double volume = cell_volume(*block.element, mesh.dim, cell_coordinates(mesh, block, local));
-    if (!(volume > 0)) throw InputError("cannot track group '" + name_ + "': " + mesh.describe_cell(cell) +
-                                        " has no positive volume at rest");
+    if (!(volume > 0))
+      throw InputError("cannot track group '" + name_ + "': " + mesh.describe_cell(cell) +
+                       " has no positive volume at rest");
     rest_volume_ += volume;
     for (int node : block.cell_nodes(local)) {
       node_weight[static_cast<std::size_t>(node)] += volume / block.nodes_per_cell();
@@ -91,8 +92,8 @@ void GroupTrack::write_csv(const std::string& path) const {
 std::string track_file_name(const std::string& group) {
   std::string name = group;
   for (char& c : name) {
-    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-                       c == '-' || c == '_';
+    const bool plain =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '-' || c == '_';
     if (!plain) c = '_';
   }
   return "track_" + name + ".csv";

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <vector>
 
-#include "tensormass/common/errors.hpp"
 #include "solvers/preconditioned_cg.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {

@@ -41,8 +41,7 @@ inline void require_finite(std::span<const double> values, const std::string& wh
 /// Throws NumericalError naming the first inverted element.
 inline void require_no_inversion(const Model& model, std::span<const double> u, const std::string& where) {
   const int cell = model.first_inverted_cell(u);
-  if (cell >= 0)
-    throw NumericalError(model.mesh().describe_cell(cell) + " inverted (det F <= 0) " + where);
+  if (cell >= 0) throw NumericalError(model.mesh().describe_cell(cell) + " inverted (det F <= 0) " + where);
 }
 
 }  // namespace tensormass::detail

@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "tensormass/common/errors.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail {
 
@@ -28,8 +28,7 @@ struct PcgWorkspace {
 /// (converged = false, x = the last iterate). Throws NumericalError on NaN.
 template <class Precondition>
 PcgResult preconditioned_cg(const SparseMatrix& A, std::span<const double> b, std::span<double> x,
-                            Precondition&& precondition, double tolerance, int max_iterations,
-                            PcgWorkspace& w) {
+                            Precondition&& precondition, double tolerance, int max_iterations, PcgWorkspace& w) {
   constexpr int kParallelLength = 50000;  // smaller vectors: one thread is faster
   const int n = A.rows;
   w.r.resize(n), w.z.resize(n), w.p.resize(n), w.q.resize(n);

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 
 #include "solvers/integration_support.hpp"
 
@@ -84,7 +84,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
       }
       alpha *= 0.5;
     }
-    if (debug) std::fprintf(stderr, "newton %d: residual %.3e, step %.3g\n", iteration, trial_residual / reference, alpha);
+    if (debug)
+      std::fprintf(stderr, "newton %d: residual %.3e, step %.3g\n", iteration, trial_residual / reference, alpha);
     const double previous = residual;
     u.swap(trial_u);
     g.swap(trial_g);
@@ -95,8 +96,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     if (alpha == 1.0 && residual <= 1e-8 * reference && residual > 0.1 * previous) return iteration;
   }
   throw NumericalError("Newton did not converge " + where + " in " + std::to_string(settings.max_iterations) +
-                       " iterations (relative residual " + format_number(residual / reference) +
-                       ", tolerance " + format_number(settings.tolerance) + ")");
+                       " iterations (relative residual " + format_number(residual / reference) + ", tolerance " +
+                       format_number(settings.tolerance) + ")");
 }
 
 }  // namespace

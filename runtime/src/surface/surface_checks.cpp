@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "common/vector3.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/surface/surface.hpp"
-#include "common/vector3.hpp"
 
 namespace tensormass {
 
@@ -21,8 +21,8 @@ namespace {
 
 using detail::cross;
 using detail::dot;
-using detail::sub;
 using detail::norm;
+using detail::sub;
 
 std::string file_of(const TriangleSurface& surface) { return surface.source.empty() ? "surface" : surface.source; }
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "tensormass/surface/surface.hpp"
 #include "common/vector3.hpp"
+#include "tensormass/surface/surface.hpp"
 
 namespace tensormass {
 

@@ -10,8 +10,8 @@
 #include "support/test_support.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/io/gmsh_writer.hpp"
+#include "tensormass/meshing/beam.hpp"
 #include "tensormass/simulation/simulation.hpp"
 
 namespace tensormass {

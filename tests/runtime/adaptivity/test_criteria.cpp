@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "tensormass/adaptivity/criteria.hpp"
-#include "tensormass/model/model.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/model/model.hpp"
 
 // Counts every global allocation so that a test can show evaluate() makes none.
 namespace {
@@ -57,9 +57,7 @@ struct TestElement {
 
   int dim() const { return kernel->dim; }
   int nodes() const { return kernel->nodes; }
-  ElementView view() const {
-    return {*info, *kernel, consts.data(), rest.data(), u.data(), force.data(), kernel->dim};
-  }
+  ElementView view() const { return {*info, *kernel, consts.data(), rest.data(), u.data(), force.data(), kernel->dim}; }
   double value(const std::string& criterion) const { return make_criterion(criterion)->evaluate(view()); }
 };
 
@@ -132,8 +130,7 @@ Matrix rotation(double theta, Vector axis = {0, 0, 1}) {
   const Matrix K{{{0, -axis[2], axis[1]}, {axis[2], 0, -axis[0]}, {-axis[1], axis[0], 0}}};
   Matrix R{};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      R[a][b] = (a == b ? cs : 0.0) + sn * K[a][b] + (1 - cs) * axis[a] * axis[b];
+    for (int b = 0; b < 3; ++b) R[a][b] = (a == b ? cs : 0.0) + sn * K[a][b] + (1 - cs) * axis[a] * axis[b];
   return R;
 }
 
@@ -190,7 +187,7 @@ double max_edge_strain(const TestElement& element) {
 /// The measure of the reference element (area in 2D).
 double reference_volume(const std::string& type) {
   static const std::map<std::string, double> volumes{
-      {"tri3", 0.5}, {"tri6", 0.5},      {"quad4", 4.0},  {"quad8", 4.0},       {"tet4", 1.0 / 6.0},
+      {"tri3", 0.5},        {"tri6", 0.5}, {"quad4", 4.0}, {"quad8", 4.0},  {"tet4", 1.0 / 6.0},
       {"tet10", 1.0 / 6.0}, {"hex8", 8.0}, {"hex20", 8.0}, {"prism6", 1.0}, {"pyramid5", 4.0 / 3.0}};
   return volumes.at(type);
 }
@@ -396,7 +393,7 @@ double norm(const Vector& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2]
 /// integral(N_j) / v0 of each node on an affine element: corners then mid-edge nodes.
 std::vector<double> shape_integral_fractions(const std::string& type) {
   const std::map<std::string, std::pair<double, double>> fractions{
-      {"tet4", {0.25, 0}},   {"hex8", {0.125, 0}},       {"tri3", {1.0 / 3, 0}}, {"quad4", {0.25, 0}},
+      {"tet4", {0.25, 0}},     {"hex8", {0.125, 0}},     {"tri3", {1.0 / 3, 0}},         {"quad4", {0.25, 0}},
       {"tet10", {-0.05, 0.2}}, {"tri6", {0.0, 1.0 / 3}}, {"quad8", {-1.0 / 12, 1.0 / 3}}};
   const tm_element_info& info = *registry().element(type);
   const int corners = info.order == 1 ? info.nodes : info.nodes - info.edge_count;
@@ -522,9 +519,8 @@ TEST_P(CriteriaOnKernel, EvaluateAllocatesNothing) {
   EXPECT_TRUE(std::isfinite(sum));
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, CriteriaOnKernel, ::testing::ValuesIn(registry().kernels().begin(),
-                                                                           registry().kernels().end()),
-                         kernel_label);
+INSTANTIATE_TEST_SUITE_P(Registry, CriteriaOnKernel,
+                         ::testing::ValuesIn(registry().kernels().begin(), registry().kernels().end()), kernel_label);
 
 // --- Cost ------------------------------------------------------------------------------------------
 
@@ -538,8 +534,13 @@ struct ElementBlock {
 
   ElementView view(int e) const {
     const std::size_t nd = static_cast<std::size_t>(kernel->nodes) * kernel->dim;
-    return {*info, *kernel, consts.data() + e * static_cast<std::size_t>(kernel->consts), rest.data() + e * nd,
-            u.data() + e * nd, force.data() + e * nd, kernel->dim};
+    return {*info,
+            *kernel,
+            consts.data() + e * static_cast<std::size_t>(kernel->consts),
+            rest.data() + e * nd,
+            u.data() + e * nd,
+            force.data() + e * nd,
+            kernel->dim};
   }
 };
 

@@ -6,10 +6,10 @@
 #include <fstream>
 #include <string>
 
+#include "support/test_support.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"
-#include "support/test_support.hpp"
 
 namespace {
 
@@ -35,13 +35,14 @@ class MeshCommand : public ::testing::Test {
 };
 
 TEST_F(MeshCommand, WritesAMeshWithGroupsAndReportsQuality) {
-  const Result result = run("mesh " + surface("cut_ball") + " --size 0.3 --roi 0,0,0,0.3,0.1 --region inner=" +
-                            surface("sphere") + " -o " + out());
+  const Result result = run("mesh " + surface("cut_ball") +
+                            " --size 0.3 --roi 0,0,0,0.3,0.1 --region inner=" + surface("sphere") + " -o " + out());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* expected : {"hex8", "pyramid5", "tet4", "min SJ", "relative difference", "conformity"})
     EXPECT_NE(result.output.find(expected), std::string::npos) << expected << "\n" << result.output;
   const tensormass::Mesh mesh = tensormass::read_mesh(out());
-  for (const char* group : {"body", "surface", "flat", "round", "inner"}) EXPECT_NE(mesh.group(group), nullptr) << group;
+  for (const char* group : {"body", "surface", "flat", "round", "inner"})
+    EXPECT_NE(mesh.group(group), nullptr) << group;
   // Every cell's centroid is inside the unit sphere: all cells are in "inner".
   EXPECT_EQ(mesh.group("inner")->cells.size(), static_cast<std::size_t>(mesh.cell_count()));
   EXPECT_TRUE(tensormass::mesh_quality(mesh).inverted_cells.empty());

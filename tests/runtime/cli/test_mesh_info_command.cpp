@@ -26,9 +26,9 @@ TEST(MeshInfo, TextReport) {
   const Result run = mesh_info(quoted(meshtest::data_file("hybrid_o1.msh41.msh")));
   ASSERT_EQ(run.exit_code, 0) << run.error;
   EXPECT_EQ(run.error, "");
-  for (const char* piece : {"dimension       3", "nodes           57", "cells           125", "hex8", "prism6", "pyramid5",
-                            "tet4", "lower", "upper", "bottom", "top", "min_sj", "max edge ratio", "volume          1\n",
-                            "inverted        0"})
+  for (const char* piece :
+       {"dimension       3", "nodes           57", "cells           125", "hex8", "prism6", "pyramid5", "tet4", "lower",
+        "upper", "bottom", "top", "min_sj", "max edge ratio", "volume          1\n", "inverted        0"})
     EXPECT_NE(run.output.find(piece), std::string::npos) << "missing '" << piece << "' in\n" << run.output;
 }
 
@@ -63,10 +63,11 @@ TEST(MeshInfo, JsonReportMatchesGmsh) {
 TEST(MeshInfo, InvertedElementsAreListedWithAWarning) {
   test_support::TempDir dir;
   // Two tetrahedra; element 20 has two nodes swapped (negative volume).
-  const std::string path = dir.write("flipped.msh",
-                                     "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
-                                     "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n$EndNodes\n"
-                                     "$Elements\n1 2 10 20\n3 1 4 2\n10 1 2 3 4\n20 3 2 4 5\n$EndElements\n");
+  const std::string path =
+      dir.write("flipped.msh",
+                "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n$EndNodes\n"
+                "$Elements\n1 2 10 20\n3 1 4 2\n10 1 2 3 4\n20 3 2 4 5\n$EndElements\n");
   const Result text = mesh_info(quoted(path));
   EXPECT_EQ(text.exit_code, 0);
   EXPECT_NE(text.output.find("inverted        1"), std::string::npos) << text.output;

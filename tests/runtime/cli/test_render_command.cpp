@@ -39,14 +39,15 @@ class Render : public ::testing::Test {
     dir_ = std::make_unique<test_support::TempDir>();
     directory_ = dir_->path();
     std::ofstream(directory_ / "add_state.py") << kAddState;
-    std::ofstream(directory_ / "scene.yaml") << "mesh: beam.msh\n"
-                                                "materials:\n"
-                                                "  - {region: all, law: stvk, young: 1.0e7, poisson: 0.3, density: 1000}\n"
-                                                "fixed: [clamp]\n"
-                                                "loads:\n"
-                                                "  gravity: [0, -9.81, 0]\n"
-                                                "solver: {type: static, load_steps: 4, tolerance: 1.0e-10}\n"
-                                                "output: {directory: out, every: 0}\n";
+    std::ofstream(directory_ / "scene.yaml")
+        << "mesh: beam.msh\n"
+           "materials:\n"
+           "  - {region: all, law: stvk, young: 1.0e7, poisson: 0.3, density: 1000}\n"
+           "fixed: [clamp]\n"
+           "loads:\n"
+           "  gravity: [0, -9.81, 0]\n"
+           "solver: {type: static, load_steps: 4, tolerance: 1.0e-10}\n"
+           "output: {directory: out, every: 0}\n";
     make_result("2d", "--cells 30,5");
     make_result("3d", "--dim 3 --cells 12,3,3 --type tet6");
   }
@@ -109,7 +110,8 @@ TEST_F(Render, LawIdAndDisplacementAndCellFields) {
   const std::string final3d = (directory_ / "3d/out/final.vtu").string();
   for (const auto& [arguments, name] :
        {std::pair{final2d, "law2d.png"}, std::pair{final2d + " --field displacement --rest", "disp2d.png"},
-        std::pair{final3d + " --field displacement", "disp3d.png"}, std::pair{final3d + " --field element_type", "type3d.png"}}) {
+        std::pair{final3d + " --field displacement", "disp3d.png"},
+        std::pair{final3d + " --field element_type", "type3d.png"}}) {
     const Result result = tensormass("render " + arguments + " --width 800 -o " + (directory_ / name).string());
     ASSERT_EQ(result.exit_code, 0) << arguments << "\n" << result.output;
     expect_png(directory_ / name, 800);
@@ -117,7 +119,8 @@ TEST_F(Render, LawIdAndDisplacementAndCellFields) {
 }
 
 TEST_F(Render, MissingFileExits2WithoutImage) {
-  const Result result = tensormass("render " + (directory_ / "absent.vtu").string() + " -o " + (directory_ / "absent.png").string());
+  const Result result =
+      tensormass("render " + (directory_ / "absent.vtu").string() + " -o " + (directory_ / "absent.png").string());
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("absent.vtu"), std::string::npos) << result.output;
   expect_no_image("absent.png");
@@ -133,7 +136,8 @@ TEST_F(Render, UnknownFieldExits2NamingIt) {
 
 TEST_F(Render, UnreadableFileExits2WithoutImage) {
   std::ofstream(directory_ / "garbage.vtu") << "not a VTU file\n";
-  const Result result = tensormass("render " + (directory_ / "garbage.vtu").string() + " -o " + (directory_ / "garbage.png").string());
+  const Result result =
+      tensormass("render " + (directory_ / "garbage.vtu").string() + " -o " + (directory_ / "garbage.png").string());
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("garbage.vtu"), std::string::npos) << result.output;
   expect_no_image("garbage.png");

@@ -51,9 +51,9 @@ TEST_F(RunCommand, StaticSceneWritesFinalFramesSeriesAndSummary) {
   for (const char* name : {"final.vtu", "frame_000002.vtu", "frame_000004.vtu", "series.pvd", "summary.json"})
     EXPECT_TRUE(fs::exists(out() / name)) << name;
   const std::string summary = read_file(out() / "summary.json");
-  for (const char* key : {"\"status\": \"ok\"", "\"steps\": 4", "\"time_per_step_ms\"", "\"time_per_phase_s\"",
-                          "\"newton_iterations\"", "\"linear_iterations\"", "\"elements_per_law\": {\"stvk\": 80}",
-                          "\"switches\"", "\"law_ids\""})
+  for (const char* key :
+       {"\"status\": \"ok\"", "\"steps\": 4", "\"time_per_step_ms\"", "\"time_per_phase_s\"", "\"newton_iterations\"",
+        "\"linear_iterations\"", "\"elements_per_law\": {\"stvk\": 80}", "\"switches\"", "\"law_ids\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key << "\n" << summary;
   EXPECT_NE(result.output.find("max displacement"), std::string::npos);
   for (const auto& entry : fs::directory_iterator(out()))
@@ -66,7 +66,8 @@ TEST_F(RunCommand, FinalVtuOpensInMeshioWithThreeComponentDisplacement) {
       "-c \"import meshio,sys; m=meshio.read(sys.argv[1]); "
       "d=m.point_data['displacement']; assert d.shape==(len(m.points),3); "
       "assert 'law_id' in m.cell_data and 'element_type' in m.cell_data; "
-      "assert abs(d[:,1]).max()>0\" " + (out() / "final.vtu").string());
+      "assert abs(d[:,1]).max()>0\" " +
+      (out() / "final.vtu").string());
   EXPECT_EQ(check.exit_code, 0) << check.output;
 }
 
@@ -87,7 +88,7 @@ TEST_F(RunCommand, ProgressIsPlainLinesWhenNotATerminal) {
 struct BadScene {
   const char* name;
   const char* extra_or_solver;  ///< replaces the solver block
-  const char* expected;          ///< in the one-line message
+  const char* expected;         ///< in the one-line message
 };
 
 class RunCommandBadInput : public RunCommand, public ::testing::WithParamInterface<BadScene> {};
@@ -105,8 +106,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadScene{"UnknownSolver", "  type: quasistatic\n", "quasistatic"},
                       BadScene{"UnknownKey", "  type: static\n  load_stepz: 3\n", "load_stepz"},
                       BadScene{"MissingDt", "  type: implicit\n  steps: 3\n", "dt"},
-                      BadScene{"UnknownGroup", "  type: static\nprescribed: [{region: nowhere, displacement: [0, 1]}]\n",
-                               "nowhere"}),
+                      BadScene{"UnknownGroup",
+                               "  type: static\nprescribed: [{region: nowhere, displacement: [0, 1]}]\n", "nowhere"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST_F(RunCommand, MissingSceneIsExitTwo) {
@@ -132,11 +133,12 @@ TEST_F(RunCommand, InvalidMaterialIsExitTwo) {
 
 TEST_F(RunCommand, InvertedElementAtRestIsExitTwoNamingIt) {
   // Two unit squares; the second is numbered clockwise (negative Jacobian).
-  std::ofstream(dir_.path() / "beam.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
-                                            "$PhysicalNames\n1\n1 1 \"clamp\"\n$EndPhysicalNames\n"
-                                            "$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n"
-                                            "$Elements\n3\n1 1 2 1 1 1 4\n7 3 2 0 1 1 2 5 4\n8 3 2 0 1 2 5 6 3\n"
-                                            "$EndElements\n";
+  std::ofstream(dir_.path() / "beam.msh")
+      << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+         "$PhysicalNames\n1\n1 1 \"clamp\"\n$EndPhysicalNames\n"
+         "$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n"
+         "$Elements\n3\n1 1 2 1 1 1 4\n7 3 2 0 1 1 2 5 4\n8 3 2 0 1 2 5 6 3\n"
+         "$EndElements\n";
   const Result result = run("run " + write_scene(kStatic).string());
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("id 8"), std::string::npos) << result.output;
@@ -146,8 +148,8 @@ TEST_F(RunCommand, InvertedElementAtRestIsExitTwoNamingIt) {
 
 TEST_F(RunCommand, NewtonDivergenceIsExitThreeWithTheLastGoodState) {
   // A very soft beam in one load step and two Newton iterations cannot converge.
-  const Result result = run("run " + write_scene(kStatic).string() +
-                            " --set materials.0.young=1e4 --set solver.max_iterations=2");
+  const Result result =
+      run("run " + write_scene(kStatic).string() + " --set materials.0.young=1e4 --set solver.max_iterations=2");
   EXPECT_EQ(result.exit_code, 3) << result.output;
   EXPECT_NE(result.output.find("Newton did not converge in load step 1/4"), std::string::npos) << result.output;
   EXPECT_TRUE(fs::exists(out() / "last_good.vtu"));

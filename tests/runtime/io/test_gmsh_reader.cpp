@@ -83,7 +83,8 @@ TEST_P(GmshFile, CellVolumesArePositiveAndSumToTheGeometry) {
       const std::vector<double> xyz = tensormass::cell_coordinates(mesh_, block, c);
       const double volume = tensormass::cell_volume(*block.element, mesh_.dim, xyz);
       ASSERT_GT(volume, 0) << mesh_.describe_cell(block.first_cell + c);
-      EXPECT_GT(tensormass::scaled_jacobian(*block.element, mesh_.dim, xyz), 0) << mesh_.describe_cell(block.first_cell + c);
+      EXPECT_GT(tensormass::scaled_jacobian(*block.element, mesh_.dim, xyz), 0)
+          << mesh_.describe_cell(block.first_cell + c);
       total += volume;
     }
   EXPECT_NEAR(total, expected()["volume"].number, 1e-12 * expected()["volume"].number);
@@ -99,7 +100,8 @@ TEST_P(GmshFile, MidEdgeNodesAreEdgeMidpoints) {
         const auto a = meshtest::position(mesh_, nodes[static_cast<std::size_t>(e.edges[3 * k])]);
         const auto b = meshtest::position(mesh_, nodes[static_cast<std::size_t>(e.edges[3 * k + 1])]);
         const auto m = meshtest::position(mesh_, nodes[static_cast<std::size_t>(e.edges[3 * k + 2])]);
-        for (int x = 0; x < 3; ++x) ASSERT_NEAR(m[x], 0.5 * (a[x] + b[x]), 1e-9) << e.name << " cell " << c << " edge " << k;
+        for (int x = 0; x < 3; ++x)
+          ASSERT_NEAR(m[x], 0.5 * (a[x] + b[x]), 1e-9) << e.name << " cell " << c << " edge " << k;
       }
   }
 }
@@ -115,7 +117,9 @@ TEST_P(GmshFile, FacetsHaveCornersFirstThenMidNodes) {
       const int corners = size == 3 ? 2 : size / 2;
       const int mids = size - corners;
       for (int k = 0; k < mids; ++k) {
-        auto node = [&](int i) { return meshtest::position(mesh_, group.facets.nodes[static_cast<std::size_t>(first + i)]); };
+        auto node = [&](int i) {
+          return meshtest::position(mesh_, group.facets.nodes[static_cast<std::size_t>(first + i)]);
+        };
         const auto a = node(k);
         const auto b = node((k + 1) % corners);
         const auto m = node(corners + k);
@@ -132,7 +136,8 @@ TEST_P(GmshFile, BoundaryGroupsLieOnTheirPlanes) {
     const auto plane = planes.find(group.name);
     if (plane == planes.end()) continue;
     for (int node : group.nodes)
-      EXPECT_NEAR(meshtest::position(mesh_, node)[static_cast<std::size_t>(plane->second.first)], plane->second.second, 1e-12)
+      EXPECT_NEAR(meshtest::position(mesh_, node)[static_cast<std::size_t>(plane->second.first)], plane->second.second,
+                  1e-12)
           << group.name;
   }
 }
@@ -253,7 +258,8 @@ TEST(GmshReader, Msh41ParametricNodesAreRead) {
 TEST(GmshReader, BigEndianBinaryMsh22) {
   auto be32 = [](std::int32_t v) {
     std::string s(4, '\0');
-    for (int i = 0; i < 4; ++i) s[static_cast<std::size_t>(i)] = static_cast<char>((static_cast<std::uint32_t>(v) >> (24 - 8 * i)) & 0xff);
+    for (int i = 0; i < 4; ++i)
+      s[static_cast<std::size_t>(i)] = static_cast<char>((static_cast<std::uint32_t>(v) >> (24 - 8 * i)) & 0xff);
     return s;
   };
   auto be64 = [](double x) {
@@ -266,8 +272,8 @@ TEST(GmshReader, BigEndianBinaryMsh22) {
   std::string text = "$MeshFormat\n2.2 1 8\n" + be32(1) + "\n$EndMeshFormat\n$Nodes\n4\n";
   const double xyz[4][3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
   for (int n = 0; n < 4; ++n) text += be32(n + 1) + be64(xyz[n][0]) + be64(xyz[n][1]) + be64(xyz[n][2]);
-  text += "\n$EndNodes\n$Elements\n1\n" + be32(4) + be32(1) + be32(2) + be32(1) + be32(5) + be32(9) + be32(1) + be32(2) +
-          be32(3) + be32(4) + "\n$EndElements\n";
+  text += "\n$EndNodes\n$Elements\n1\n" + be32(4) + be32(1) + be32(2) + be32(1) + be32(5) + be32(9) + be32(1) +
+          be32(2) + be32(3) + be32(4) + "\n$EndElements\n";
   test_support::TempDir dir;
   const Mesh mesh = tensormass::read_mesh(dir.write("be.msh", text));
   ASSERT_EQ(mesh.cell_count(), 1);

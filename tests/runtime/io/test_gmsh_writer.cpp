@@ -7,10 +7,10 @@
 
 #include "support/python_check.hpp"
 #include "support/test_meshes.hpp"
-#include "tensormass/io/read_mesh.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/gmsh_writer.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/meshing/beam.hpp"
 
 namespace {
 

@@ -25,8 +25,8 @@ using test_support::TempDir;
 // nodes 1..4, 10 $EndNodes, 11 $Elements, 12 count, 13 the element.
 std::string tet_msh(const std::string& node_lines = "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n",
                     const std::string& element_line = "1 4 2 1 1 1 2 3 4\n", const std::string& node_count = "4") {
-  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + node_count + "\n" + node_lines + "$EndNodes\n$Elements\n1\n" +
-         element_line + "$EndElements\n";
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + node_count + "\n" + node_lines +
+         "$EndNodes\n$Elements\n1\n" + element_line + "$EndElements\n";
 }
 
 TEST(ReadMeshErrors, ValidReferenceFileReads) {
@@ -64,14 +64,17 @@ TEST(ReadMeshErrors, NotAGmshFile) {
 
 TEST(ReadMeshErrors, UnsupportedMshVersion) {
   TempDir dir;
-  expect_input_error(dir.write("v4.msh", "$MeshFormat\n4.0 0 8\n$EndMeshFormat\n"), {"v4.msh:2:", "4.0", "not supported"});
+  expect_input_error(dir.write("v4.msh", "$MeshFormat\n4.0 0 8\n$EndMeshFormat\n"),
+                     {"v4.msh:2:", "4.0", "not supported"});
 }
 
 TEST(ReadMeshErrors, TruncatedAsciiFile) {
   TempDir dir;
   const std::string text = tet_msh();
-  expect_input_error(dir.write("cut.msh", text.substr(0, text.find("1 4 2 1 1 1 2") + 13)), {"cut.msh:13:", "truncated"});
-  expect_input_error(dir.write("cut_nodes.msh", text.substr(0, text.find("3 0 1 0") + 3)), {"cut_nodes.msh:5:", "truncated"});
+  expect_input_error(dir.write("cut.msh", text.substr(0, text.find("1 4 2 1 1 1 2") + 13)),
+                     {"cut.msh:13:", "truncated"});
+  expect_input_error(dir.write("cut_nodes.msh", text.substr(0, text.find("3 0 1 0") + 3)),
+                     {"cut_nodes.msh:5:", "truncated"});
 }
 
 TEST(ReadMeshErrors, MissingEndMarker) {
@@ -97,8 +100,10 @@ TEST(ReadMeshErrors, NodeIndexOutOfRange) {
 
 TEST(ReadMeshErrors, NonFiniteCoordinates) {
   TempDir dir;
-  expect_input_error(dir.write("nan.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 nan 1 0\n4 0 0 1\n")), {"nan.msh:8:", "node 3", "non-finite"});
-  expect_input_error(dir.write("inf.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 -inf\n")), {"inf.msh:9:", "node 4", "non-finite"});
+  expect_input_error(dir.write("nan.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 nan 1 0\n4 0 0 1\n")),
+                     {"nan.msh:8:", "node 3", "non-finite"});
+  expect_input_error(dir.write("inf.msh", tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 -inf\n")),
+                     {"inf.msh:9:", "node 4", "non-finite"});
 }
 
 TEST(ReadMeshErrors, AbsurdCountsAreRefusedBeforeAllocating) {
@@ -107,7 +112,8 @@ TEST(ReadMeshErrors, AbsurdCountsAreRefusedBeforeAllocating) {
                      {"huge.msh:5:", "1000000000000000"});
   expect_input_error(dir.write("large.msh", tet_msh("1 0 0 0\n", "1 15 0 1\n", "100000000")),
                      {"large.msh:5:", "declares 100000000 nodes", "bytes are left"});
-  expect_input_error(dir.write("negative.msh", tet_msh("1 0 0 0\n", "1 15 0 1\n", "-3")), {"negative.msh:5:", "negative"});
+  expect_input_error(dir.write("negative.msh", tet_msh("1 0 0 0\n", "1 15 0 1\n", "-3")),
+                     {"negative.msh:5:", "negative"});
   std::string elements = tet_msh();
   elements.replace(elements.find("$Elements\n1\n"), 12, "$Elements\n2000000000\n");
   expect_input_error(dir.write("elements.msh", elements), {"elements.msh:12:", "2000000000 elements"});
@@ -150,7 +156,8 @@ TEST(ReadMeshErrors, FlatMeshOutsideThePlaneZ0) {
 TEST(ReadMeshErrors, MissingSection) {
   TempDir dir;
   const std::string text = tet_msh();
-  expect_input_error(dir.write("noelements.msh", text.substr(0, text.find("$Elements"))), {"noelements.msh", "no $Elements"});
+  expect_input_error(dir.write("noelements.msh", text.substr(0, text.find("$Elements"))),
+                     {"noelements.msh", "no $Elements"});
 }
 
 TEST(ReadMeshErrors, TruncatedBinaryFile) {
@@ -159,7 +166,8 @@ TEST(ReadMeshErrors, TruncatedBinaryFile) {
   const std::size_t nodes = text.find("$Nodes");
   expect_input_error(dir.write("cut41b.msh", text.substr(0, nodes + 200)), {"cut41b.msh: byte ", "truncated"});
   const std::string text22 = test_support::read_file(meshtest::data_file("box_tet_o1.msh22b.msh"));
-  expect_input_error(dir.write("cut22b.msh", text22.substr(0, text22.find("$Elements") + 40)), {"cut22b.msh: byte ", "truncated"});
+  expect_input_error(dir.write("cut22b.msh", text22.substr(0, text22.find("$Elements") + 40)),
+                     {"cut22b.msh: byte ", "truncated"});
 }
 
 TEST(ReadMeshErrors, BadEndiannessMarker) {
@@ -174,7 +182,7 @@ TEST(ReadMeshErrors, AbsurdBinaryBlockSize) {
   std::string text = test_support::read_file(meshtest::data_file("box_hex_o1.msh41b.msh"));
   const std::size_t elements = text.find("$Elements\n") + 10;
   const std::uint64_t huge = 1ull << 40;
-  std::memcpy(&text[elements + 8], &huge, 8);  // numElements
+  std::memcpy(&text[elements + 8], &huge, 8);        // numElements
   std::memcpy(&text[elements + 32 + 12], &huge, 8);  // numElementsInBlock of the first block
   expect_input_error(dir.write("blocks.msh", text), {"blocks.msh: byte ", "1099511627776"});
 }
@@ -183,14 +191,21 @@ TEST(ReadMeshErrors, AbsurdBinaryBlockSize) {
 
 std::string tet_vtu(const std::string& points = "0 0 0 1 0 0 0 1 0 0 0 1", const std::string& connectivity = "0 1 2 3",
                     const std::string& types = "10", const std::string& root_extra = "") {
-  return "<?xml version=\"1.0\"?>\n"                                                             // line 1
-         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"" + root_extra + ">\n"               // 2
-         "<UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n"                // 3, 4
-         "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"    // 5, 6
-         + points + "\n</DataArray>\n</Points>\n<Cells>\n"                                        // 7..10
-         "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">" + connectivity + "</DataArray>\n"  // 11
-         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>\n"            // 12
-         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" + types + "</DataArray>\n"  // 13
+  return "<?xml version=\"1.0\"?>\n"  // line 1
+         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"" +
+         root_extra +
+         ">\n"                                                                                 // 2
+         "<UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n"              // 3, 4
+         "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"  // 5, 6
+         + points +
+         "\n</DataArray>\n</Points>\n<Cells>\n"  // 7..10
+         "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">" +
+         connectivity +
+         "</DataArray>\n"                                                               // 11
+         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>\n"  // 12
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" +
+         types +
+         "</DataArray>\n"  // 13
          "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 
@@ -201,7 +216,8 @@ TEST(BadVtu, ValidReferenceFileReads) {
 
 TEST(BadVtu, CompressedData) {
   TempDir dir;
-  expect_input_error(dir.write("zlib.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 3", "10", " compressor=\"vtkZLibDataCompressor\"")),
+  expect_input_error(dir.write("zlib.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 3", "10",
+                                                   " compressor=\"vtkZLibDataCompressor\"")),
                      {"zlib.vtu:2:", "vtkZLibDataCompressor", "not supported"});
 }
 
@@ -212,12 +228,14 @@ TEST(BadVtu, GarbledNumber) {
 
 TEST(BadVtu, NodeIndexOutOfRange) {
   TempDir dir;
-  expect_input_error(dir.write("range.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 40")), {"range.vtu:11:", "cell 0", "node 40"});
+  expect_input_error(dir.write("range.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 1", "0 1 2 40")),
+                     {"range.vtu:11:", "cell 0", "node 40"});
 }
 
 TEST(BadVtu, NonFiniteCoordinate) {
   TempDir dir;
-  expect_input_error(dir.write("nan.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 nan")), {"nan.vtu:6:", "node 3", "non-finite"});
+  expect_input_error(dir.write("nan.vtu", tet_vtu("0 0 0 1 0 0 0 1 0 0 0 nan")),
+                     {"nan.vtu:6:", "node 3", "non-finite"});
 }
 
 TEST(BadVtu, UnsupportedCellType) {
@@ -234,7 +252,8 @@ TEST(BadVtu, WrongValueCount) {
 TEST(BadVtu, TruncatedXml) {
   TempDir dir;
   const std::string text = tet_vtu();
-  expect_input_error(dir.write("cut.vtu", text.substr(0, text.find("<Cells>"))), {"cut.vtu:", "unexpected end of file"});
+  expect_input_error(dir.write("cut.vtu", text.substr(0, text.find("<Cells>"))),
+                     {"cut.vtu:", "unexpected end of file"});
 }
 
 TEST(BadVtu, AbsurdCounts) {
@@ -250,17 +269,20 @@ TEST(BadVtu, BadBase64AndTruncatedAppendedData) {
   text.replace(text.find("format=\"ascii\""), 14, "format=\"binary\"");
   expect_input_error(dir.write("b64.vtu", text), {"b64.vtu:6:", "base64"});
   const std::string appended =
-      "<VTKFile type=\"UnstructuredGrid\" header_type=\"UInt32\"><UnstructuredGrid><Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">"
+      "<VTKFile type=\"UnstructuredGrid\" header_type=\"UInt32\"><UnstructuredGrid><Piece NumberOfPoints=\"4\" "
+      "NumberOfCells=\"1\">"
       "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/></Points>"
-      "</Piece></UnstructuredGrid><AppendedData encoding=\"raw\">_\xff\xff\xff\x7f" + std::string(20, '\0') +
-      "</AppendedData></VTKFile>";
+      "</Piece></UnstructuredGrid><AppendedData encoding=\"raw\">_\xff\xff\xff\x7f" +
+      std::string(20, '\0') + "</AppendedData></VTKFile>";
   const std::size_t data = appended.find('_', appended.find("<AppendedData")) + 1;
-  expect_input_error(dir.write("appended.vtu", appended), {"appended.vtu: byte " + std::to_string(data), "declares 2147483647 bytes"});
+  expect_input_error(dir.write("appended.vtu", appended),
+                     {"appended.vtu: byte " + std::to_string(data), "declares 2147483647 bytes"});
 }
 
 TEST(BadVtu, OtherDatasetType) {
   TempDir dir;
-  expect_input_error(dir.write("poly.vtu", "<VTKFile type=\"PolyData\"><PolyData/></VTKFile>"), {"poly.vtu:1:", "PolyData"});
+  expect_input_error(dir.write("poly.vtu", "<VTKFile type=\"PolyData\"><PolyData/></VTKFile>"),
+                     {"poly.vtu:1:", "PolyData"});
 }
 
 // --- legacy VTK -----------------------------------------------------------------
@@ -283,7 +305,8 @@ TEST(BadLegacyVtk, NotAVtkFile) {
 
 TEST(BadLegacyVtk, OtherDataset) {
   TempDir dir;
-  expect_input_error(dir.write("poly.vtk", "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\n"), {"poly.vtk:4:", "POLYDATA"});
+  expect_input_error(dir.write("poly.vtk", "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\n"),
+                     {"poly.vtk:4:", "POLYDATA"});
 }
 
 TEST(BadLegacyVtk, NodeIndexOutOfRange) {
@@ -293,7 +316,8 @@ TEST(BadLegacyVtk, NodeIndexOutOfRange) {
 
 TEST(BadLegacyVtk, UnsupportedCellType) {
   TempDir dir;
-  expect_input_error(dir.write("voxel.vtk", tet_vtk("4 0 1 2 3", "11")), {"voxel.vtk:11:", "VTK_VOXEL", "not supported"});
+  expect_input_error(dir.write("voxel.vtk", tet_vtk("4 0 1 2 3", "11")),
+                     {"voxel.vtk:11:", "VTK_VOXEL", "not supported"});
 }
 
 TEST(BadLegacyVtk, WrongNodeCountForTheType) {
@@ -303,7 +327,8 @@ TEST(BadLegacyVtk, WrongNodeCountForTheType) {
 
 TEST(BadLegacyVtk, GarbledNumberAndTruncation) {
   TempDir dir;
-  expect_input_error(dir.write("garbled.vtk", tet_vtk("4 0 1 2 3", "10", "0 0 0\n1 0 0\n0 one 0\n0 0 1")), {"garbled.vtk:8:", "'one'"});
+  expect_input_error(dir.write("garbled.vtk", tet_vtk("4 0 1 2 3", "10", "0 0 0\n1 0 0\n0 one 0\n0 0 1")),
+                     {"garbled.vtk:8:", "'one'"});
   const std::string text = tet_vtk();
   expect_input_error(dir.write("cut.vtk", text.substr(0, text.find("CELLS") + 14)), {"cut.vtk:", "truncated"});
 }
@@ -318,7 +343,8 @@ TEST(BadLegacyVtk, AbsurdCount) {
 TEST(BadLegacyVtk, TruncatedBinary) {
   TempDir dir;
   const std::string text = test_support::read_file(meshtest::data_file("hybrid_o1.v42b.vtk"));
-  expect_input_error(dir.write("cut.vtk", text.substr(0, text.find("CELL_TYPES") - 100)), {"cut.vtk: byte ", "truncated"});
+  expect_input_error(dir.write("cut.vtk", text.substr(0, text.find("CELL_TYPES") - 100)),
+                     {"cut.vtk: byte ", "truncated"});
 }
 
 // --- Robustness: every committed mesh, truncated and corrupted -----------------
@@ -337,7 +363,8 @@ std::vector<std::string> committed_meshes() {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(meshtest::data_dir())) {
     const std::string extension = entry.path().extension().string();
-    if (extension == ".msh" || extension == ".vtu" || extension == ".vtk") files.push_back(entry.path().filename().string());
+    if (extension == ".msh" || extension == ".vtu" || extension == ".vtk")
+      files.push_back(entry.path().filename().string());
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -14,11 +14,10 @@
 namespace {
 
 using namespace surfacetest;
-using test_support::TempDir;
 using tensormass::check_closed_surface;
 using tensormass::enclosed_volume;
 using tensormass::read_surface;
-
+using test_support::TempDir;
 
 void expect_unit_tetrahedron(TriangleSurface& surface) {
   EXPECT_EQ(surface.point_count(), 4);  // 12 corners merged

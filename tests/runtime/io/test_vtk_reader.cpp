@@ -48,20 +48,18 @@ TEST_P(MeshioFile, ReadsToTheSameMeshAsTheGmshFile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshio, MeshioFile,
-                         testing::Values(Conversion{"box_tet_o2.ascii.vtu", "box_tet_o2"},
-                                         Conversion{"hybrid_o1.b64.vtu", "hybrid_o1"},
-                                         Conversion{"plate2d_o1.b64u64.vtu", "plate2d_o1"},
-                                         Conversion{"box_hex_o2.v51.vtk", "box_hex_o2"},
-                                         Conversion{"box_tet_o1.v51b.vtk", "box_tet_o1"},
-                                         Conversion{"hybrid_o1.v42b.vtk", "hybrid_o1"},
-                                         Conversion{"plate2d_o2.v42.vtk", "plate2d_o2"}),
-                         [](const testing::TestParamInfo<Conversion>& info) {
-                           std::string name = info.param.vtk_file;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Meshio, MeshioFile,
+    testing::Values(Conversion{"box_tet_o2.ascii.vtu", "box_tet_o2"}, Conversion{"hybrid_o1.b64.vtu", "hybrid_o1"},
+                    Conversion{"plate2d_o1.b64u64.vtu", "plate2d_o1"}, Conversion{"box_hex_o2.v51.vtk", "box_hex_o2"},
+                    Conversion{"box_tet_o1.v51b.vtk", "box_tet_o1"}, Conversion{"hybrid_o1.v42b.vtk", "hybrid_o1"},
+                    Conversion{"plate2d_o2.v42.vtk", "plate2d_o2"}),
+    [](const testing::TestParamInfo<Conversion>& info) {
+      std::string name = info.param.vtk_file;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 // --- A small VTU writer covering every encoding ---------------------------------
 
@@ -71,8 +69,7 @@ std::string base64(const std::string& bytes) {
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     std::uint32_t chunk = 0;
     const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
-    for (std::size_t k = 0; k < 3; ++k)
-      chunk = (chunk << 8) | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 3; ++k) chunk = (chunk << 8) | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
     for (std::size_t k = 0; k < 4; ++k) out += k <= n ? alphabet[(chunk >> (18 - 6 * k)) & 63u] : '=';
   }
   return out;
@@ -91,7 +88,7 @@ std::string raw_bytes(const std::vector<T>& values, bool big_endian) {
 }
 
 struct VtuStyle {
-  std::string format;  ///< ascii | binary | appended
+  std::string format;            ///< ascii | binary | appended
   std::string encoding = "raw";  ///< appended: raw | base64
   bool header64 = false;
   bool separate_header = false;  ///< base64: header and data encoded apart (as VTK does)
@@ -105,8 +102,8 @@ class VtuWriter {
   template <class T>
   std::string array(const std::string& name, const std::string& type, int components, const std::vector<T>& values) {
     std::ostringstream tag;
-    tag << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components << "\" format=\""
-        << style_.format << "\"";
+    tag << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
+        << "\" format=\"" << style_.format << "\"";
     if (style_.format == "ascii") {
       tag << ">\n";
       tag.precision(17);
@@ -116,8 +113,9 @@ class VtuWriter {
     }
     const std::string data = raw_bytes(values, style_.big_endian);
     const std::string header =
-        style_.header64 ? raw_bytes(std::vector<std::uint64_t>{data.size()}, style_.big_endian)
-                        : raw_bytes(std::vector<std::uint32_t>{static_cast<std::uint32_t>(data.size())}, style_.big_endian);
+        style_.header64
+            ? raw_bytes(std::vector<std::uint64_t>{data.size()}, style_.big_endian)
+            : raw_bytes(std::vector<std::uint32_t>{static_cast<std::uint32_t>(data.size())}, style_.big_endian);
     const std::string encoded = style_.separate_header ? base64(header) + base64(data) : base64(header + data);
     if (style_.format == "binary") return tag.str() + ">" + encoded + "</DataArray>\n";
     tag << " offset=\"" << appended_.size() << "\"/>\n";
@@ -143,10 +141,11 @@ class VtuWriter {
                        "</Points>\n<Cells>\n" + array("connectivity", "Int64", 1, connectivity) +
                        array("offsets", "Int64", 1, offsets) + array("types", "UInt8", 1, types) + "</Cells>\n" +
                        "<CellData>\n" + array("region", "Int32", 1, regions) + "</CellData>\n</Piece>\n";
-    std::string text = "<?xml version=\"1.0\"?>\n<!-- written by the tensormass tests -->\n"
-                       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" +
-                       std::string(style_.big_endian ? "BigEndian" : "LittleEndian") + "\" header_type=\"" +
-                       (style_.header64 ? "UInt64" : "UInt32") + "\">\n<UnstructuredGrid>\n" + body + "</UnstructuredGrid>\n";
+    std::string text =
+        "<?xml version=\"1.0\"?>\n<!-- written by the tensormass tests -->\n"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" +
+        std::string(style_.big_endian ? "BigEndian" : "LittleEndian") + "\" header_type=\"" +
+        (style_.header64 ? "UInt64" : "UInt32") + "\">\n<UnstructuredGrid>\n" + body + "</UnstructuredGrid>\n";
     if (style_.format == "appended")
       text += "<AppendedData encoding=\"" + style_.encoding + "\">\n_" + appended_ + "\n</AppendedData>\n";
     return text + "</VTKFile>\n";
@@ -173,25 +172,25 @@ TEST_P(VtuEncoding, ReadsBackTheMeshItWasWrittenFrom) {
   EXPECT_EQ(mesh.groups[1].dim, 3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Styles, VtuEncoding,
-                         testing::Values(VtuStyle{"ascii"}, VtuStyle{"binary", "raw", false, false},
-                                         VtuStyle{"binary", "raw", true, false}, VtuStyle{"binary", "raw", false, true},
-                                         VtuStyle{"binary", "raw", true, true}, VtuStyle{"appended", "raw", false},
-                                         VtuStyle{"appended", "raw", true}, VtuStyle{"appended", "base64", false, false},
-                                         VtuStyle{"appended", "base64", true, true},
-                                         VtuStyle{"appended", "raw", true, false, true},
-                                         VtuStyle{"binary", "raw", false, true, true}));
+INSTANTIATE_TEST_SUITE_P(
+    Styles, VtuEncoding,
+    testing::Values(VtuStyle{"ascii"}, VtuStyle{"binary", "raw", false, false}, VtuStyle{"binary", "raw", true, false},
+                    VtuStyle{"binary", "raw", false, true}, VtuStyle{"binary", "raw", true, true},
+                    VtuStyle{"appended", "raw", false}, VtuStyle{"appended", "raw", true},
+                    VtuStyle{"appended", "base64", false, false}, VtuStyle{"appended", "base64", true, true},
+                    VtuStyle{"appended", "raw", true, false, true}, VtuStyle{"binary", "raw", false, true, true}));
 
 TEST(VtuReader, SeveralPiecesAreConcatenated) {
   const std::string piece =
       "<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n"
-      "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray></Points>\n"
+      "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 "
+      "0</DataArray></Points>\n"
       "<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n"
       "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n"
       "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5</DataArray></Cells>\n</Piece>\n";
   test_support::TempDir dir;
-  const std::string path = dir.write("pieces.vtu", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>" + piece + piece +
-                                                       "</UnstructuredGrid></VTKFile>");
+  const std::string path = dir.write("pieces.vtu", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>" + piece +
+                                                       piece + "</UnstructuredGrid></VTKFile>");
   const Mesh mesh = tensormass::read_mesh(path);
   EXPECT_EQ(mesh.dim, 2);
   EXPECT_EQ(mesh.node_count(), 6);
@@ -215,7 +214,8 @@ TEST(LegacyVtkReader, AttributesAreSkippedAndScalarsMakeGroups) {
                                      "SCALARS quality double\nLOOKUP_TABLE default\n1.5\n2.5\n3.5\n");
   // The vertex (point 4) lies on no tetrahedron: its group cannot be built.
   meshtest::expect_input_error(path, {"legacy.vtk:", "cell 1 (point)", "node 4", "belongs to no 3D element"});
-  const std::string fixed = dir.write("legacy2.vtk", test_support::read_file(path).replace(test_support::read_file(path).find("1 4\n"), 4, "1 3\n"));
+  const std::string fixed = dir.write(
+      "legacy2.vtk", test_support::read_file(path).replace(test_support::read_file(path).find("1 4\n"), 4, "1 3\n"));
   const Mesh mesh = tensormass::read_mesh(fixed);
   EXPECT_EQ(mesh.cell_count(), 1);
   ASSERT_EQ(mesh.groups.size(), 2u);

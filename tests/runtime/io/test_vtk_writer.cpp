@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "support/python_check.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/meshing/beam.hpp"
 
 namespace {
 
@@ -26,7 +26,8 @@ Mesh beam(int dim, const std::string& mix, int order, std::array<int, 3> cells) 
 /// Values with full 17-digit mantissas, and a few extremes.
 std::vector<double> awkward_values(std::size_t count, double seed) {
   std::vector<double> values(count);
-  for (std::size_t i = 0; i < count; ++i) values[i] = std::sin(seed + 0.7 * i) / 3.0 * std::pow(10.0, static_cast<int>(i % 7) - 3);
+  for (std::size_t i = 0; i < count; ++i)
+    values[i] = std::sin(seed + 0.7 * i) / 3.0 * std::pow(10.0, static_cast<int>(i % 7) - 3);
   if (count > 2) {
     values[0] = 1e-300;
     values[1] = -0.0;
@@ -52,7 +53,8 @@ std::string vtu_expectation(const Mesh& mesh, const std::vector<double>& displac
   for (const tensormass::ElementBlock& block : mesh.blocks)
     for (int local = 0; local < block.count(); ++local) {
       std::vector<int> vtk;
-      for (int k = 0; k < block.element->nodes; ++k) vtk.push_back(block.cell_nodes(local)[block.element->vtk_order[k]]);
+      for (int k = 0; k < block.element->nodes; ++k)
+        vtk.push_back(block.cell_nodes(local)[block.element->vtk_order[k]]);
       connectivity += (types.empty() ? "" : ",") + tmtest::json_list(vtk);
       types.push_back(block.element->vtk_type);
     }
@@ -113,8 +115,8 @@ TEST(VtuWriter, HeaderDeclaresVersion1WithUInt64RawAppendedData) {
 
 TEST(PvdWriter, ListsEveryFrameWithExactTimes) {
   const test_support::TempDir dir;
-  tensormass::io::write_pvd(dir.file("series.pvd"), {{0.0, "frame_000000.vtu"}, {0.1, "frame_000001.vtu"},
-                                                     {1.0 / 3.0, "a&b.vtu"}});
+  tensormass::io::write_pvd(dir.file("series.pvd"),
+                            {{0.0, "frame_000000.vtu"}, {0.1, "frame_000001.vtu"}, {1.0 / 3.0, "a&b.vtu"}});
   const std::string text = test_support::read_file(dir.file("series.pvd"));
   EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
   EXPECT_NE(text.find("<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"frame_000000.vtu\"/>"), std::string::npos);

@@ -12,9 +12,9 @@
 
 #include "support/test_meshes.hpp"
 #include "tensormass/io/read_mesh.hpp"
+#include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"
-#include "tensormass/kernels/registry.hpp"
 
 namespace {
 
@@ -63,7 +63,9 @@ Coordinates ideal(const tm_element_info& e) {
   if (e.edge_size == 3)
     for (int k = 0; k < e.edge_count; ++k) {
       const int a = e.edges[3 * k], b = e.edges[3 * k + 1], m = e.edges[3 * k + 2];
-      for (int c = 0; c < 3; ++c) x[static_cast<std::size_t>(3 * m + c)] = 0.5 * (x[static_cast<std::size_t>(3 * a + c)] + x[static_cast<std::size_t>(3 * b + c)]);
+      for (int c = 0; c < 3; ++c)
+        x[static_cast<std::size_t>(3 * m + c)] =
+            0.5 * (x[static_cast<std::size_t>(3 * a + c)] + x[static_cast<std::size_t>(3 * b + c)]);
     }
   return x;
 }
@@ -131,7 +133,9 @@ std::vector<const tm_element_info*> elements() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, EveryElement, testing::ValuesIn(elements()),
-                         [](const testing::TestParamInfo<const tm_element_info*>& info) { return std::string(info.param->name); });
+                         [](const testing::TestParamInfo<const tm_element_info*>& info) {
+                           return std::string(info.param->name);
+                         });
 
 TEST(MeshQuality, RegularTetrahedronMatchesTheStandardDefinitions) {
   const tm_element_info& tet = element("tet4");
@@ -146,7 +150,8 @@ TEST(MeshQuality, RegularTetrahedronMatchesTheStandardDefinitions) {
 
 TEST(MeshQuality, CurvedTet10InvertedInsideWithGoodCorners) {
   const tm_element_info& tet10 = element("tet10");
-  Coordinates x{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0.5, 0, 0, 0, 0.5, 0.5, 0, 0.5, 0, 0.5, 0.5};
+  Coordinates x{0,   0,   0, 1, 0,   0, 0, 1, 0,   0,   0, 1,   0.5, 0,   0,
+                0.5, 0.5, 0, 0, 0.5, 0, 0, 0, 0.5, 0.5, 0, 0.5, 0,   0.5, 0.5};
   x[13] = x[14] = 0.1;  // mid node of edge 0-1 pushed inwards a little: still valid
   EXPECT_FALSE(tensormass::cell_quality(tet10, 3, x).inverted);
   x[13] = x[14] = 0.4;  // pushed far: det J < 0 at a quadrature point

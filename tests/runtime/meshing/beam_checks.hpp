@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "support/test_meshes.hpp"
-#include "tensormass/mesh/mesh.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 namespace tmtest {
 
@@ -95,8 +95,8 @@ inline void expect_conforming(const tensormass::Mesh& mesh, const std::array<dou
     if (n == 1) boundary += facet_measure(mesh, corners);
   }
   EXPECT_EQ(bad, 0) << "facets that are neither shared by two cells nor on the box boundary";
-  const double expected = mesh.dim == 2 ? 2 * (size[0] + size[1])
-                                        : 2 * (size[0] * size[1] + size[0] * size[2] + size[1] * size[2]);
+  const double expected =
+      mesh.dim == 2 ? 2 * (size[0] + size[1]) : 2 * (size[0] * size[1] + size[0] * size[2] + size[1] * size[2]);
   EXPECT_NEAR(boundary, expected, 1e-12 * expected);
 }
 

@@ -6,8 +6,8 @@
 #include <numeric>
 
 #include "beam_checks.hpp"
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/meshing/beam.hpp"
 
 namespace {
 
@@ -196,7 +196,8 @@ TEST(BeamCounts, HexNextToTetsGetsPyramidTransitions) {
   // 4 columns: 2 of hexes, then 2 of tet5 whose first column touches the hexes:
   // each of its 4 cubes is a centre node with 1 pyramid and 5 x 2 tets.
   using Counts = std::map<std::string, int>;
-  EXPECT_EQ(counts(3, {4, 2, 2}, "hex8:0.5,tet5:0.5"), (Counts{{"hex8", 8}, {"pyramid5", 4}, {"tet4", 4 * 10 + 4 * 5}}));
+  EXPECT_EQ(counts(3, {4, 2, 2}, "hex8:0.5,tet5:0.5"),
+            (Counts{{"hex8", 8}, {"pyramid5", 4}, {"tet4", 4 * 10 + 4 * 5}}));
   const Mesh mesh = tensormass::make_beam(spec_of({"", 3, {4, 2, 2}, {1, 1, 1}, "hex8:0.5,tet5:0.5", 1}));
   EXPECT_EQ(mesh.node_count(), 5 * 3 * 3 + 4);  // grid + 4 centres
 }

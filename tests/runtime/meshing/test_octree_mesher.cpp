@@ -104,7 +104,7 @@ TEST_P(MesherShapes, ConformingPositiveAndFillsTheSurface) {
 INSTANTIATE_TEST_SUITE_P(
     Shapes, MesherShapes,
     ::testing::Values(Shape{"sphere", 4.0 / 3.0 * std::numbers::pi, 0.25},
-                      Shape{"torus", 2 * std::numbers::pi * std::numbers::pi * 1.0 * 0.16, 0.2},
+                      Shape{"torus", 2 * std::numbers::pi* std::numbers::pi * 1.0 * 0.16, 0.2},
                       // Ball of radius 1 cut at z = 0.4: minus a cap of height 0.6.
                       Shape{"cut_ball", 4.0 / 3.0 * std::numbers::pi - std::numbers::pi * 0.36 * 2.4 / 3.0, 0.25}),
     [](const auto& info) { return info.param.name; });
@@ -251,7 +251,8 @@ TEST(OctreeMesher, SharpSurfaceGoesWithoutALayerAndSaysWhy) {
   EXPECT_EQ(report.boundary_prisms, 0);
   ASSERT_FALSE(report.warnings.empty());
   bool said = false;
-  for (const std::string& warning : report.warnings) said = said || warning.find("no boundary layer") != std::string::npos;
+  for (const std::string& warning : report.warnings)
+    said = said || warning.find("no boundary layer") != std::string::npos;
   EXPECT_TRUE(said);
   EXPECT_TRUE(mesh_quality(mesh).inverted_cells.empty());
 }

@@ -62,9 +62,8 @@ TEST_P(ModelOnBeams, ClampedDofsAreNotFree) {
 INSTANTIATE_TEST_SUITE_P(Beams, ModelOnBeams,
                          ::testing::Values(BeamCase{2, "quad4", 1}, BeamCase{2, "tri3", 1}, BeamCase{2, "quad4", 2},
                                            BeamCase{2, "tri3", 2}, BeamCase{3, "hex8", 1}, BeamCase{3, "tet5", 1},
-                                           BeamCase{3, "tet6", 1}, BeamCase{3, "prism6", 1},
-                                           BeamCase{3, "pyramid5", 1}, BeamCase{3, "hex8", 2},
-                                           BeamCase{3, "tet6", 2}),
+                                           BeamCase{3, "tet6", 1}, BeamCase{3, "prism6", 1}, BeamCase{3, "pyramid5", 1},
+                                           BeamCase{3, "hex8", 2}, BeamCase{3, "tet6", 2}),
                          [](const auto& info) {
                            return std::to_string(info.param.dim) + "d_" + info.param.cut + "_order" +
                                   std::to_string(info.param.order);

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "support/test_support.hpp"
 
 namespace scene_test {
 
@@ -29,13 +29,13 @@ inline std::string load_error(const std::string& path, const std::vector<std::st
 
 /// A small valid static scene; line numbers matter to the tests.
 inline const std::string kBaseScene =
-    "mesh: beam.msh\n"                                                              // 1
-    "materials:\n"                                                                  // 2
-    "  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}\n"     // 3
-    "fixed: [clamp]\n"                                                              // 4
-    "solver:\n"                                                                     // 5
-    "  type: static\n"                                                              // 6
-    "  load_steps: 10\n";                                                           // 7
+    "mesh: beam.msh\n"                                                           // 1
+    "materials:\n"                                                               // 2
+    "  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}\n"  // 3
+    "fixed: [clamp]\n"                                                           // 4
+    "solver:\n"                                                                  // 5
+    "  type: static\n"                                                           // 6
+    "  load_steps: 10\n";                                                        // 7
 
 /// `text` with the first occurrence of `from` replaced by `to`.
 inline std::string replaced(std::string text, const std::string& from, const std::string& to) {

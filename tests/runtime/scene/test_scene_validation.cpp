@@ -15,11 +15,11 @@ using scene_test::kBaseScene;
 using scene_test::load_error;
 using scene_test::replaced;
 using scene_test::TempDir;
-using test_support::expect_contains;
 using tensormass::Group;
 using tensormass::InputError;
 using tensormass::Mesh;
 using tensormass::Scene;
+using test_support::expect_contains;
 
 Group make_group(const std::string& name, int dim, std::vector<int> nodes, bool with_facet) {
   Group g;

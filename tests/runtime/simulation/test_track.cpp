@@ -7,9 +7,9 @@
 #include <cmath>
 #include <random>
 
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"
+#include "tensormass/meshing/beam.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "track_test_support.hpp"
 
@@ -87,7 +87,8 @@ std::array<double, 4> tet_volume_and_centre(const Mesh& mesh, std::span<const in
   double e[3][3];
   for (int k = 0; k < 3; ++k)
     for (int c = 0; c < 3; ++c) e[k][c] = x(k + 1, c) - x(0, c);
-  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
   std::array<double, 4> out{std::abs(det) / 6, 0, 0, 0};
   for (int c = 0; c < 3; ++c) out[1 + c] = (x(0, c) + x(1, c) + x(2, c) + x(3, c)) / 4;

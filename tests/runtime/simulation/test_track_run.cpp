@@ -27,7 +27,8 @@ class TrackRun : public ::testing::Test {
         "mesh: beam.msh\n"
         "materials:\n"
         "  - {region: all, law: stvk, young: 1.0e7, poisson: 0.3, density: 1000}\n";
-    const std::string scene = dir_.write("scene.yaml", head + body + "output: {directory: out, track: " + track + "}\n");
+    const std::string scene =
+        dir_.write("scene.yaml", head + body + "output: {directory: out, track: " + track + "}\n");
     return track_test::tensormass("run " + scene);
   }
   fs::path out(const std::string& name) const { return dir_.path() / "out" / name; }
@@ -61,7 +62,8 @@ TEST_F(TrackRun, ImplicitRunWritesOneRowPerStepFromTimeZero) {
   EXPECT_NEAR(track_test::numbers(track_test::read_lines(out("track_phase_quad4.csv"))[1])[1], 3.75, 1e-14);
   const std::string s = summary();
   EXPECT_NE(s.find("\"tracks\": {\"body\": \"track_body.csv\", \"phase_quad4\": \"track_phase_quad4.csv\"}"),
-            std::string::npos) << s;
+            std::string::npos)
+      << s;
   EXPECT_NE(s.find("\"track_body.csv\", \"track_phase_quad4.csv\", \"summary.json\"]"), std::string::npos) << s;
   EXPECT_NE(result.output.find("track_body.csv"), std::string::npos) << result.output;
 }
@@ -111,8 +113,9 @@ TEST_F(TrackRun, StaticRunHasOneRowPerLoadStepAndNoRealTimeFactor) {
 
 // Every node prescribed to x = 0.125 (y free, no load): a rigid translation.
 TEST_F(TrackRun, RigidTranslationMovesTheCentroidByTheTranslation) {
-  const Result result = run("prescribed: [{region: body, displacement: [0.125, null]}]\n"
-                            "solver: {type: implicit, dt: 0.01, steps: 3}\n");
+  const Result result =
+      run("prescribed: [{region: body, displacement: [0.125, null]}]\n"
+          "solver: {type: implicit, dt: 0.01, steps: 3}\n");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* name : {"track_body.csv", "track_phase_quad4.csv"}) {
     const auto lines = track_test::read_lines(out(name));

@@ -3,28 +3,28 @@
 // refusing such a scene before writing anything.
 #include <gtest/gtest.h>
 
-#include "tensormass/meshing/beam.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/meshing/beam.hpp"
 #include "tensormass/scene/scene.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "track_test_support.hpp"
 
 namespace {
 
-using track_test::TempDir;
 using tensormass::InputError;
+using track_test::TempDir;
 
 /// A valid static scene; line numbers matter to the tests.
 const std::string kScene =
-    "mesh: beam.msh\n"                                                              // 1
-    "materials:\n"                                                                  // 2
-    "  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}\n"     // 3
-    "fixed: [clamp]\n"                                                              // 4
-    "solver: {type: static, load_steps: 2}\n"                                       // 5
-    "output:\n"                                                                     // 6
-    "  directory: out\n"                                                            // 7
-    "  track:\n"                                                                    // 8
-    "    - body\n";                                                                 // 9
+    "mesh: beam.msh\n"                                                           // 1
+    "materials:\n"                                                               // 2
+    "  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}\n"  // 3
+    "fixed: [clamp]\n"                                                           // 4
+    "solver: {type: static, load_steps: 2}\n"                                    // 5
+    "output:\n"                                                                  // 6
+    "  directory: out\n"                                                         // 7
+    "  track:\n"                                                                 // 8
+    "    - body\n";                                                              // 9
 
 /// The message of the InputError that `f` throws (a test failure when none).
 template <class F>
@@ -76,7 +76,8 @@ TEST(TrackScene, NotAListIsAnError) {
 
 TEST(TrackScene, GroupListedTwiceIsAnError) {
   TempDir dir;
-  const std::string message = error_of([&] { tensormass::load_scene(dir.write("scene.yaml", kScene + "    - body\n")); });
+  const std::string message =
+      error_of([&] { tensormass::load_scene(dir.write("scene.yaml", kScene + "    - body\n")); });
   EXPECT_NE(message.find("scene.yaml:10"), std::string::npos) << message;
   EXPECT_NE(message.find("listed twice"), std::string::npos) << message;
 }

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "tensormass/assembly/assembler.hpp"
 #include "tensormass/adaptivity/adaptivity_settings.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
+#include "tensormass/assembly/assembler.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/model/model.hpp"
 

@@ -11,9 +11,9 @@
 namespace tensormass {
 
 struct CriterionSpec {
-  std::string name;      ///< R_EL, R_V, R_VL, R_VLX, R_S, R_NL (criteria.hpp)
+  std::string name;  ///< R_EL, R_V, R_VL, R_VLX, R_S, R_NL (criteria.hpp)
   double threshold = 0;
-  int line = 0;          ///< 1-based line in the scene file (0: not from a file)
+  int line = 0;  ///< 1-based line in the scene file (0: not from a file)
 };
 
 /// What happens to an element that fails a criterion.
@@ -23,8 +23,8 @@ struct AdaptivitySettings {
   bool enabled = false;
   std::vector<CriterionSpec> criteria;
   AdaptivityAction action = AdaptivityAction::upgrade;
-  int every = 1;          ///< evaluate every this many steps
-  int blend_steps = 0;    ///< steps over which a switched cell blends to its new law (0 = at once)
+  int every = 1;        ///< evaluate every this many steps
+  int blend_steps = 0;  ///< steps over which a switched cell blends to its new law (0 = at once)
   bool downgrade = false;
   double hysteresis = 0.5;
   int calm_steps = 10;

@@ -44,7 +44,7 @@ struct ElementView {
   const double* consts;            ///< the element's constants
   const double* rest;              ///< nodes by dim rest positions
   const double* u;                 ///< nodes by dim displacements
-  const double* force;             ///< nodes by dim assembled internal forces at the element's nodes (only when needs_force())
+  const double* force;  ///< nodes by dim assembled internal forces at the element's nodes (only when needs_force())
   int dim;
 };
 

@@ -12,8 +12,8 @@
 #include <span>
 #include <vector>
 
-#include "tensormass/model/model.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/model/model.hpp"
 
 namespace tensormass {
 

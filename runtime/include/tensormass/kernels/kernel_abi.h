@@ -23,8 +23,7 @@ typedef int (*tm_precompute_fn)(const double* rest_positions, const double* para
 typedef double (*tm_energy_fn)(const double* u, const double* consts);
 typedef void (*tm_gradient_fn)(const double* u, const double* consts, double* gradient);
 typedef void (*tm_hessian_fn)(const double* u, const double* consts, double* hessian);
-typedef void (*tm_gradient_hessian_fn)(const double* u, const double* consts, double* gradient,
-                                       double* hessian);
+typedef void (*tm_gradient_hessian_fn)(const double* u, const double* consts, double* gradient, double* hessian);
 typedef void (*tm_stress_fn)(const double* u, const double* consts, double* stress);
 
 /// Layout shared by every split: consts[0 .. derived_params) are the law's
@@ -65,17 +64,17 @@ typedef struct tm_element_info {
   const int* vtk_order;   ///< vtk_order[k]: our index of the k-th VTK node
   const int* gmsh_order;  ///< gmsh_order[k]: our index of the k-th Gmsh node
   int edge_count;
-  int edge_size;          ///< 2, or 3 with the mid-edge node
-  const int* edges;       ///< edge_count by edge_size
+  int edge_size;     ///< 2, or 3 with the mid-edge node
+  const int* edges;  ///< edge_count by edge_size
   int face_count;
   const int* face_sizes;  ///< face_count
   const int* face_offsets;
-  const int* faces;       ///< concatenated, corners counter-clockwise from outside
+  const int* faces;               ///< concatenated, corners counter-clockwise from outside
   const double* reference_nodes;  ///< nodes by dim
-  int quadrature_points;  ///< of the default rule
-  const double* weights;  ///< quadrature_points
-  const double* shape_values;  ///< quadrature_points by nodes
-  const char* calculix_type;   ///< "" when CalculiX has no such element
+  int quadrature_points;          ///< of the default rule
+  const double* weights;          ///< quadrature_points
+  const double* shape_values;     ///< quadrature_points by nodes
+  const char* calculix_type;      ///< "" when CalculiX has no such element
   const int* calculix_order;
 } tm_element_info;
 

@@ -103,7 +103,7 @@ inline void scatter_gradient(const double (&g_by_component)[D][N], double* gradi
 
 /// Number of component pairs a <= b.
 template <int D>
-inline constexpr int component_pairs = D * (D + 1) / 2;
+inline constexpr int component_pairs = D*(D + 1) / 2;
 
 /// For each component pair (a <= b): K_ab[j][k] += sum_c GT[c][j] Z[c][k] with
 /// Z[c][k] = sum_e wA[(a*D+c)][(b*D+e)] GT[e][k]; wA is the full D^2 by D^2

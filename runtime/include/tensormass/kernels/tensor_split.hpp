@@ -79,7 +79,8 @@ TENSORMASS_TENSOR_INLINE double cc(const double* CC, int a, int b, int c, int e)
 
 /// Adds one point's share (weight w, G^T the D by N shape gradients) to the coefficients.
 template <int D, int N, Strain S>
-TENSORMASS_TENSOR_INLINE void add_point_coefficients(double w, const double* GT, const double* CC, double* coefficients) {
+TENSORMASS_TENSOR_INLINE void add_point_coefficients(double w, const double* GT, const double* CC,
+                                                     double* coefficients) {
   using L = Layout<D, N, S>;
   constexpr auto& pairs = node_pairs<N>;
   constexpr int P = L::pairs;
@@ -130,7 +131,7 @@ TENSORMASS_TENSOR_INLINE void add_point_coefficients(double w, const double* GT,
 /// D^4 row-major. Returns precompute_points' status (0, or the bad point + 1).
 template <int D, int N, int Q, Strain S>
 TENSORMASS_TENSOR_INLINE int precompute(const double* rest_positions, const double (&reference_gradients)[Q][N][D],
-                      const double (&weights)[Q], const double* CC, double* out) {
+                                        const double (&weights)[Q], const double* CC, double* out) {
   const int status = precompute_points<D, N, Q>(rest_positions, reference_gradients, weights, out);
   if (status != 0) return status;
   constexpr int stride = 1 + D * N;

@@ -48,10 +48,10 @@ struct FacetSet {
 /// A named physical group: its nodes are the nodes of its elements of any dimension.
 struct Group {
   std::string name;
-  int dim = 0;              ///< the group's physical dimension (0 points .. 3 volumes)
-  std::vector<int> nodes;   ///< sorted, unique
-  std::vector<int> cells;   ///< sorted mesh-wide cell indices that belong to the group
-  FacetSet facets;          ///< elements of dimension mesh.dim-1 in the group
+  int dim = 0;             ///< the group's physical dimension (0 points .. 3 volumes)
+  std::vector<int> nodes;  ///< sorted, unique
+  std::vector<int> cells;  ///< sorted mesh-wide cell indices that belong to the group
+  FacetSet facets;         ///< elements of dimension mesh.dim-1 in the group
 };
 
 struct Mesh {
@@ -60,7 +60,7 @@ struct Mesh {
   std::vector<long> node_source_ids;   ///< node_count(): node number in the source file
   std::vector<ElementBlock> blocks;    ///< one per element type present, in registry order
   std::vector<Group> groups;
-  std::string source;                  ///< file the mesh came from, for messages
+  std::string source;  ///< file the mesh came from, for messages
 
   int node_count() const { return static_cast<int>(rest_positions.size() / 3); }
   int cell_count() const;

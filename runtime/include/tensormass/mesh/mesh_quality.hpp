@@ -55,11 +55,11 @@ struct ElementTypeQuality {
 
 /// Quality of a whole mesh.
 struct MeshQuality {
-  std::vector<CellQuality> cells;          ///< mesh.cell_count(), mesh-wide cell order
-  std::vector<ElementTypeQuality> types;   ///< one per block, in block order
-  std::vector<int> inverted_cells;         ///< mesh-wide indices, increasing
+  std::vector<CellQuality> cells;         ///< mesh.cell_count(), mesh-wide cell order
+  std::vector<ElementTypeQuality> types;  ///< one per block, in block order
+  std::vector<int> inverted_cells;        ///< mesh-wide indices, increasing
   double max_edge_ratio = 0;
-  double volume = 0;                       ///< total of the cells that are not inverted
+  double volume = 0;  ///< total of the cells that are not inverted
 };
 
 /// Quality of one cell of reference element `element` in a `dim`-D mesh

@@ -52,11 +52,11 @@ struct BeamPhase {
 };
 
 struct BeamSpec {
-  int dim = 2;                              ///< 2 or 3
-  std::array<int, 3> cells{60, 10, 10};     ///< nx, ny, nz (nz unused in 2D)
-  std::array<double, 3> size{6.0, 1.0, 1.0};  ///< L, H, W (W unused in 2D)
+  int dim = 2;                                    ///< 2 or 3
+  std::array<int, 3> cells{60, 10, 10};           ///< nx, ny, nz (nz unused in 2D)
+  std::array<double, 3> size{6.0, 1.0, 1.0};      ///< L, H, W (W unused in 2D)
   std::vector<BeamPhase> phases{{"quad4", 1.0}};  ///< from x = 0 to x = L (set it for 3D, e.g. {{"hex8", 1}})
-  int order = 1;                            ///< 1 linear, 2 quadratic
+  int order = 1;                                  ///< 1 linear, 2 quadratic
 };
 
 /// The cut names valid in dimension `dim` (2 or 3).

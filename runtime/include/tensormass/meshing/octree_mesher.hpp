@@ -53,12 +53,12 @@ struct VolumeRegion {
 };
 
 struct OctreeMeshOptions {
-  double size = 0;          ///< edge of the interior hexahedra (> 0)
-  int surface_levels = 1;   ///< levels of refinement (halvings of `size`) near the surface, 0..8
+  double size = 0;         ///< edge of the interior hexahedra (> 0)
+  int surface_levels = 1;  ///< levels of refinement (halvings of `size`) near the surface, 0..8
   std::vector<RegionOfInterest> regions_of_interest;
   std::vector<VolumeRegion> regions;  ///< first match wins
-  double margin = 0.35;     ///< core cells stay this fraction of their edge inside the surface
-  double cap_height = 0.25; ///< height of the caps on exposed core faces, in cell edges
+  double margin = 0.35;               ///< core cells stay this fraction of their edge inside the surface
+  double cap_height = 0.25;           ///< height of the caps on exposed core faces, in cell edges
   /// Thickness of the layer of prisms on the surface's triangles, in edges
   /// of the cells near the surface (size / 2^surface_levels); 0: no layer.
   double boundary_layer = 0.25;
@@ -67,14 +67,14 @@ struct OctreeMeshOptions {
 };
 
 struct OctreeMeshReport {
-  int leaves = 0;              ///< octree leaves after balance
-  int core_cells = 0;          ///< leaves kept in the core
+  int leaves = 0;                  ///< octree leaves after balance
+  int core_cells = 0;              ///< leaves kept in the core
   int removed_for_conformity = 0;  ///< core cells removed by the clean stage
   int core_hexahedra = 0, transition_cells = 0, caps = 0, gap_tetrahedra = 0;
   int boundary_prisms = 0;              ///< 0 when the layer was left out (see warnings)
   double boundary_layer_thickness = 0;  ///< as built (halved from the option's when needed)
-  double surface_volume = 0;   ///< enclosed by the input surface
-  double mesh_volume = 0;      ///< sum of the cells' volumes
+  double surface_volume = 0;            ///< enclosed by the input surface
+  double mesh_volume = 0;               ///< sum of the cells' volumes
   std::vector<std::pair<std::string, double>> stage_seconds;
   std::vector<std::string> warnings;
 };

@@ -117,8 +117,8 @@ class Model {
 
   const Mesh* mesh_;
   int dim_;
-  std::vector<int> cell_offsets_;        ///< cell_count()+1
-  std::vector<int> cell_connectivity_;   ///< nodes of every cell, concatenated
+  std::vector<int> cell_offsets_;       ///< cell_count()+1
+  std::vector<int> cell_connectivity_;  ///< nodes of every cell, concatenated
   std::vector<const tm_kernel*> kernels_, initial_kernels_;
   std::vector<const tm_kernel*> blend_from_;  ///< empty until the first blend
   std::vector<double> blend_weight_;

@@ -17,11 +17,11 @@ namespace tensormass {
 /// First match wins; region is a physical group name or "all".
 struct MaterialSpec {
   std::string region = "all";
-  std::string law;             ///< a law of the registry (hooke, stvk, neohookean)
-  std::string split;           ///< "" = the default split for the law and element
-  double young = 0;            ///< > 0
-  double poisson = 0;          ///< in (-1, 0.5)
-  double density = 0;          ///< > 0
+  std::string law;     ///< a law of the registry (hooke, stvk, neohookean)
+  std::string split;   ///< "" = the default split for the law and element
+  double young = 0;    ///< > 0
+  double poisson = 0;  ///< in (-1, 0.5)
+  double density = 0;  ///< > 0
   int line = 0;
 };
 
@@ -33,9 +33,9 @@ std::string_view profile_kind_name(ProfileKind kind);
 /// How a prescribed value evolves with time t (dynamic) or load factor (static).
 struct TimeProfile {
   ProfileKind kind = ProfileKind::constant;
-  double duration = 1.0;          ///< ramp: time to reach the full value
-  double period = 1.0;            ///< sinusoid: full cycle; value = amplitude * (1 - cos(2 pi t / period)) / 2
-  double phase = 0.0;             ///< sinusoid: phase shift in seconds
+  double duration = 1.0;  ///< ramp: time to reach the full value
+  double period = 1.0;    ///< sinusoid: full cycle; value = amplitude * (1 - cos(2 pi t / period)) / 2
+  double phase = 0.0;     ///< sinusoid: phase shift in seconds
   /// Factor at time t: 1 (constant), min(max(t / duration, 0), 1) (ramp),
   /// (1 - cos(2 pi (t + phase) / period)) / 2 (sinusoid); always in [0, 1].
   double factor(double t) const;
@@ -44,7 +44,7 @@ struct TimeProfile {
 /// Prescribed displacement of every node of a group (components given).
 struct PrescribedSpec {
   std::string region;
-  std::array<double, 3> displacement{};  ///< amplitude per component
+  std::array<double, 3> displacement{};              ///< amplitude per component
   std::array<bool, 3> components{true, true, true};  ///< which components are constrained
   TimeProfile profile;
   int line = 0;

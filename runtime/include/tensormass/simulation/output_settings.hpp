@@ -14,7 +14,7 @@ struct OutputSettings {
   int every = 0;                  ///< 0 = final state only
   /// Groups (with cells) whose centroid is written to track_<group>.csv every step (track.hpp).
   std::vector<std::string> track;
-  std::vector<int> track_lines;   ///< 1-based line of each `track` entry (0: from --set), for messages
+  std::vector<int> track_lines;  ///< 1-based line of each `track` entry (0: from --set), for messages
 };
 
 }  // namespace tensormass

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "tensormass/adaptivity/adaptivity.hpp"
-#include "tensormass/solvers/integrators.hpp"
 #include "tensormass/scene/scene.hpp"
+#include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass {
 

@@ -68,8 +68,8 @@ class GroupTrack {
 
   std::string name_;
   int dim_ = 3;
-  std::vector<int> nodes_;        ///< nodes of the group's cells, sorted, unique
-  std::vector<double> weights_;   ///< W_i per entry of nodes_, summing to 1
+  std::vector<int> nodes_;       ///< nodes of the group's cells, sorted, unique
+  std::vector<double> weights_;  ///< W_i per entry of nodes_, summing to 1
   std::array<double, 3> rest_centroid_{};
   std::array<double, 3> first_{};  ///< weighted displacement of the first row
   double rest_volume_ = 0;

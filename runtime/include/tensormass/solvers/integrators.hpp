@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "tensormass/assembly/assembler.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 #include "tensormass/model/model.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 #include "tensormass/solvers/solver_settings.hpp"
 
 namespace tensormass {
@@ -30,12 +30,12 @@ struct State {
 /// Wall-clock seconds per phase and iteration counts, accumulated.
 struct SolveStatistics {
   double assembly_seconds = 0;
-  double solve_seconds = 0;     ///< factorisation and linear solves
+  double solve_seconds = 0;  ///< factorisation and linear solves
   int newton_iterations = 0;
   long linear_iterations = 0;
-  std::vector<int> newton_per_step;   ///< per step (load step)
-  std::vector<double> step_ms;        ///< wall time of each step
-  double stable_dt = 0;               ///< explicit: the estimated stable time step
+  std::vector<int> newton_per_step;  ///< per step (load step)
+  std::vector<double> step_ms;       ///< wall time of each step
+  double stable_dt = 0;              ///< explicit: the estimated stable time step
   std::vector<std::string> warnings;
 };
 

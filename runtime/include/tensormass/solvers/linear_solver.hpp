@@ -10,8 +10,8 @@
 #include <span>
 #include <string>
 
-#include "tensormass/solvers/solver_settings.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/solvers/solver_settings.hpp"
 
 namespace tensormass {
 

@@ -19,8 +19,8 @@ std::string_view linear_solver_type_name(LinearSolverType type);
 
 struct LinearSolverSettings {
   LinearSolverType type = LinearSolverType::cholmod;
-  double tolerance = 1e-10;       ///< cg: relative residual
-  int max_iterations = 10000;     ///< cg
+  double tolerance = 1e-10;    ///< cg: relative residual
+  int max_iterations = 10000;  ///< cg
   /// cholmod: when the matrix changed, first try at most this many CG
   /// iterations preconditioned by the previous factor (0 = always refactorise)
   int reuse_iterations = 12;
@@ -30,16 +30,16 @@ struct SolverSettings {
   SolverType type = SolverType::static_newton;
   // static
   int load_steps = 1;
-  double tolerance = 1e-10;       ///< Newton: relative residual
-  int max_iterations = 50;        ///< Newton iterations per load step
+  double tolerance = 1e-10;  ///< Newton: relative residual
+  int max_iterations = 50;   ///< Newton iterations per load step
   // dynamic
-  double dt = 0;                  ///< > 0 for implicit and explicit
-  int steps = 0;                  ///< > 0 for implicit and explicit
-  int newton_iterations = 1;      ///< implicit: Newton iterations per step (1 = linearised step)
-  double damping_mass = 0;        ///< Rayleigh alpha (1/s)
-  double damping_stiffness = 0;   ///< Rayleigh beta (s); not with the explicit solver
+  double dt = 0;                 ///< > 0 for implicit and explicit
+  int steps = 0;                 ///< > 0 for implicit and explicit
+  int newton_iterations = 1;     ///< implicit: Newton iterations per step (1 = linearised step)
+  double damping_mass = 0;       ///< Rayleigh alpha (1/s)
+  double damping_stiffness = 0;  ///< Rayleigh beta (s); not with the explicit solver
   LinearSolverSettings linear;
-  int threads = 0;                ///< 0 = OpenMP default
+  int threads = 0;  ///< 0 = OpenMP default
 
   bool is_static() const { return type == SolverType::static_newton; }
   bool is_dynamic() const { return !is_static(); }

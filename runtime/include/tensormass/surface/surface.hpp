@@ -44,7 +44,6 @@ struct SurfaceBox {
   std::array<double, 3> max{0, 0, 0};
 };
 
-
 /// Checks that the surface bounds a volume and throws InputError with a
 /// precise message (file, triangle numbers, coordinates) for:
 /// - degenerate triangles (zero area, or a repeated corner),
