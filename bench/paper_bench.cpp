@@ -174,8 +174,7 @@ RunResult simulate(const Mesh& mesh, const BeamCase& beam, const Config& config,
       adaptivity->update(s.displacement, s.step);
     }
     const auto now = Clock::now();
-    if (s.step > 1)
-      result.step_ms.push_back(1e3 * std::chrono::duration<double>(now - mark).count());
+    if (s.step > 1) result.step_ms.push_back(1e3 * std::chrono::duration<double>(now - mark).count());
     else {
       after_first = statistics;
       if (adaptivity) criteria_after_first = adaptivity->criteria_seconds();
@@ -432,14 +431,10 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       if (i + 1 >= args.size() || args[i + 1].empty()) return nullptr;
       return &args[++i];
     };
-    if (a == "--quick")
-      options.quick = true;
-    else if (a == "--smoke")
-      options.smoke = true;
-    else if (a == "--no-3d")
-      options.no_3d = true;
-    else if (a == "--no-plots")
-      options.plots = false;
+    if (a == "--quick") options.quick = true;
+    else if (a == "--smoke") options.smoke = true;
+    else if (a == "--no-3d") options.no_3d = true;
+    else if (a == "--no-plots") options.plots = false;
     else if (a == "--help" || a == "-h") {
       std::printf("%s", kUsage);
       exit_code = 0;
@@ -451,10 +446,8 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
         exit_code = 2;
         return false;
       }
-      if (a == "--json")
-        options.json = *v;
-      else if (a == "--out")
-        options.out = *v;
+      if (a == "--json") options.json = *v;
+      else if (a == "--out") options.out = *v;
       else {
         char* end = nullptr;
         const long n = std::strtol(v->c_str(), &end, 10);

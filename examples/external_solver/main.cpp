@@ -41,12 +41,9 @@ int main() {
   // Parameters by name, in the kernel's order.
   std::vector<double> params(k.params);
   for (int p = 0; p < k.params; ++p) {
-    if (std::strcmp(k.param_names[p], "young") == 0)
-      params[p] = young;
-    else if (std::strcmp(k.param_names[p], "poisson") == 0)
-      params[p] = poisson;
-    else
-      return std::fprintf(stderr, "unexpected parameter %s\n", k.param_names[p]), 1;
+    if (std::strcmp(k.param_names[p], "young") == 0) params[p] = young;
+    else if (std::strcmp(k.param_names[p], "poisson") == 0) params[p] = poisson;
+    else return std::fprintf(stderr, "unexpected parameter %s\n", k.param_names[p]), 1;
   }
 
   // Element constants, lumped mass (row sums of the consistent mass: rho *

@@ -54,10 +54,8 @@ T parse_number(const std::string& option, const std::string& text) {
   std::size_t used = 0;
   T value{};
   try {
-    if constexpr (std::is_same_v<T, int>)
-      value = std::stoi(text, &used);
-    else
-      value = std::stod(text, &used);
+    if constexpr (std::is_same_v<T, int>) value = std::stoi(text, &used);
+    else value = std::stod(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
@@ -77,22 +75,16 @@ std::size_t parse_list(const std::string& option, const std::string& text, std::
 
 /// Applies one option; `value` is its argument.
 void apply_option(BeamOptions& options, const std::string& name, const std::string& value) {
-  if (name == "--dim")
-    options.spec.dim = parse_number<int>(name, value);
-  else if (name == "--cells")
-    options.cells_count = parse_list(name, value, options.spec.cells);
-  else if (name == "--size")
-    options.size_count = parse_list(name, value, options.spec.size);
+  if (name == "--dim") options.spec.dim = parse_number<int>(name, value);
+  else if (name == "--cells") options.cells_count = parse_list(name, value, options.spec.cells);
+  else if (name == "--size") options.size_count = parse_list(name, value, options.spec.size);
   else if (name == "--type" || name == "--mix") {
     if (options.type_given) throw InputError("beam: give one of --type or --mix, once");
     options.type_given = true;
     options.spec.phases = name == "--type" ? std::vector<BeamPhase>{{value, 1.0}} : parse_beam_mix(value);
-  } else if (name == "--order")
-    options.spec.order = parse_number<int>(name, value);
-  else if (name == "--format")
-    options.format = io::parse_msh_format(value);
-  else
-    options.output = value;  // -o, --output
+  } else if (name == "--order") options.spec.order = parse_number<int>(name, value);
+  else if (name == "--format") options.format = io::parse_msh_format(value);
+  else options.output = value;  // -o, --output
 }
 
 bool known_option(const std::string& name) {

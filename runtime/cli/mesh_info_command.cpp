@@ -35,14 +35,11 @@ struct Options {
 Options parse_options(const Arguments& args) {
   Options options;
   for (const std::string& arg : args) {
-    if (arg == "--json")
-      options.json = true;
+    if (arg == "--json") options.json = true;
     else if (!arg.empty() && arg[0] == '-')
       throw InputError("mesh-info: unknown option '" + arg + "' (usage: tensormass mesh-info FILE [--json])");
-    else if (options.path.empty())
-      options.path = arg;
-    else
-      throw InputError("mesh-info: more than one FILE ('" + options.path + "', '" + arg + "')");
+    else if (options.path.empty()) options.path = arg;
+    else throw InputError("mesh-info: more than one FILE ('" + options.path + "', '" + arg + "')");
   }
   if (options.path.empty()) throw InputError("mesh-info: missing FILE (usage: tensormass mesh-info FILE [--json])");
   return options;
@@ -51,14 +48,12 @@ Options parse_options(const Arguments& args) {
 std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
-    if (c == '"' || c == '\\')
-      out += std::string("\\") + c;
+    if (c == '"' || c == '\\') out += std::string("\\") + c;
     else if (static_cast<unsigned char>(c) < 0x20) {
       char buffer[8];
       std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
       out += buffer;
-    } else
-      out += c;
+    } else out += c;
   }
   return out + "\"";
 }

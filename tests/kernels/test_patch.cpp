@@ -294,10 +294,8 @@ TEST_P(MacNealHarderPatch, InnerNodesAndStressAreExact) {
     for (int c = 0; c < dim; ++c) {
       const auto dof = static_cast<std::size_t>(node * dim + c);
       exact[dof] = exact_displacement(dim, &mesh.coordinates[static_cast<std::size_t>(node * dim)], c);
-      if (on_boundary(mesh, node))
-        u[dof] = exact[dof];
-      else
-        inner.push_back(dof);
+      if (on_boundary(mesh, node)) u[dof] = exact[dof];
+      else inner.push_back(dof);
     }
   ASSERT_FALSE(inner.empty());
   const std::size_t m = inner.size();

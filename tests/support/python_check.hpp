@@ -29,10 +29,8 @@ std::string json_list(const std::vector<T>& values) {
   std::string text = "[";
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (i) text += ",";
-    if constexpr (std::is_floating_point_v<T>)
-      text += exact(values[i]);
-    else
-      text += std::to_string(values[i]);
+    if constexpr (std::is_floating_point_v<T>) text += exact(values[i]);
+    else text += std::to_string(values[i]);
   }
   return text + "]";
 }

@@ -33,8 +33,7 @@ class TempDir {
     const ::testing::UnitTest& unit = *::testing::UnitTest::GetInstance();
     if (const ::testing::TestInfo* test = unit.current_test_info())
       name += std::string("_") + test->test_suite_name() + "_" + test->name();
-    else if (const ::testing::TestSuite* suite = unit.current_test_suite())
-      name += std::string("_") + suite->name();
+    else if (const ::testing::TestSuite* suite = unit.current_test_suite()) name += std::string("_") + suite->name();
     std::replace(name.begin(), name.end(), '/', '_');
     path_ = fs::temp_directory_path() / name;
     fs::remove_all(path_);

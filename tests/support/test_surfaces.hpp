@@ -81,10 +81,8 @@ class SurfaceMaker {
       const Vec u{q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v{r[0] - p[0], r[1] - p[1], r[2] - p[2]};
       const Vec n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
       const double out = n[0] * (p[0] - centre[0]) + n[1] * (p[1] - centre[1]) + n[2] * (p[2] - centre[2]);
-      if (out > 0)
-        triangle(point(p), point(q), point(r));
-      else
-        triangle(point(p), point(r), point(q));
+      if (out > 0) triangle(point(p), point(q), point(r));
+      else triangle(point(p), point(r), point(q));
     }
   }
   TriangleSurface& surface() { return surface_; }

@@ -135,10 +135,8 @@ std::vector<io::Field> Adaptivity::cell_fields() const {
     for (std::size_t c = 0; c < criteria_.size(); ++c) {
       const double value = values_[c][cell], threshold = thresholds_[c];
       double ratio;
-      if (criteria_[c]->is_quality())
-        ratio = value > 0 ? threshold / value : 1.0;
-      else
-        ratio = threshold > 0 ? value / threshold : (value > 0 ? 1.0 : 0.0);
+      if (criteria_[c]->is_quality()) ratio = value > 0 ? threshold / value : 1.0;
+      else ratio = threshold > 0 ? value / threshold : (value > 0 ? 1.0 : 0.0);
       worst = std::max(worst, std::min(ratio, 1.0));
     }
     state.values[cell] = worst;

@@ -153,28 +153,17 @@ template <typename Self>
 double by_shape(const ElementView& view) {
   assert(view.dim == 2 || view.dim == 3);
   switch (view.dim * 100 + view.kernel.nodes) {
-    case 203:
-      return Self::template value<2, 3>(view);
-    case 204:
-      return Self::template value<2, 4>(view);
-    case 206:
-      return Self::template value<2, 6>(view);
-    case 208:
-      return Self::template value<2, 8>(view);
-    case 304:
-      return Self::template value<3, 4>(view);
-    case 305:
-      return Self::template value<3, 5>(view);
-    case 306:
-      return Self::template value<3, 6>(view);
-    case 308:
-      return Self::template value<3, 8>(view);
-    case 310:
-      return Self::template value<3, 10>(view);
-    case 320:
-      return Self::template value<3, 20>(view);
-    default:
-      return view.dim == 2 ? Self::template value<2, 0>(view) : Self::template value<3, 0>(view);
+    case 203: return Self::template value<2, 3>(view);
+    case 204: return Self::template value<2, 4>(view);
+    case 206: return Self::template value<2, 6>(view);
+    case 208: return Self::template value<2, 8>(view);
+    case 304: return Self::template value<3, 4>(view);
+    case 305: return Self::template value<3, 5>(view);
+    case 306: return Self::template value<3, 6>(view);
+    case 308: return Self::template value<3, 8>(view);
+    case 310: return Self::template value<3, 10>(view);
+    case 320: return Self::template value<3, 20>(view);
+    default: return view.dim == 2 ? Self::template value<2, 0>(view) : Self::template value<3, 0>(view);
   }
 }
 
@@ -240,8 +229,7 @@ class VolumeLengthHarmonicCriterion final : public Criterion {
     const double volume = deformed_volume<D, N>(view);
     if constexpr (D == 2)
       return 4.0 / std::sqrt(3.0) * volume * means.harmonic / (means.mean * means.mean * means.mean);
-    else
-      return 6.0 * std::sqrt(2.0) * volume * means.harmonic / (means.mean * means.mean * means.mean * means.mean);
+    else return 6.0 * std::sqrt(2.0) * volume * means.harmonic / (means.mean * means.mean * means.mean * means.mean);
   }
 };
 

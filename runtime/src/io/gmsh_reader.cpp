@@ -119,20 +119,13 @@ Mesh GmshReader::read() {
     if (token.size() < 2 || token.front() != '$')
       in_.fail("expected a section name such as $Nodes, found '" + std::string(token.substr(0, 40)) + "'");
     const std::string name(token.substr(1));
-    if (name == "MeshFormat")
-      read_format();
-    else if (name == "PhysicalNames")
-      read_physical_names();
-    else if (name == "Entities" && major_ == 4)
-      read_entities();
-    else if (name == "Nodes")
-      major_ == 4 ? read_nodes_41() : read_nodes_22();
-    else if (name == "Elements")
-      major_ == 4 ? read_elements_41() : read_elements_22();
-    else if (name == "PartitionedEntities")
-      in_.fail("partitioned meshes are not supported");
-    else
-      in_.skip_past("$End" + name, "$End" + name);
+    if (name == "MeshFormat") read_format();
+    else if (name == "PhysicalNames") read_physical_names();
+    else if (name == "Entities" && major_ == 4) read_entities();
+    else if (name == "Nodes") major_ == 4 ? read_nodes_41() : read_nodes_22();
+    else if (name == "Elements") major_ == 4 ? read_elements_41() : read_elements_22();
+    else if (name == "PartitionedEntities") in_.fail("partitioned meshes are not supported");
+    else in_.skip_past("$End" + name, "$End" + name);
   }
   if (!have_nodes_) throw InputError(in_.path() + ": no $Nodes section");
   if (!have_elements_) throw InputError(in_.path() + ": no $Elements section");
@@ -142,12 +135,9 @@ Mesh GmshReader::read() {
 void GmshReader::read_format() {
   const Location where = in_.here();
   const std::string version(in_.token("the format version"));
-  if (version == "4.1")
-    major_ = 4;
-  else if (version.size() >= 2 && version.substr(0, 2) == "2.")
-    major_ = 2;
-  else
-    in_.fail_at(where, "MSH format " + version + " is not supported (2.2 or 4.1; re-save the mesh with Gmsh)");
+  if (version == "4.1") major_ = 4;
+  else if (version.size() >= 2 && version.substr(0, 2) == "2.") major_ = 2;
+  else in_.fail_at(where, "MSH format " + version + " is not supported (2.2 or 4.1; re-save the mesh with Gmsh)");
   const long file_type = in_.integer("the file type");
   if (file_type != 0 && file_type != 1)
     in_.fail("file type must be 0 (ASCII) or 1 (binary), found " + std::to_string(file_type));
@@ -159,12 +149,9 @@ void GmshReader::read_format() {
     in_.set_binary(true);
     const Location marker = in_.location();
     const std::int32_t one = in_.value<std::int32_t>("the endianness marker", std::endian::little);
-    if (one == 1)
-      order_ = std::endian::little;
-    else if (one == 0x01000000)
-      order_ = std::endian::big;
-    else
-      in_.fail_at(marker, "bad endianness marker " + std::to_string(one) + " (expected the integer 1)");
+    if (one == 1) order_ = std::endian::little;
+    else if (one == 0x01000000) order_ = std::endian::big;
+    else in_.fail_at(marker, "bad endianness marker " + std::to_string(one) + " (expected the integer 1)");
   }
   in_.expect("$EndMeshFormat");
 }
@@ -270,10 +257,8 @@ void GmshReader::read_nodes_41() {
   for (long b = 0; b < blocks; ++b) {
     const int entity_dim =
         binary_ ? binary_int("an entity dimension") : static_cast<int>(in_.integer("an entity dimension"));
-    if (binary_)
-      binary_int("an entity tag");
-    else
-      in_.integer("an entity tag");
+    if (binary_) binary_int("an entity tag");
+    else in_.integer("an entity tag");
     const long parametric = binary_ ? binary_int("the parametric flag") : in_.integer("the parametric flag");
     const long count = binary_ ? binary_size("nodes in the block", 32) : in_.count("nodes in the block", 8);
     if (entity_dim < 0 || entity_dim > 3) in_.fail("entity dimension " + std::to_string(entity_dim) + " is not 0..3");

@@ -296,10 +296,8 @@ void write_msh(const std::string& path, const Mesh& mesh, MshFormat format) {
   if (mesh.cell_count() == 0) throw std::invalid_argument(path + ": the mesh has no cells to write");
   const MshModel model = build_model(mesh);
   Text text;
-  if (format == MshFormat::v41)
-    print_msh41(text, mesh, model);
-  else
-    print_msh22(text, mesh, model);
+  if (format == MshFormat::v41) print_msh41(text, mesh, model);
+  else print_msh22(text, mesh, model);
   write_atomically(path, [&](std::ostream& out) { out << text.str(); });
 }
 

@@ -553,13 +553,11 @@ TriangleSurface read_surface(const std::string& path) {
   if (data.find_first_not_of(" \t\r\n\v\f") == std::string::npos) throw InputError(path + ": the file is empty");
 
   SurfaceBuilder builder(path, extension == ".stl" ? "facet" : extension == ".obj" ? "face at line" : "element");
-  if (extension == ".stl")
-    read_stl(path, data, builder);
+  if (extension == ".stl") read_stl(path, data, builder);
   else if (extension == ".obj")
     read_obj(path, std::string_view(data).starts_with("\xEF\xBB\xBF") ? std::string_view(data).substr(3) : data,
              builder);
-  else
-    read_msh_with_gmsh(path, builder);
+  else read_msh_with_gmsh(path, builder);
 
   TriangleSurface& surface = builder.surface();
   if (surface.triangle_count() == 0) throw InputError(path + ": no triangles (empty surface)");

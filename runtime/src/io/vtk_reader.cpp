@@ -305,27 +305,18 @@ Mesh LegacyReader::read() {
       if (words_.size() < 2 || lower(words_[1]) != "unstructured_grid")
         in_.fail_at(where_, "only DATASET UNSTRUCTURED_GRID is supported, found '" +
                                 std::string(words_.size() > 1 ? words_[1] : "") + "'");
-    } else if (keyword == "points")
-      read_points();
-    else if (keyword == "cells")
-      read_cells();
-    else if (keyword == "cell_types")
-      read_cell_types();
+    } else if (keyword == "points") read_points();
+    else if (keyword == "cells") read_cells();
+    else if (keyword == "cell_types") read_cell_types();
     else if (keyword == "cell_data" || keyword == "point_data") {
       in_cell_data_ = keyword == "cell_data";
       data_count_ = word_count(1, "data tuples", 1);
-    } else if (keyword == "scalars")
-      read_scalars();
-    else if (keyword == "field")
-      read_field();
-    else if (keyword == "vectors" || keyword == "normals")
-      read_attribute(3, 2);
-    else if (keyword == "tensors")
-      read_attribute(9, 2);
-    else if (keyword == "tensors6")
-      read_attribute(6, 2);
-    else if (keyword == "metadata")
-      skip_metadata();
+    } else if (keyword == "scalars") read_scalars();
+    else if (keyword == "field") read_field();
+    else if (keyword == "vectors" || keyword == "normals") read_attribute(3, 2);
+    else if (keyword == "tensors") read_attribute(9, 2);
+    else if (keyword == "tensors6") read_attribute(6, 2);
+    else if (keyword == "metadata") skip_metadata();
     else
       in_.fail_at(where_, "unsupported keyword '" + std::string(words_[0].substr(0, 40)) +
                               "' (unstructured grids with POINTS, CELLS, CELL_TYPES and cell data)");
@@ -350,10 +341,8 @@ void LegacyReader::read_points() {
 void LegacyReader::read_cells() {
   const long first = word_count(1, "cells", 1);
   const long second = word_count(2, "cell list entries", 1);
-  if (in_.data().substr(in_.position()).starts_with("OFFSETS"))
-    read_cells_split(first, second);
-  else
-    read_cells_classic(first, second);
+  if (in_.data().substr(in_.position()).starts_with("OFFSETS")) read_cells_split(first, second);
+  else read_cells_classic(first, second);
   check_offsets(in_, grid_, where_);
   have_cells_ = true;
 }
@@ -481,16 +470,11 @@ std::string decode_entities(std::string_view text) {
     }
     const std::size_t end = text.find(';', i);
     const std::string_view entity = end == std::string_view::npos ? std::string_view() : text.substr(i, end - i + 1);
-    if (entity == "&lt;")
-      result += '<';
-    else if (entity == "&gt;")
-      result += '>';
-    else if (entity == "&amp;")
-      result += '&';
-    else if (entity == "&quot;")
-      result += '"';
-    else if (entity == "&apos;")
-      result += '\'';
+    if (entity == "&lt;") result += '<';
+    else if (entity == "&gt;") result += '>';
+    else if (entity == "&amp;") result += '&';
+    else if (entity == "&quot;") result += '"';
+    else if (entity == "&apos;") result += '\'';
     else {
       result += '&';
       continue;
@@ -545,16 +529,11 @@ void XmlDocument::parse() {
     const std::size_t lt = text_.find('<', pos);
     if (lt == std::string_view::npos) break;
     const std::string_view rest = text_.substr(lt);
-    if (rest.starts_with("<!--"))
-      pos = skip_to(lt, "-->", "comment");
-    else if (rest.starts_with("<?"))
-      pos = skip_to(lt, "?>", "processing instruction");
-    else if (rest.starts_with("<!"))
-      pos = skip_to(lt, ">", "declaration");
-    else if (rest.starts_with("</"))
-      pos = end_tag(lt, open);
-    else
-      pos = start_tag(lt, open);
+    if (rest.starts_with("<!--")) pos = skip_to(lt, "-->", "comment");
+    else if (rest.starts_with("<?")) pos = skip_to(lt, "?>", "processing instruction");
+    else if (rest.starts_with("<!")) pos = skip_to(lt, ">", "declaration");
+    else if (rest.starts_with("</")) pos = end_tag(lt, open);
+    else pos = start_tag(lt, open);
   }
   if (appended_begin == std::string::npos && !open.empty())
     fail(text_.size(), "unexpected end of file (truncated file?) inside <" +
@@ -809,14 +788,10 @@ std::vector<double> VtuReader::read_array(const XmlElement& e, long expected, lo
     fail(e, "DataArray '" + array.name + "' must have " + std::to_string(components) + " component(s)");
   const std::string format = e.attribute("format", "ascii");
   std::vector<double> values;
-  if (format == "ascii")
-    values = ascii_values(array);
-  else if (format == "binary")
-    values = inline_values(array);
-  else if (format == "appended")
-    values = appended_values(array);
-  else
-    fail(e, "DataArray '" + array.name + "' has unknown format '" + format + "'");
+  if (format == "ascii") values = ascii_values(array);
+  else if (format == "binary") values = inline_values(array);
+  else if (format == "appended") values = appended_values(array);
+  else fail(e, "DataArray '" + array.name + "' has unknown format '" + format + "'");
   if (static_cast<long>(values.size()) != expected)
     fail(e, "DataArray '" + array.name + "' has " + std::to_string(values.size()) + " values, expected " +
                 std::to_string(expected));

@@ -24,12 +24,9 @@ ConformityReport check_conformity(const Mesh& mesh) {
   }
   ConformityReport report;
   for (const auto& [face, count] : uses) {
-    if (count == 1)
-      report.boundary_faces.push_back(face);
-    else if (count == 2)
-      ++report.interior_faces;
-    else
-      ++report.overused_faces;
+    if (count == 1) report.boundary_faces.push_back(face);
+    else if (count == 2) ++report.interior_faces;
+    else ++report.overused_faces;
   }
   return report;
 }

@@ -265,10 +265,8 @@ void BeamBuilder::cut_tet5(const std::array<int, 8>& c, int parity) {
   std::vector<int> even;
   for (int corner = 0; corner < 8; ++corner) {
     const bool is_even = (std::popcount(static_cast<unsigned>(corner)) + parity) % 2 == 0;
-    if (is_even)
-      even.push_back(c[corner]);
-    else
-      add_tet(c[corner], c[corner ^ 1], c[corner ^ 2], c[corner ^ 4]);
+    if (is_even) even.push_back(c[corner]);
+    else add_tet(c[corner], c[corner ^ 1], c[corner ^ 2], c[corner ^ 4]);
   }
   add_tet(even[0], even[1], even[2], even[3]);
 }
@@ -318,10 +316,8 @@ void BeamBuilder::add_tet(int a, int b, int c, int d) {
 void BeamBuilder::add_pyramid(const std::array<int, 4>& base, int apex) {
   const Point p0 = point(base[0]);
   const Point normal = cross(minus(point(base[1]), p0), minus(point(base[2]), p0));
-  if (dot(normal, minus(point(apex), p0)) > 0)
-    add_cell("pyramid5", {base[0], base[1], base[2], base[3], apex});
-  else
-    add_cell("pyramid5", {base[0], base[3], base[2], base[1], apex});
+  if (dot(normal, minus(point(apex), p0)) > 0) add_cell("pyramid5", {base[0], base[1], base[2], base[3], apex});
+  else add_cell("pyramid5", {base[0], base[3], base[2], base[1], apex});
 }
 
 /// prism6 convention (VTK): the bottom's right-hand normal points away from the top.

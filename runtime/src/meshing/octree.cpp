@@ -70,10 +70,8 @@ void Octree::refine(
     std::vector<char> refine(cells.size(), 0), drop(cells.size(), 0);
     decide(cells, refine, drop);
     for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (drop[c])
-        leaves_.erase(cell_key(cells[c]));
-      else if (refine[c] && depth < max_depth_)
-        split(cells[c]);
+      if (drop[c]) leaves_.erase(cell_key(cells[c]));
+      else if (refine[c] && depth < max_depth_) split(cells[c]);
     }
   }
 }

@@ -8,12 +8,9 @@ namespace tensormass {
 
 std::string_view profile_kind_name(ProfileKind kind) {
   switch (kind) {
-    case ProfileKind::ramp:
-      return "ramp";
-    case ProfileKind::sinusoid:
-      return "sinusoid";
-    case ProfileKind::constant:
-      break;
+    case ProfileKind::ramp: return "ramp";
+    case ProfileKind::sinusoid: return "sinusoid";
+    case ProfileKind::constant: break;
   }
   return "constant";
 }

@@ -118,17 +118,13 @@ void apply_override(YAML::Node& root, const std::string& text, const KeyTable& t
     if (current.IsSequence()) {
       const int index = list_index(a, path, segment, current.size());
       path = path.item(index);
-      if (last)
-        current[index] = a.value;
-      else
-        current.reset(current[index]);
+      if (last) current[index] = a.value;
+      else current.reset(current[index]);
     } else if (current.IsMap()) {
       check_known_key(a, path, segment, table);
       path = path.child(segment);
-      if (last)
-        current[segment] = a.value;
-      else
-        current.reset(enter_map_key(current, segment, a, path, table));
+      if (last) current[segment] = a.value;
+      else current.reset(enter_map_key(current, segment, a, path, table));
     } else {
       fail_override(a.typed, "'" + path.text() + "' is a single value, not a map or a list");
     }

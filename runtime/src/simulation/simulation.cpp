@@ -207,15 +207,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
   try {
     switch (scene.solver.type) {
-      case SolverType::static_newton:
-        solve_static(run, state, observer);
-        break;
-      case SolverType::implicit_euler:
-        solve_implicit(run, state, observer);
-        break;
-      case SolverType::explicit_euler:
-        solve_explicit(run, state, observer);
-        break;
+      case SolverType::static_newton: solve_static(run, state, observer); break;
+      case SolverType::implicit_euler: solve_implicit(run, state, observer); break;
+      case SolverType::explicit_euler: solve_explicit(run, state, observer); break;
     }
   } catch (const NumericalError& failure) {
     progress.finish();

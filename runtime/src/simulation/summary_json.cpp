@@ -28,23 +28,14 @@ std::string quoted(const std::string& text) {
   out << '"';
   for (char c : text) {
     switch (c) {
-      case '"':
-        out << "\\\"";
-        break;
-      case '\\':
-        out << "\\\\";
-        break;
-      case '\n':
-        out << "\\n";
-        break;
-      case '\t':
-        out << "\\t";
-        break;
+      case '"': out << "\\\""; break;
+      case '\\': out << "\\\\"; break;
+      case '\n': out << "\\n"; break;
+      case '\t': out << "\\t"; break;
       default:
         if (static_cast<unsigned char>(c) < 0x20)
           out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
-        else
-          out << c;
+        else out << c;
     }
   }
   out << '"';
@@ -77,8 +68,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     << ", \"linear\": " << quoted(report.linear_solver);
   if (dynamic)
     j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
-  else
-    j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
+  else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
   j << ", \"threads\": " << omp_get_max_threads() << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
     << ", \"free_dofs\": " << report.free_dofs << ",\n";

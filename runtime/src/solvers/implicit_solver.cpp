@@ -42,10 +42,8 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
       }
       detail::require_finite(r, "the residual " + where);
       const double residual = norm(r);
-      if (iteration == 1)
-        reference = std::max(residual, 1e-300);
-      else if (residual <= settings.tolerance * reference)
-        break;
+      if (iteration == 1) reference = std::max(residual, 1e-300);
+      else if (residual <= settings.tolerance * reference) break;
       // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
       for (int k = 0; k < K.nonzeros(); ++k) J.values[k] = stiffness_factor * K.values[k];
       for (int i = 0; i < n; ++i) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];

@@ -4,12 +4,9 @@ namespace tensormass {
 
 std::string_view solver_type_name(SolverType type) {
   switch (type) {
-    case SolverType::implicit_euler:
-      return "implicit";
-    case SolverType::explicit_euler:
-      return "explicit";
-    case SolverType::static_newton:
-      break;
+    case SolverType::implicit_euler: return "implicit";
+    case SolverType::explicit_euler: return "explicit";
+    case SolverType::static_newton: break;
   }
   return "static";
 }

@@ -265,27 +265,13 @@ SurfaceDistance::Closest SurfaceDistance::signed_closest(const double point[3]) 
   const auto s = static_cast<std::size_t>(hit.slot);
   const double* normal = nullptr;
   switch (hit.feature) {
-    case kFace:
-      normal = &face_normals_[3 * s];
-      break;
-    case kVertex0:
-      normal = &vertex_normals_[9 * s];
-      break;
-    case kVertex1:
-      normal = &vertex_normals_[9 * s + 3];
-      break;
-    case kVertex2:
-      normal = &vertex_normals_[9 * s + 6];
-      break;
-    case kEdge01:
-      normal = &edge_normals_[9 * s];
-      break;
-    case kEdge12:
-      normal = &edge_normals_[9 * s + 3];
-      break;
-    default:
-      normal = &edge_normals_[9 * s + 6];
-      break;
+    case kFace: normal = &face_normals_[3 * s]; break;
+    case kVertex0: normal = &vertex_normals_[9 * s]; break;
+    case kVertex1: normal = &vertex_normals_[9 * s + 3]; break;
+    case kVertex2: normal = &vertex_normals_[9 * s + 6]; break;
+    case kEdge01: normal = &edge_normals_[9 * s]; break;
+    case kEdge12: normal = &edge_normals_[9 * s + 3]; break;
+    default: normal = &edge_normals_[9 * s + 6]; break;
   }
   double d[3];
   sub(point, hit.point, d);

@@ -21,12 +21,9 @@ inline State integrate(const Mesh& mesh, const Scene& scene, SolveStatistics& st
   auto linear = make_linear_solver(scene.solver.linear);
   Integration run{model, assembler, *linear, scene.solver, statistics};
   State state;
-  if (scene.solver.type == SolverType::static_newton)
-    solve_static(run, state, observer);
-  else if (scene.solver.type == SolverType::implicit_euler)
-    solve_implicit(run, state, observer);
-  else
-    solve_explicit(run, state, observer);
+  if (scene.solver.type == SolverType::static_newton) solve_static(run, state, observer);
+  else if (scene.solver.type == SolverType::implicit_euler) solve_implicit(run, state, observer);
+  else solve_explicit(run, state, observer);
   return state;
 }
 
