@@ -32,9 +32,12 @@ int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell) {
   return -1;
 }
 
+std::string material_split(const MaterialSpec& material, const tm_element_info& element) {
+  return material.split.empty() ? default_split(material.law, element) : material.split;
+}
+
 const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element) {
-  const std::string split = material.split.empty() ? default_split(material.law, element) : material.split;
-  return Registry::instance().find(material.law, element.name, split);
+  return Registry::instance().find(material.law, element.name, material_split(material, element));
 }
 
 Model::Model(const Mesh& mesh, const ModelSpec& spec) : mesh_(&mesh), dim_(mesh.dim) {
@@ -186,29 +189,19 @@ using InversionCheck = bool (*)(const double*, const double*, int, int);
 InversionCheck inversion_check(int dim, int nodes) {
   if (dim == 2) {
     switch (nodes) {
-      case 3:
-        return inverted_at_a_point<2, 3>;
-      case 4:
-        return inverted_at_a_point<2, 4>;
-      case 6:
-        return inverted_at_a_point<2, 6>;
-      case 8:
-        return inverted_at_a_point<2, 8>;
+      case 3: return inverted_at_a_point<2, 3>;
+      case 4: return inverted_at_a_point<2, 4>;
+      case 6: return inverted_at_a_point<2, 6>;
+      case 8: return inverted_at_a_point<2, 8>;
     }
   } else {
     switch (nodes) {
-      case 4:
-        return inverted_at_a_point<3, 4>;
-      case 5:
-        return inverted_at_a_point<3, 5>;
-      case 6:
-        return inverted_at_a_point<3, 6>;
-      case 8:
-        return inverted_at_a_point<3, 8>;
-      case 10:
-        return inverted_at_a_point<3, 10>;
-      case 20:
-        return inverted_at_a_point<3, 20>;
+      case 4: return inverted_at_a_point<3, 4>;
+      case 5: return inverted_at_a_point<3, 5>;
+      case 6: return inverted_at_a_point<3, 6>;
+      case 8: return inverted_at_a_point<3, 8>;
+      case 10: return inverted_at_a_point<3, 10>;
+      case 20: return inverted_at_a_point<3, 20>;
     }
   }
   throw std::logic_error("no inversion check for " + std::to_string(nodes) + "-node elements");

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 
 #include "scene/yaml_reader.hpp"
 #include "tensormass/common/errors.hpp"
@@ -21,11 +22,7 @@ using scene_yaml::Value;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
-const std::vector<std::string> kProfileKinds = {"constant", "ramp", "sinusoid"};
-const std::vector<std::string> kSolverTypes = {"static", "implicit", "explicit"};
-const std::vector<std::string> kLinearTypes = {"cholmod", "cg"};
 const std::vector<std::string> kCriteria = {"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
-const std::vector<std::string> kActions = {"upgrade"};
 
 /// Every map of the schema and its keys, by path pattern.
 const KeyTable& scene_keys() {
@@ -67,11 +64,17 @@ std::string one_of(const Value& value, const std::vector<std::string>& known, co
   return name;
 }
 
-/// The position of the value's name in `known` (an enum in the same order).
-template <class Enum>
-Enum one_of_enum(const Value& value, const std::vector<std::string>& known, const std::string& what) {
-  const std::string name = one_of(value, known, what);
-  return static_cast<Enum>(std::find(known.begin(), known.end(), name) - known.begin());
+/// The enumerator of `all` whose scene name (`name(e)`) the value holds.
+template <class Enum, class Name>
+Enum one_of_enum(const Value& value, std::initializer_list<Enum> all, Name name, const std::string& what) {
+  std::vector<std::string> known;
+  for (Enum e : all) known.emplace_back(name(e));
+  const std::string text = one_of(value, known, what);
+  return *std::find_if(all.begin(), all.end(), [&](Enum e) { return name(e) == text; });
+}
+
+ProfileKind read_profile_kind(const Value& value, const std::string& what) {
+  return one_of_enum(value, {ProfileKind::constant, ProfileKind::ramp, ProfileKind::sinusoid}, profile_kind_name, what);
 }
 
 double positive(const Value& value) {
@@ -156,11 +159,11 @@ void read_fixed(const Value& list, ModelSpec& model) {
 TimeProfile read_profile(const Value& value) {
   TimeProfile p;
   if (value.is_scalar()) {
-    p.kind = one_of_enum<ProfileKind>(value, kProfileKinds, "profile");
+    p.kind = read_profile_kind(value, "profile");
     return p;
   }
   if (!value.is_map()) value.fail("expected a profile name or a map {type: ...}, got " + value.describe());
-  p.kind = one_of_enum<ProfileKind>(value.required("type"), kProfileKinds, "profile type");
+  p.kind = read_profile_kind(value.required("type"), "profile type");
   read_optional(value, "duration", p.duration, positive);
   read_optional(value, "period", p.period, positive);
   read_optional(value, "phase", p.phase, [](const Value& v) { return v.number(); });
@@ -238,8 +241,9 @@ void read_damping(const Value& section, SolverSettings& solver) {
 LinearSolverSettings read_linear(const Value& section) {
   LinearSolverSettings linear;
   if (!section.present()) return linear;
-  read_optional(section, "type", linear.type,
-                [](const Value& v) { return one_of_enum<LinearSolverType>(v, kLinearTypes, "linear solver"); });
+  read_optional(section, "type", linear.type, [](const Value& v) {
+    return one_of_enum(v, {LinearSolverType::cholmod, LinearSolverType::cg}, linear_solver_type_name, "linear solver");
+  });
   read_optional(section, "tolerance", linear.tolerance, open_fraction);
   read_optional(section, "max_iterations", linear.max_iterations, at_least(1));
   read_optional(section, "reuse_iterations", linear.reuse_iterations, at_least(0));
@@ -249,7 +253,9 @@ LinearSolverSettings read_linear(const Value& section) {
 SolverSettings read_solver(const Value& section) {
   section.expect_map();
   SolverSettings solver;
-  solver.type = one_of_enum<SolverType>(section.required("type"), kSolverTypes, "solver type");
+  solver.type = one_of_enum(section.required("type"),
+                            {SolverType::static_newton, SolverType::implicit_euler, SolverType::explicit_euler},
+                            solver_type_name, "solver type");
   read_optional(section, "load_steps", solver.load_steps, at_least(1));
   read_optional(section, "tolerance", solver.tolerance, open_fraction);
   read_optional(section, "max_iterations", solver.max_iterations, at_least(1));
@@ -302,8 +308,9 @@ AdaptivitySettings read_adaptivity(const Value& section) {
     spec.criteria.push_back(c);
   }
   if (spec.criteria.empty()) criteria.fail("needs at least one criterion");
-  read_optional(section, "action", spec.action,
-                [](const Value& v) { return one_of_enum<AdaptivityAction>(v, kActions, "action"); });
+  read_optional(section, "action", spec.action, [](const Value& v) {
+    return one_of_enum(v, {AdaptivityAction::upgrade}, adaptivity_action_name, "action");
+  });
   read_optional(section, "every", spec.every, at_least(1));
   read_optional(section, "blend_steps", spec.blend_steps, at_least(0));
   read_downgrade(section.child("downgrade"), spec);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/mesh/mesh_topology.hpp"
@@ -78,21 +79,23 @@ void check_groups(const Scene& scene, const Mesh& mesh) {
 
 /// Every cell has a material, and the registry a kernel for it.
 void check_materials(const Scene& scene, const Mesh& mesh) {
-  for (const ElementBlock& block : mesh.blocks)
+  for (const ElementBlock& block : mesh.blocks) {
+    std::vector<char> checked(scene.model.materials.size(), 0);  // kernel looked up for this block
     for (int local = 0; local < block.count(); ++local) {
       const int cell = block.first_cell + local;
       const int m = material_of_cell(scene.model, mesh, cell);
       if (m < 0)
         throw InputError(scene.path + ": no material region contains " + mesh.describe_cell(cell) +
                          " (add a material with region: all)");
+      if (checked[m]) continue;
+      checked[m] = 1;
       const MaterialSpec& material = scene.model.materials[m];
-      if (!material_kernel(material, *block.element)) {
-        const std::string split = material.split.empty() ? default_split(material.law, *block.element) : material.split;
+      if (!material_kernel(material, *block.element))
         throw InputError(place(scene, material.line, "materials[" + std::to_string(m) + "]") + "no kernel for law '" +
-                         material.law + "', element '" + block.element->name + "', split '" + split +
-                         "' (see `tensormass kernels`)");
-      }
+                         material.law + "', element '" + block.element->name + "', split '" +
+                         material_split(material, *block.element) + "' (see `tensormass kernels`)");
     }
+  }
 }
 
 /// Every facet of a pressure group can carry a load and is a face of a cell.

@@ -6,6 +6,7 @@
 #define TENSORMASS_ADAPTIVITY_ADAPTIVITY_SETTINGS_HPP
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tensormass {
@@ -18,6 +19,9 @@ struct CriterionSpec {
 
 /// What happens to an element that fails a criterion.
 enum class AdaptivityAction { upgrade };  ///< hooke -> stvk
+
+/// The scene's name of an action ("upgrade").
+inline std::string_view adaptivity_action_name(AdaptivityAction) { return "upgrade"; }
 
 struct AdaptivitySettings {
   bool enabled = false;

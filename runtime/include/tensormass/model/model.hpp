@@ -26,8 +26,11 @@ std::string default_split(const std::string& law, const tm_element_info& element
 /// cell `cell` ("all" or a group holding it), or -1.
 int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell);
 
-/// The kernel a cell of `element` gets under `material` (its split or the
-/// default one), or nullptr when the registry has none.
+/// The split a cell of `element` gets under `material`: its own, else default_split.
+std::string material_split(const MaterialSpec& material, const tm_element_info& element);
+
+/// The kernel a cell of `element` gets under `material` (at material_split),
+/// or nullptr when the registry has none.
 const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element);
 
 /// A displacement imposed on one degree of freedom: amplitude * profile(t).
