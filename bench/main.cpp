@@ -9,6 +9,7 @@
 #include "paper_bench.hpp"
 #include "runtime_bench.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/common/thread_defaults.hpp"
 
 namespace {
 
@@ -27,6 +28,7 @@ constexpr const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  tensormass::apply_default_wait_policy(argv);  // benchmarks measure what a user runs
   if (argc < 2) {
     std::fprintf(stderr, "tensormass bench: missing benchmark\n\n%s", kUsage);
     return 2;

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/common/thread_defaults.hpp"
 
 namespace {
 
@@ -39,6 +40,7 @@ int usage_error(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tensormass::apply_default_wait_policy(argv);
   if (argc < 2) return usage_error("missing command");
   const std::string command = argv[1];
   tensormass::cli::Arguments args(argv + 2, argv + argc);

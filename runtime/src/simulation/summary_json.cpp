@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
@@ -69,7 +70,9 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   if (dynamic)
     j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
   else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
-  j << ", \"threads\": " << omp_get_max_threads() << "},\n";
+  const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  j << ", \"threads\": " << omp_get_max_threads()
+    << ", \"omp_wait_policy\": " << quoted(wait_policy ? wait_policy : "unset") << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
     << ", \"free_dofs\": " << report.free_dofs << ",\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";

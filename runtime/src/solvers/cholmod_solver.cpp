@@ -2,6 +2,7 @@
 // previous factor reused as a CG preconditioner while the matrix changes
 // little (a Newton or implicit step's tangent drifts slowly).
 #include <cholmod.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -33,6 +34,23 @@ cholmod_sparse view_of(const SparseMatrix& A) {
   view.packed = 1;
   return view;
 }
+
+/// Runs CHOLMOD's BLAS on one thread for its lifetime. Debian's OpenBLAS
+/// (openmp variant) takes its thread count from omp_get_max_threads() at
+/// every call, and its many small parallel calls on a supernodal factor
+/// cost more than they save: a 9,720-dof factorisation took 816 ms on 2
+/// threads against 122 ms on one, and a 100k-tet one 6.6 s against 2.0 s
+/// (AMD EPYC, 2 cores; bench/runtime_bench.cpp measures it).
+class SerialBlas {
+ public:
+  SerialBlas() : previous_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~SerialBlas() { omp_set_num_threads(previous_); }
+  SerialBlas(const SerialBlas&) = delete;
+  SerialBlas& operator=(const SerialBlas&) = delete;
+
+ private:
+  int previous_;
+};
 
 class CholmodSolver final : public LinearSolver {
  public:
@@ -78,6 +96,7 @@ class CholmodSolver final : public LinearSolver {
  private:
   void factorize_now(const SparseMatrix& A) {
     cholmod_sparse view = view_of(A);
+    const SerialBlas serial;
     if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) analyse(view, CHOLMOD_AUTO);
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
@@ -105,6 +124,7 @@ class CholmodSolver final : public LinearSolver {
     rhs.x = const_cast<double*>(b.data());
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
+    const SerialBlas serial;
     cholmod_dense* solution = cholmod_solve(CHOLMOD_A, factor_, &rhs, &common_);
     if (!solution) throw NumericalError("sparse Cholesky solve failed");
     std::memcpy(x.data(), solution->x, sizeof(double) * x.size());

@@ -60,6 +60,17 @@ TEST_F(RunCommand, StaticSceneWritesFinalFramesSeriesAndSummary) {
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+// Idle OpenMP threads wait passively unless the user chose otherwise
+// (common/thread_defaults.hpp); the summary says what the run used.
+TEST_F(RunCommand, WaitPolicyIsPassiveByDefaultAndTheUsersOtherwise) {
+  const std::string scene = write_scene(kStatic).string();
+  const std::string binary = "'" TENSORMASS_BINARY "' run ";
+  ASSERT_EQ(test_support::shell("env -u OMP_WAIT_POLICY " + binary + scene).exit_code, 0);
+  EXPECT_NE(read_file(out() / "summary.json").find("\"omp_wait_policy\": \"passive\""), std::string::npos);
+  ASSERT_EQ(test_support::shell("env OMP_WAIT_POLICY=active " + binary + scene).exit_code, 0);
+  EXPECT_NE(read_file(out() / "summary.json").find("\"omp_wait_policy\": \"active\""), std::string::npos);
+}
+
 TEST_F(RunCommand, FinalVtuOpensInMeshioWithThreeComponentDisplacement) {
   ASSERT_EQ(run("run --quiet " + write_scene(kImplicit).string()).exit_code, 0);
   const Result check = test_support::python(
