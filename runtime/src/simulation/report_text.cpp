@@ -45,7 +45,9 @@ std::string format_report(const Scene& scene, const RunReport& report) {
     text << "  newton    " << s.newton_iterations << " iterations";
     if (!s.newton_per_step.empty())
       text << format(" (%.2f per step)", static_cast<double>(s.newton_iterations) / s.newton_per_step.size());
-    text << "; linear iterations " << s.linear_iterations << "\n";
+    text << "; linear iterations " << s.linear_iterations;
+    if (s.factorizations > 0) text << ", factorisations " << s.factorizations;
+    text << "\n";
   }
   if (scene.adaptivity.enabled) {
     text << "  adapt     ";

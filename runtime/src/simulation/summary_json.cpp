@@ -99,6 +99,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   series("criteria", report.step_criteria_ms);
   j << "},\n";
   j << "  \"linear_iterations\": " << s.linear_iterations << ",\n";
+  j << "  \"factorizations\": " << s.factorizations << ",\n";
   j << "  \"elements_per_law\": {";
   for (std::size_t i = 0; i < report.cells_per_law.size(); ++i)
     j << (i ? ", " : "") << quoted(report.cells_per_law[i].first) << ": " << report.cells_per_law[i].second;

@@ -29,14 +29,14 @@ class ConjugateGradientSolver final : public LinearSolver {
     }
   }
 
-  int solve(std::span<const double> b, std::span<double> x) override {
+  int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
     const auto jacobi = [this](std::span<const double> r, std::span<double> z) {
       const int n = static_cast<int>(r.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelLength)
       for (int i = 0; i < n; ++i) z[i] = inverse_diagonal_[i] * r[i];
     };
     const detail::PcgResult result =
-        detail::preconditioned_cg(*A_, b, x, jacobi, settings_.tolerance, settings_.max_iterations, workspace_);
+        detail::preconditioned_cg(*A_, b, x, jacobi, tolerance, settings_.max_iterations, workspace_);
     if (!result.converged)
       throw NumericalError("conjugate gradients did not converge in " + std::to_string(settings_.max_iterations) +
                            " iterations (relative residual " + std::to_string(result.relative_residual) + ")");

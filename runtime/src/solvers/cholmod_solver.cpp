@@ -1,13 +1,16 @@
 // Sparse Cholesky through the CHOLMOD C API (SuiteSparse), with the
-// previous factor reused as a CG preconditioner while the matrix changes
-// little (a Newton or implicit step's tangent drifts slowly).
+// previous factor reused as a CG preconditioner while that is cheaper than
+// a new one (a Newton or implicit step's tangent drifts slowly): see
+// FactorReusePolicy.
 #include <cholmod.h>
+#include <dlfcn.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cstring>
 #include <vector>
 
+#include "solvers/factor_reuse_policy.hpp"
 #include "solvers/preconditioned_cg.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -40,16 +43,34 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 /// every call, and its many small parallel calls on a supernodal factor
 /// cost more than they save: a 9,720-dof factorisation took 816 ms on 2
 /// threads against 122 ms on one, and a 100k-tet one 6.6 s against 2.0 s
-/// (AMD EPYC, 2 cores; bench/runtime_bench.cpp measures it).
+/// (AMD EPYC, 2 cores). The pthreads variant has its own count, set too.
 class SerialBlas {
  public:
-  SerialBlas() : previous_(omp_get_max_threads()) { omp_set_num_threads(1); }
-  ~SerialBlas() { omp_set_num_threads(previous_); }
+  SerialBlas() : previous_(omp_get_max_threads()) {
+    omp_set_num_threads(1);
+    if (openblas_.set) {
+      previous_blas_ = openblas_.get();
+      openblas_.set(1);
+    }
+  }
+  ~SerialBlas() {
+    omp_set_num_threads(previous_);
+    if (openblas_.set) openblas_.set(previous_blas_);
+  }
   SerialBlas(const SerialBlas&) = delete;
   SerialBlas& operator=(const SerialBlas&) = delete;
 
  private:
-  int previous_;
+  /// OpenBLAS's thread control, when the BLAS loaded is OpenBLAS.
+  struct OpenBlas {
+    void (*set)(int) = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    int (*get)() = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    OpenBlas() {
+      if (!get) set = nullptr;
+    }
+  };
+  static inline const OpenBlas openblas_;
+  int previous_, previous_blas_ = 1;
 };
 
 class CholmodSolver final : public LinearSolver {
@@ -71,20 +92,24 @@ class CholmodSolver final : public LinearSolver {
     lagged_ = false;
     // An unchanged matrix (Hooke's implicit step, a constant tangent) keeps its factor.
     if (same_pattern && factorized_values_ == A.values) return;
-    // A changed one first tries CG preconditioned by the old factor (solve()).
-    if (same_pattern && settings_.reuse_iterations > 0) {
+    // A changed one first tries CG preconditioned by the old factor (solve()),
+    // unless the last such solves cost more than a new factor would.
+    if (same_pattern && settings_.reuse_iterations > 0 && !reuse_.refactorize()) {
       lagged_ = true;
       return;
     }
     factorize_now(A);
   }
 
-  int solve(std::span<const double> b, std::span<double> x) override {
+  int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
     if (lagged_) {
       const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
-      const detail::PcgResult result = detail::preconditioned_cg(*current_, b, x, old_factor, settings_.tolerance,
-                                                                 settings_.reuse_iterations, workspace_);
-      if (result.converged) return result.iterations;
+      const detail::PcgResult result =
+          detail::preconditioned_cg(*current_, b, x, old_factor, tolerance, settings_.reuse_iterations, workspace_);
+      if (result.converged) {
+        reuse_.lagged_solve(result.iterations);
+        return result.iterations;
+      }
       factorize_now(*current_);  // drifted too far: a fresh factor
     }
     direct_solve(b, x);
@@ -92,6 +117,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
+  int factorizations() const override { return factorizations_; }
 
  private:
   void factorize_now(const SparseMatrix& A) {
@@ -115,6 +141,8 @@ class CholmodSolver final : public LinearSolver {
                            std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
                            "); is the body constrained?");
     factorized_values_ = A.values;
+    reuse_.factorized();
+    ++factorizations_;
   }
 
   void direct_solve(std::span<const double> b, std::span<double> x) {
@@ -146,7 +174,9 @@ class CholmodSolver final : public LinearSolver {
   int rows_ = -1, nonzeros_ = -1;
   std::vector<double> factorized_values_;
   bool simplicial_ = false, lagged_ = false;
+  int factorizations_ = 0;
   detail::PcgWorkspace workspace_;
+  detail::FactorReusePolicy reuse_;
 };
 
 }  // namespace

@@ -19,11 +19,17 @@ inline void assemble(Integration& run, std::span<const double> u, std::span<doub
   run.assembler.assemble(u, g, K);
 }
 
-/// Factorises A and solves A x = b (x: initial guess in, solution out), timed as solve.
-inline void linear_solve(Integration& run, const SparseMatrix& A, std::span<const double> b, std::span<double> x) {
+/// Factorises A and solves A x = b (x: initial guess in, solution out) to
+/// the relative residual `tolerance` (default: the linear solver's
+/// setting), timed as solve.
+inline void linear_solve(Integration& run, const SparseMatrix& A, std::span<const double> b, std::span<double> x,
+                         double tolerance = 0.0) {
   PhaseTimer timer(run.statistics.solve_seconds);
+  const int factorizations = run.linear.factorizations();
   run.linear.factorize(A);
-  run.statistics.linear_iterations += run.linear.solve(b, x);
+  if (tolerance <= 0.0) tolerance = run.settings.linear.tolerance;
+  run.statistics.linear_iterations += run.linear.solve(b, x, tolerance);
+  run.statistics.factorizations += run.linear.factorizations() - factorizations;
 }
 
 inline double max_abs(std::span<const double> v) {

@@ -33,6 +33,7 @@ struct SolveStatistics {
   double solve_seconds = 0;  ///< factorisation and linear solves
   int newton_iterations = 0;
   long linear_iterations = 0;
+  int factorizations = 0;            ///< numeric factorisations of a direct solver
   std::vector<int> newton_per_step;  ///< per step (load step)
   std::vector<double> step_ms;       ///< wall time of each step
   double stable_dt = 0;              ///< explicit: the estimated stable time step

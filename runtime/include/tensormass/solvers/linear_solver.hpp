@@ -19,13 +19,16 @@ class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
   /// Prepares for matrices with A's pattern, then factorises A (direct
-  /// solvers) or keeps A (iterative ones). Throws NumericalError when A is singular.
+  /// solvers) or keeps A (iterative ones); A must outlive the solves. Throws NumericalError when A is singular.
   virtual void factorize(const SparseMatrix& A) = 0;
-  /// Solves A x = b; x holds the initial guess on entry (used by CG).
-  /// Returns the iterations (1 for a direct solve). Throws NumericalError
-  /// when CG does not reach its tolerance.
-  virtual int solve(std::span<const double> b, std::span<double> x) = 0;
+  /// Solves A x = b to the relative residual `tolerance` (iterative
+  /// solves; a direct solve is exact); x holds the initial guess on entry
+  /// (used by CG). Returns the iterations (1 for a direct solve). Throws
+  /// NumericalError when CG does not reach the tolerance.
+  virtual int solve(std::span<const double> b, std::span<double> x, double tolerance) = 0;
   virtual std::string name() const = 0;
+  /// Numeric factorisations so far (0 for iterative solvers).
+  virtual int factorizations() const { return 0; }
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings);

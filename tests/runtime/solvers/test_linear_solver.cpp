@@ -1,0 +1,150 @@
+// The linear solvers on small SPD matrices: the requested tolerance is
+// reached (looser = fewer iterations), CHOLMOD reuses its factor as a CG
+// preconditioner for a matrix that drifted, and factorises afresh when
+// that stops paying or does not converge.
+#include "tensormass/solvers/linear_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+using tensormass::LinearSolverSettings;
+using tensormass::LinearSolverType;
+using tensormass::SparseMatrix;
+
+/// The n x n matrix tridiag(-1, 2 + shift, -1), both triangles stored.
+SparseMatrix laplacian(int n, double shift) {
+  SparseMatrix A;
+  A.rows = n;
+  A.row_start.push_back(0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i - 1; j <= i + 1; ++j) {
+      if (j < 0 || j >= n) continue;
+      if (j == i) A.diagonal.push_back(static_cast<int>(A.values.size()));
+      A.columns.push_back(j);
+      A.values.push_back(j == i ? 2.0 + shift : -1.0);
+    }
+    A.row_start.push_back(static_cast<int>(A.columns.size()));
+  }
+  return A;
+}
+
+double relative_residual(const SparseMatrix& A, const std::vector<double>& b, const std::vector<double>& x) {
+  std::vector<double> ax(b.size());
+  A.multiply(x, ax);
+  double r2 = 0, b2 = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    r2 += (b[i] - ax[i]) * (b[i] - ax[i]);
+    b2 += b[i] * b[i];
+  }
+  return std::sqrt(r2 / b2);
+}
+
+std::vector<double> right_hand_side(int n) {
+  std::vector<double> b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.1 * i) + 1.0;
+  return b;
+}
+
+TEST(LinearSolver, CholmodSolvesExactlyThenReusesItsFactorForADriftedMatrix) {
+  constexpr int n = 200;
+  auto solver = tensormass::make_linear_solver(LinearSolverSettings{});
+  const std::vector<double> b = right_hand_side(n);
+  std::vector<double> x(n, 0.0);
+  const SparseMatrix A = laplacian(n, 0.01);
+  solver->factorize(A);
+  EXPECT_EQ(solver->solve(b, x, 1e-10), 1);
+  EXPECT_LT(relative_residual(A, b, x), 1e-12);
+  EXPECT_EQ(solver->factorizations(), 1);
+
+  const SparseMatrix drifted = laplacian(n, 0.0105);
+  solver->factorize(drifted);
+  std::fill(x.begin(), x.end(), 0.0);
+  const int iterations = solver->solve(b, x, 1e-10);
+  EXPECT_GT(iterations, 1);  // CG preconditioned by the old factor
+  EXPECT_LE(iterations, 12);
+  EXPECT_LT(relative_residual(drifted, b, x), 1e-10);
+  EXPECT_EQ(solver->factorizations(), 1);
+}
+
+TEST(LinearSolver, CholmodLooserToleranceTakesFewerLaggedIterations) {
+  constexpr int n = 200;
+  const std::vector<double> b = right_hand_side(n);
+  int iterations[2];
+  const double tolerances[2] = {1e-10, 1e-3};
+  for (int k = 0; k < 2; ++k) {
+    auto solver = tensormass::make_linear_solver(LinearSolverSettings{});
+    std::vector<double> x(n, 0.0);
+    const SparseMatrix first = laplacian(n, 0.01);
+    solver->factorize(first);
+    solver->solve(b, x, 1e-10);
+    const SparseMatrix drifted = laplacian(n, 0.0105);
+    solver->factorize(drifted);
+    std::fill(x.begin(), x.end(), 0.0);
+    iterations[k] = solver->solve(b, x, tolerances[k]);
+    EXPECT_LT(relative_residual(drifted, b, x), tolerances[k]);
+  }
+  EXPECT_LT(iterations[1], iterations[0]);
+}
+
+TEST(LinearSolver, CholmodRefactorisesAMatrixTooFarFromItsFactor) {
+  constexpr int n = 200;
+  auto solver = tensormass::make_linear_solver(LinearSolverSettings{});
+  const std::vector<double> b = right_hand_side(n);
+  std::vector<double> x(n, 0.0);
+  const SparseMatrix first = laplacian(n, 0.01);
+  solver->factorize(first);
+  solver->solve(b, x, 1e-10);
+  const SparseMatrix far = laplacian(n, 1.0);  // the old factor is a poor preconditioner
+  solver->factorize(far);
+  std::fill(x.begin(), x.end(), 0.0);
+  EXPECT_EQ(solver->solve(b, x, 1e-12), 1);
+  EXPECT_EQ(solver->factorizations(), 2);
+  EXPECT_LT(relative_residual(far, b, x), 1e-12);
+}
+
+TEST(LinearSolver, CholmodRefactorisesOnceReuseCostsMoreThanTheMeanSolve) {
+  constexpr int n = 400;
+  LinearSolverSettings settings;
+  settings.reuse_iterations = 1000;  // CG always converges: only the policy can ask for a new factor
+  auto solver = tensormass::make_linear_solver(settings);
+  const std::vector<double> b = right_hand_side(n);
+  std::vector<double> x(n, 0.0);
+  SparseMatrix A = laplacian(n, 0.001);
+  solver->factorize(A);
+  solver->solve(b, x, 1e-10);
+  // A matrix drifting further each solve: lagged solves grow dearer, and the
+  // policy factorises again before CG stops converging.
+  int factorizations = 1;
+  for (int k = 1; k <= 60 && factorizations == 1; ++k) {
+    A = laplacian(n, 0.001 * (1.0 + 0.02 * k));
+    solver->factorize(A);
+    solver->solve(b, x, 1e-10);
+    factorizations = solver->factorizations();
+  }
+  EXPECT_EQ(factorizations, 2);
+}
+
+TEST(LinearSolver, ConjugateGradientsReachTheRequestedTolerance) {
+  constexpr int n = 100;
+  LinearSolverSettings settings;
+  settings.type = LinearSolverType::cg;
+  auto solver = tensormass::make_linear_solver(settings);
+  const std::vector<double> b = right_hand_side(n);
+  const SparseMatrix A = laplacian(n, 0.01);
+  solver->factorize(A);
+  int iterations[2];
+  const double tolerances[2] = {1e-10, 1e-4};
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> x(n, 0.0);
+    iterations[k] = solver->solve(b, x, tolerances[k]);
+    EXPECT_LT(relative_residual(A, b, x), tolerances[k]);
+  }
+  EXPECT_LT(iterations[1], iterations[0]);
+  EXPECT_EQ(solver->factorizations(), 0);
+}
+
+}  // namespace
