@@ -1,8 +1,8 @@
 // FactorReusePolicy: a new factor is asked for once a lagged solve costs
 // more than the mean cost per solve since the last factorisation.
-#include "solvers/factor_reuse_policy.hpp"
-
 #include <gtest/gtest.h>
+
+#include "solvers/factor_reuse_policy.hpp"
 
 namespace {
 
@@ -19,7 +19,7 @@ TEST(FactorReusePolicy, CheapLaggedSolvesKeepTheFactor) {
 
 TEST(FactorReusePolicy, RefactorisesWhenASolveCostsMoreThanTheMean) {
   FactorReusePolicy policy(30.0);
-  policy.factorized();  // cycle: 31 over 1 solve
+  policy.factorized();     // cycle: 31 over 1 solve
   policy.lagged_solve(3);  // 34 / 2 = 17
   policy.lagged_solve(3);  // 37 / 3 = 12.3
   policy.lagged_solve(3);  // 40 / 4 = 10

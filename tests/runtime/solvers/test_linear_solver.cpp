@@ -2,12 +2,12 @@
 // reached (looser = fewer iterations), CHOLMOD reuses its factor as a CG
 // preconditioner for a matrix that drifted, and factorises afresh when
 // that stops paying or does not converge.
-#include "tensormass/solvers/linear_solver.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
+
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace {
 
