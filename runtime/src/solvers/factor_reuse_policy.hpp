@@ -13,9 +13,10 @@ namespace tensormass::detail {
 /// rising). The counts, not clocks, decide, so runs repeat bitwise.
 class FactorReusePolicy {
  public:
-  /// One numeric factorisation in solve units, measured (bench runtime,
-  /// "factorisation / solve"): 25 (600 quads) to 60 (1,200 tets), 33 at
-  /// 15k tets and 38 at 100k (AMD EPYC, OpenBLAS, one thread).
+  /// One numeric factorisation in solve units: cholmod_factorize timed
+  /// against cholmod_solve on the beams of bench runtime gave 25 (600
+  /// quads) to 60 (1,200 tets), 33 at 15k tets and 38 at 100k (AMD EPYC,
+  /// OpenBLAS, one thread).
   static constexpr double kFactorizationCost = 35.0;
 
   explicit FactorReusePolicy(double factorization_cost = kFactorizationCost)
