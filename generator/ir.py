@@ -100,6 +100,7 @@ class KernelIR:
     flops: Flops
     symbol_names: tuple[tuple[str, str], ...]
     split_ir: SplitIR
+    linear: bool  # force = K u with K constant (LawDerivatives.linear)
 
     @property
     def prefix(self) -> str:

@@ -49,14 +49,16 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     symbolic = optimised.symbolic
     tables = symbolic.tables_of(element)
     law_ir = optimised.law_ir(law, element.dim)
+    derivatives = symbolic.derivatives_of(law, element.dim)
     triple = Triple(law=law, element=element, tables=tables, law_ir=law_ir,
-                    derivatives=symbolic.derivatives_of(law, element.dim), tensor_limit=tensor_limit)
+                    derivatives=derivatives, tensor_limit=tensor_limit)
     lowering = _LOWERINGS[split](triple)
     names = _base_symbol_names(element)
     names.update(lowering.symbol_names)
     consts = len(law.derived) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
-                    flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir)
+                    flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
+                     linear=derivatives.linear)
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

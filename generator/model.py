@@ -125,6 +125,17 @@ class LawDerivatives:
     quadratic: Optional[StrainQuadratic]
     not_quadratic: str = ""
 
+    @property
+    def linear(self) -> bool:
+        """True when psi is quadratic in H with a stress-free reference: the
+        tangent A is constant and P(0) = 0, so an element's force is K u with
+        K independent of u (the runtime folds such cells into one constant matrix)."""
+        symbols = {sympy.Symbol(f"H{i}", real=True) for i in range(self.dim * self.dim)}
+        if any(entry.free_symbols & symbols for row in self.tangent for entry in row):
+            return False
+        at_rest = {h: 0 for h in symbols}
+        return all(sympy.simplify(p.subs(at_rest)) == 0 for p in self.stress)
+
 
 @dataclass(frozen=True)
 class SymbolicIR:

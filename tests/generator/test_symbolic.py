@@ -8,7 +8,7 @@ import sympy
 from conftest import ROOT
 from generator.load import GeneratorInputError, load_element, load_law
 from generator.model import Inputs, LawDerivatives, SymbolicIR
-from generator.symbolic import derive, gradient_symbols, law_derivatives, strain_quadratic
+from generator.symbolic import derive, derive_law, gradient_symbols, law_derivatives, strain_quadratic
 
 LAM, MU = sympy.Symbol("lam", real=True), sympy.Symbol("mu", real=True)
 H_VALUES = [0.03, -0.02, 0.05, 0.01, 0.04, -0.03, 0.02, 0.06, -0.01]
@@ -55,6 +55,13 @@ def test_only_laws_quadratic_in_one_strain_have_a_strain_quadratic():
         strain_quadratic(_law("neohookean"), 3)
     assert strain_quadratic(_law("stvk"), 3).strain == "E"
     assert strain_quadratic(_law("hooke"), 2).strain == "eps"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_only_hooke_is_linear(dim):
+    assert derive_law(_law("hooke"), dim).linear
+    assert not derive_law(_law("stvk"), dim).linear
+    assert not derive_law(_law("neohookean"), dim).linear
 
 
 def test_elasticity_tensor_of_hooke_is_isotropic():

@@ -427,7 +427,8 @@ TEST_P(HookeLaw, UniformStrainGivesHookeStress) {
   }
 }
 
-/// Hooke is quadratic: g = K u, W = u.K u / 2 for any u.
+/// Hooke is quadratic: g = K u, W = u.K u / 2 for any u (what the `linear`
+/// flag promises; the assembler folds such cells into one constant matrix).
 TEST_P(HookeLaw, HookeIsQuadratic) {
   const tm_kernel& kernel = *GetParam();
   const Element e = make_element(kernel, 51);
@@ -449,6 +450,27 @@ TEST_P(HookeLaw, HookeIsQuadratic) {
 INSTANTIATE_TEST_SUITE_P(Hooke, HookeLaw, testing::ValuesIn(kernels_where([](const tm_kernel& k) {
                            return std::string(k.law) == "hooke";
                          })),
+                         KernelParamName());
+
+class NonlinearLaw : public testing::TestWithParam<const tm_kernel*> {};
+
+/// A kernel flagged non-linear really is: at a finite displacement its force
+/// differs from K(0) u (so folding it into a constant matrix would be wrong).
+TEST_P(NonlinearLaw, GradientIsNotTheRestHessianTimesU) {
+  const tm_kernel& kernel = *GetParam();
+  const Element e = make_element(kernel, 54);
+  ASSERT_EQ(e.status, 0);
+  const Vector u = random_displacement(e, 55, 0.3);  // strains of tenths: the quadratic terms show
+  const Vector K = hessian(e, Vector(u.size(), 0.0));
+  const std::size_t dofs = u.size();
+  Vector Ku(dofs, 0.0);
+  for (std::size_t i = 0; i < dofs; ++i)
+    for (std::size_t j = 0; j < dofs; ++j) Ku[i] += K[i * dofs + j] * u[j];
+  EXPECT_GT(relative_error(gradient(e, u), Ku), 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Flagged, NonlinearLaw,
+                         testing::ValuesIn(kernels_where([](const tm_kernel& k) { return k.linear == 0; })),
                          KernelParamName());
 
 // --- One element type, every law at rest ------------------------------------

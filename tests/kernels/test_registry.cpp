@@ -103,6 +103,14 @@ TEST(Registry, KernelsAreUniqueAndComplete) {
   EXPECT_EQ(tm_kernel_at(tm_kernel_count()), nullptr);
 }
 
+/// The generator flags a kernel linear exactly when its law's energy is
+/// quadratic in u: Hooke alone among the shipped laws.
+TEST(Registry, LinearFlagMarksExactlyHooke) {
+  for (const tm_kernel* kernel : registry().kernels())
+    EXPECT_EQ(kernel->linear, std::string(kernel->law) == "hooke" ? 1 : 0)
+        << kernel->law << "/" << kernel->element << "/" << kernel->split;
+}
+
 TEST(Registry, FindReturnsNullForUnknownNames) {
   EXPECT_EQ(registry().find("hooke", "tet4", "nope"), nullptr);
   EXPECT_EQ(registry().find("nope", "tet4", "whole"), nullptr);

@@ -29,24 +29,15 @@ void blend_cell(const Model& model, int cell, const double* u, double* g, double
 
 }  // namespace
 
-Assembler::Assembler(const Model& model) : model_(&model) {
+Assembler::Assembler(const Model& model, bool fold_linear_cells) : model_(&model), graph_(make_node_graph(model)) {
   build_pattern();
   build_colours();
+  if (fold_linear_cells) linear_ = std::make_unique<LinearPart>(model, graph_, pattern_);
 }
 
 void Assembler::build_pattern() {
   const Model& model = *model_;
   const int d = model.dim();
-  const int nodes = model.mesh().node_count();
-  std::vector<std::vector<int>> neighbours(nodes);
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    const auto cn = model.cell_nodes(cell);
-    for (int a : cn) neighbours[a].insert(neighbours[a].end(), cn.begin(), cn.end());
-  }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
   const auto& free_index = model.free_index();
   SparseMatrix& m = pattern_;
   m.rows = model.free_dof_count();
@@ -54,8 +45,10 @@ void Assembler::build_pattern() {
   m.diagonal.assign(m.rows, -1);
   for (int dof : model.free_dofs()) {
     const int row = free_index[dof];
-    for (int neighbour : neighbours[dof / d])
+    const int node = dof / d;
+    for (int k = graph_.row_start[node]; k < graph_.row_start[node + 1]; ++k)
       for (int b = 0; b < d; ++b) {
+        const int neighbour = graph_.columns[k];
         const int column = free_index[neighbour * d + b];
         if (column < 0) continue;
         if (column == row) m.diagonal[row] = static_cast<int>(m.columns.size());
@@ -127,21 +120,35 @@ void Assembler::build_colours() {
 }
 
 void Assembler::assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {
+  const int folded = linear_ ? (linear_->update(), linear_->folded_count()) : 0;
+  if (folded > 0) {
+    linear_->multiply(u, gradient);
+    if (stiffness) linear_->copy_free(stiffness->values);
+  } else {
+    std::fill(gradient.begin(), gradient.end(), 0.0);
+    if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
+  }
+  if (folded < model_->cell_count()) assemble_kernels(u, gradient, stiffness);
+}
+
+void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {
   const Model& model = *model_;
-  std::fill(gradient.begin(), gradient.end(), 0.0);
-  if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
-  // One parallel region for all colours; small meshes stay on one thread,
-  // where the barriers between colours would cost more than they save.
+  const int cells = model.cell_count();
+  const int active = cells - folded_cell_count();
+  // One parallel region for all colours; small (or mostly folded) meshes
+  // stay on one thread, where the barriers between colours would cost more
+  // than they save.
   const int colours = colour_count();
-#pragma omp parallel if (model.cell_count() >= kParallelCells)
+#pragma omp parallel if (active >= kParallelCells)
   {
     CellBuffers buffers(stiffness != nullptr);
     for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(dynamic, 1)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
         const int first = coloured_chunks_[k] * kChunkCells;
-        const int last = std::min(model.cell_count(), first + kChunkCells);
-        for (int cell = first; cell < last; ++cell) assemble_cell(cell, u, gradient, stiffness, buffers);
+        const int last = std::min(cells, first + kChunkCells);
+        for (int cell = first; cell < last; ++cell)
+          if (!linear_ || !linear_->folded(cell)) assemble_cell(cell, u, gradient, stiffness, buffers);
       }
     }
   }

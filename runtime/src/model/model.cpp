@@ -104,6 +104,7 @@ int Model::law_id(int cell) const {
 void Model::set_law(int cell, const std::string& law) {
   const tm_kernel& current = *kernels_[cell];
   if (law == current.law) return;
+  ++law_revision_;
   if (law == initial_kernels_[cell]->law) {
     kernels_[cell] = initial_kernels_[cell];
     return;
@@ -119,7 +120,10 @@ void Model::set_law(int cell, const std::string& law) {
     throw std::invalid_argument("law switch to " + law + " needs more constants than the cell holds");
   const bool same_prefix = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
   kernels_[cell] = next;
-  if (!same_prefix) precompute(cell);
+  if (!same_prefix) {
+    precompute(cell);
+    ++consts_revision_;
+  }
 }
 
 void Model::start_blend(int cell, const tm_kernel* from) {
@@ -129,11 +133,13 @@ void Model::start_blend(int cell, const tm_kernel* from) {
   }
   blend_from_[cell] = from;
   blend_weight_[cell] = 0.0;
+  ++law_revision_;
 }
 
 void Model::set_blend_weight(int cell, double weight) {
   if (blend_from_.empty()) return;
   if (weight >= 1.0) {
+    if (blend_from_[cell]) ++law_revision_;
     blend_from_[cell] = nullptr;
     blend_weight_[cell] = 1.0;
   } else {

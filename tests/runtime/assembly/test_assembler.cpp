@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
@@ -22,6 +24,21 @@ double entry(const SparseMatrix& K, int row, int column) {
   for (int k = K.row_start[row]; k < K.row_start[row + 1]; ++k)
     if (K.columns[k] == column) return K.values[k];
   return 0.0;
+}
+
+/// Forces and tangent bitwise equal on one and on two threads.
+void expect_same_on_one_and_two_threads(const Model& model, const Assembler& assembler) {
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.01);
+  std::vector<double> g1(model.dof_count()), g2(model.dof_count());
+  SparseMatrix K1 = assembler.pattern(), K2 = assembler.pattern();
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  assembler.assemble(u, g1, &K1);
+  omp_set_num_threads(2);
+  assembler.assemble(u, g2, &K2);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(g1, g2);
+  EXPECT_EQ(K1.values, K2.values);
 }
 
 TEST(Assembler, TangentIsTheDerivativeOfTheForcesOnAMixedBeam) {
@@ -76,18 +93,83 @@ TEST(Assembler, OneAndTwoThreadsGiveIdenticalResults) {
   const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
   const Model model(mesh, test::cantilever("stvk").model);
   const Assembler assembler(model);
-  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.01);
-  std::vector<double> g1(model.dof_count()), g2(model.dof_count());
-  SparseMatrix K1 = assembler.pattern(), K2 = assembler.pattern();
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  assembler.assemble(u, g1, &K1);
-  omp_set_num_threads(2);
-  assembler.assemble(u, g2, &K2);
-  omp_set_num_threads(threads);
-  EXPECT_EQ(g1, g2);
-  EXPECT_EQ(K1.values, K2.values);
+  expect_same_on_one_and_two_threads(model, assembler);
   EXPECT_GT(assembler.colour_count(), 1);
+}
+
+/// Largest |a - b| over the largest |b|.
+double relative_difference(std::span<const double> a, std::span<const double> b) {
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return worst / scale;
+}
+
+/// The folded assembly against every cell's kernel, forces over all dofs
+/// (clamped ones included) and the tangent, to round-off.
+void expect_folded_matches_per_cell(const Model& model, const Assembler& folded, const Assembler& per_cell,
+                                    std::span<const double> u) {
+  std::vector<double> g1(model.dof_count()), g2(model.dof_count());
+  SparseMatrix K1 = folded.pattern(), K2 = per_cell.pattern();
+  folded.assemble(u, g1, &K1);
+  per_cell.assemble(u, g2, &K2);
+  EXPECT_LT(relative_difference(g1, g2), 1e-13);
+  EXPECT_LT(relative_difference(K1.values, K2.values), 1e-13);
+  folded.assemble(u, g1, nullptr);
+  EXPECT_LT(relative_difference(g1, g2), 1e-13);
+}
+
+TEST(Assembler, FoldedHookeCellsGiveThePerCellForcesAndTangent) {
+  BeamSpec spec;
+  spec.dim = 3;
+  spec.cells = {4, 2, 2};
+  spec.size = {4, 1, 1};
+  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
+  const Mesh mesh = make_beam(spec);
+  const Model model(mesh, test::cantilever("hooke").model);
+  const Assembler folded(model), per_cell(model, false);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.02);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), model.cell_count());
+  EXPECT_EQ(per_cell.folded_cell_count(), 0);
+}
+
+TEST(Assembler, FoldedPartFollowsLawSwitchesAndBlends) {
+  const Mesh mesh = test::beam(2, "quad4", {8, 2, 1});
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler folded(model), per_cell(model, false);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.05);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  for (int cell = 0; cell < model.cell_count(); cell += 3) model.set_law(cell, "stvk");
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  const int stvk_cells = (model.cell_count() + 2) / 3;
+  EXPECT_EQ(folded.folded_cell_count(), model.cell_count() - stvk_cells);
+  // Back to Hooke with a blend: blending cells run their kernels until the blend ends.
+  const tm_kernel* stvk = &model.kernel(0);
+  model.set_law(0, "hooke");
+  model.start_blend(0, stvk);
+  model.set_blend_weight(0, 0.5);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), model.cell_count() - stvk_cells);
+  model.set_blend_weight(0, 1.0);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), model.cell_count() - stvk_cells + 1);
+  for (int cell = 0; cell < model.cell_count(); ++cell) model.set_law(cell, "stvk");
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), 0);
+  // Every switch in or out of the linear set was counted once.
+  EXPECT_EQ(folded.folding_changes(), model.cell_count() + stvk_cells + 1 + (model.cell_count() - stvk_cells + 1));
+}
+
+TEST(Assembler, FoldedAssemblyIsIdenticalOnOneAndTwoThreads) {
+  // 4320 tets, a third of them StVK: both the block product and the kernels go parallel.
+  const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
+  Model model(mesh, test::cantilever("hooke").model);
+  for (int cell = 0; cell < model.cell_count(); cell += 3) model.set_law(cell, "stvk");
+  const Assembler assembler(model);
+  expect_same_on_one_and_two_threads(model, assembler);
 }
 
 }  // namespace

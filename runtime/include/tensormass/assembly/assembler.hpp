@@ -6,12 +6,21 @@
 /// colour's chunks are assembled in parallel with plain stores (each chunk
 /// in cell order), and colours run in a fixed order: results do not depend
 /// on the number of threads.
+///
+/// Cells under a linear law are not visited per step: they are folded into
+/// a constant matrix (LinearPart) whose product with u gives their forces
+/// and whose copy starts the tangent, so a step costs kernels only for the
+/// non-linear cells. The folded set follows the model's law switches at the
+/// next assemble().
 #ifndef TENSORMASS_ASSEMBLER_HPP
 #define TENSORMASS_ASSEMBLER_HPP
 
+#include <memory>
 #include <span>
 #include <vector>
 
+#include "tensormass/assembly/linear_part.hpp"
+#include "tensormass/assembly/node_graph.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/model/model.hpp"
 
@@ -19,15 +28,22 @@ namespace tensormass {
 
 class Assembler {
  public:
-  explicit Assembler(const Model& model);
-  explicit Assembler(Model&&) = delete;  ///< keeps a reference to the model
+  /// fold_linear_cells = false runs every cell's kernel at every assembly
+  /// (the reference the folded assembly is tested and benchmarked against).
+  explicit Assembler(const Model& model, bool fold_linear_cells = true);
+  explicit Assembler(Model&&, bool = true) = delete;  ///< keeps a reference to the model
 
   /// An empty matrix with the pattern of K (free dofs by free dofs).
   const SparseMatrix& pattern() const { return pattern_; }
   /// gradient (dof_count) = g(u); when `stiffness` is non-null it gets K(u)
-  /// restricted to the free dofs (its pattern must be pattern()).
+  /// restricted to the free dofs (its pattern must be pattern()). Not
+  /// re-entrant: it brings the folded linear part up to date first.
   void assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
   int colour_count() const { return static_cast<int>(colour_start_.size()) - 1; }
+  /// Cells folded into the constant linear part (0 when folding is off).
+  int folded_cell_count() const { return linear_ ? linear_->folded_count() : 0; }
+  /// Cells folded or unfolded so far (law switches in or out of a linear law).
+  long folding_changes() const { return linear_ ? linear_->changes() : 0; }
 
  private:
   /// Per-thread scratch space for one cell.
@@ -41,9 +57,12 @@ class Assembler {
                      CellBuffers& buffers) const;
   void build_pattern();
   void build_colours();
+  void assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
 
   const Model* model_;
+  NodeGraph graph_;
   SparseMatrix pattern_;
+  std::unique_ptr<LinearPart> linear_;        ///< null when folding is off; updated by assemble()
   std::vector<std::size_t> scatter_offsets_;  ///< cell_count+1
   std::vector<int> scatter_;                  ///< per cell, dofs by dofs: index in values or -1
   std::vector<int> colour_start_;             ///< colours+1, into coloured_chunks_

@@ -51,6 +51,9 @@ typedef struct tm_kernel {
   long flops_energy;
   long flops_gradient;
   long flops_hessian;
+  /// 1 when the energy is quadratic in u with a stress-free reference
+  /// (Hooke): gradient = hessian * u and the hessian does not depend on u.
+  int linear;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).

@@ -74,6 +74,12 @@ class Model {
   /// exactly (its constants are never overwritten by a switch).
   void set_law(int cell, const std::string& law);
   const tm_kernel& initial_kernel(int cell) const { return *initial_kernels_[cell]; }
+  /// Counts the changes of kernels and blends (set_law, start_blend, a blend
+  /// ending): what the assembler caches per cell is stale when it moved.
+  long law_revision() const { return law_revision_; }
+  /// Counts the switches that recomputed a cell's constants (a law with other
+  /// derived parameters): a cached K_e of the cell's old kernel is then stale.
+  long consts_revision() const { return consts_revision_; }
 
   /// Smooth law transitions: while a cell blends, its force and stiffness
   /// are w * (current kernel) + (1 - w) * (`from` kernel), on the same
@@ -135,6 +141,8 @@ class Model {
   std::vector<PrescribedDof> prescribed_;
   std::vector<TimeProfile> profiles_;
   TimeProfile load_profile_;
+  long law_revision_ = 0;
+  long consts_revision_ = 0;
 };
 
 }  // namespace tensormass

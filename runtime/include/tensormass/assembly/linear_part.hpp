@@ -1,0 +1,65 @@
+/// \file linear_part.hpp
+/// The constant part of the internal forces. Every cell whose kernel is
+/// linear (tm_kernel::linear: Hooke) and not blending contributes g_e = K_e u_e
+/// with a constant K_e, so all of them are folded once into one symmetric
+/// matrix K_L over all dofs, stored as d by d node blocks on the NodeGraph:
+/// their forces are one block product K_L u and their tangent a copy, and
+/// per step only the other cells run kernels.
+///
+/// When cells change law, update() subtracts the K_e of the cells that
+/// left the linear set and adds those that joined, in cell order: the cost
+/// is proportional to the change and the result is deterministic. Sums
+/// therefore differ from a fresh per-cell assembly by round-off only. (When
+/// a switch recomputed a cell's constants, Model::consts_revision, the whole
+/// part is folded afresh.)
+#ifndef TENSORMASS_ASSEMBLY_LINEAR_PART_HPP
+#define TENSORMASS_ASSEMBLY_LINEAR_PART_HPP
+
+#include <span>
+#include <vector>
+
+#include "tensormass/assembly/node_graph.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/model/model.hpp"
+
+namespace tensormass {
+
+class LinearPart {
+ public:
+  /// An empty linear part (nothing folded) for `model`; `free_pattern` is
+  /// the pattern of the tangent over the free dofs (Assembler::pattern()).
+  LinearPart(const Model& model, const NodeGraph& graph, const SparseMatrix& free_pattern);
+
+  /// Folds the cells that are linear now and unfolds those that are not,
+  /// when the model's laws changed since the last call (Model::law_revision).
+  /// Returns the number of cells folded or unfolded.
+  int update();
+  bool folded(int cell) const { return folded_kernel_[cell] != nullptr; }
+  int folded_count() const { return folded_count_; }
+  /// Cells folded or unfolded by update() since construction (the first
+  /// update folds every linear cell).
+  long changes() const { return changes_; }
+
+  /// g (dof_count) = K_L u (dof_count).
+  void multiply(std::span<const double> u, std::span<double> g) const;
+  /// values (free_pattern's non-zeros) = K_L restricted to the free dofs.
+  void copy_free(std::span<double> values) const;
+
+ private:
+  void add_cell(int cell, const tm_kernel& kernel, double sign);
+
+  const Model* model_;
+  const NodeGraph* graph_;
+  int dim_;
+  std::vector<double> blocks_;           ///< graph columns by d by d, row-major blocks
+  std::vector<int> free_to_block_;       ///< free_pattern non-zero -> index in blocks_
+  std::vector<const tm_kernel*> folded_kernel_;  ///< per cell: the kernel folded, or nullptr
+  int folded_count_ = 0;
+  long changes_ = 0;
+  long seen_revision_ = -1;
+  long seen_consts_revision_ = 0;
+};
+
+}  // namespace tensormass
+
+#endif

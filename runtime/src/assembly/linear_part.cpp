@@ -1,0 +1,103 @@
+#include "tensormass/assembly/linear_part.hpp"
+
+#include <algorithm>
+
+namespace tensormass {
+
+namespace {
+constexpr int kMaxDofs = 81;
+constexpr int kParallelNodes = 8000;  // below this a parallel region costs more than the product
+
+/// The kernel a cell folds with now, or nullptr when it must run its kernel.
+const tm_kernel* foldable_kernel(const Model& model, int cell) {
+  const tm_kernel& kernel = model.kernel(cell);
+  return kernel.linear && !model.blend_from(cell) ? &kernel : nullptr;
+}
+/// g = K u for d by d blocks on the graph (D fixed so that the block loops unroll).
+template <int D>
+void multiply_blocks(const NodeGraph& graph, const double* blocks, const double* u, double* g) {
+  const int nodes = graph.node_count();
+#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+  for (int node = 0; node < nodes; ++node) {
+    double sum[D] = {};
+    for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
+      const double* block = blocks + static_cast<std::size_t>(k) * D * D;
+      const double* x = u + static_cast<std::size_t>(graph.columns[k]) * D;
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) sum[a] += block[a * D + b] * x[b];
+    }
+    for (int a = 0; a < D; ++a) g[static_cast<std::size_t>(node) * D + a] = sum[a];
+  }
+}
+}  // namespace
+
+LinearPart::LinearPart(const Model& model, const NodeGraph& graph, const SparseMatrix& free_pattern)
+    : model_(&model), graph_(&graph), dim_(model.dim()) {
+  const int d = dim_, d2 = d * d;
+  blocks_.assign(graph.columns.size() * d2, 0.0);
+  folded_kernel_.assign(model.cell_count(), nullptr);
+  // Each free non-zero (row dof r, column dof c) is entry (r % d, c % d) of block (r / d, c / d).
+  const auto& free_dofs = model.free_dofs();
+  free_to_block_.resize(free_pattern.columns.size());
+  const int rows = free_pattern.rows;
+  for (int row = 0; row < rows; ++row) {
+    const int r = free_dofs[row];
+    for (int k = free_pattern.row_start[row]; k < free_pattern.row_start[row + 1]; ++k) {
+      const int c = free_dofs[free_pattern.columns[k]];
+      free_to_block_[k] = graph.position(r / d, c / d) * d2 + (r % d) * d + c % d;
+    }
+  }
+}
+
+int LinearPart::update() {
+  const Model& model = *model_;
+  if (seen_revision_ == model.law_revision()) return 0;
+  seen_revision_ = model.law_revision();
+  if (seen_consts_revision_ != model.consts_revision()) {
+    // Some cell's constants were recomputed: the K_e it was folded with
+    // cannot be subtracted any more, so fold everything afresh.
+    seen_consts_revision_ = model.consts_revision();
+    std::fill(blocks_.begin(), blocks_.end(), 0.0);
+    std::fill(folded_kernel_.begin(), folded_kernel_.end(), nullptr);
+    folded_count_ = 0;
+  }
+  int changed = 0;
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    const tm_kernel* now = foldable_kernel(model, cell);
+    const tm_kernel* before = folded_kernel_[cell];
+    if (now == before) continue;
+    if (before) add_cell(cell, *before, -1.0);
+    if (now) add_cell(cell, *now, 1.0);
+    folded_kernel_[cell] = now;
+    folded_count_ += (now != nullptr) - (before != nullptr);
+    ++changed;
+  }
+  changes_ += changed;
+  return changed;
+}
+
+void LinearPart::add_cell(int cell, const tm_kernel& kernel, double sign) {
+  const int d = dim_, d2 = d * d, dofs = kernel.dofs;
+  double zero[kMaxDofs] = {};
+  std::vector<double> K(static_cast<std::size_t>(dofs) * dofs);
+  kernel.hessian(zero, model_->consts(cell), K.data());  // constant: any u gives the same
+  const auto nodes = model_->cell_nodes(cell);
+  for (int i = 0; i < kernel.nodes; ++i)
+    for (int j = 0; j < kernel.nodes; ++j) {
+      double* block = blocks_.data() + static_cast<std::size_t>(graph_->position(nodes[i], nodes[j])) * d2;
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) block[a * d + b] += sign * K[(i * d + a) * dofs + j * d + b];
+    }
+}
+
+void LinearPart::multiply(std::span<const double> u, std::span<double> g) const {
+  if (dim_ == 2) multiply_blocks<2>(*graph_, blocks_.data(), u.data(), g.data());
+  else multiply_blocks<3>(*graph_, blocks_.data(), u.data(), g.data());
+}
+
+void LinearPart::copy_free(std::span<double> values) const {
+  const int count = static_cast<int>(free_to_block_.size());
+  for (int k = 0; k < count; ++k) values[k] = blocks_[free_to_block_[k]];
+}
+
+}  // namespace tensormass
