@@ -8,17 +8,26 @@
 #include <string_view>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 
 namespace {
-constexpr const char* kLinearLaw = "hooke";
-constexpr const char* kNonlinearLaw = "stvk";
 constexpr int kMaxDofs = 81;
+
+/// Every ladder law must have a kernel for every element type of the mesh.
+void check_ladder(const std::vector<std::string>& ladder, const Mesh& mesh) {
+  if (ladder.size() < 2) throw std::invalid_argument("an adaptivity ladder needs at least two laws");
+  for (const std::string& law : ladder)
+    for (const ElementBlock& block : mesh.blocks)
+      if (!Registry::instance().find(law, block.element->name, "whole"))
+        throw std::invalid_argument("adaptivity ladder: no kernel for law '" + law + "' on " + block.element->name);
+}
 }  // namespace
 
 Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler)
     : settings_(settings), model_(&model), assembler_(&assembler) {
+  check_ladder(settings.ladder, model.mesh());
   for (const CriterionSpec& criterion : settings.criteria) {
     criteria_.push_back(make_criterion(criterion.name));
     thresholds_.push_back(criterion.threshold);
@@ -66,6 +75,13 @@ void Adaptivity::evaluate(std::span<const double> u) {
   }
 }
 
+int Adaptivity::rung_of(const tm_kernel& kernel) const {
+  const std::string_view law = kernel.law;
+  for (std::size_t r = 0; r < settings_.ladder.size(); ++r)
+    if (settings_.ladder[r] == law) return static_cast<int>(r);
+  return -1;
+}
+
 bool Adaptivity::cell_fails(int cell) const {
   for (std::size_t c = 0; c < criteria_.size(); ++c)
     if (criteria_[c]->fails(values_[c][cell], thresholds_[c])) return true;
@@ -90,36 +106,65 @@ void Adaptivity::switch_law(int cell, const std::string& law) {
   ++total_switches_;
 }
 
+int Adaptivity::start(std::span<const double> u) {
+  if (criteria_.empty()) return 0;
+  const auto begin = std::chrono::steady_clock::now();
+  const int blend_steps = settings_.blend_steps;
+  settings_.blend_steps = 0;  // before the first step there is nothing to blend from
+  AdaptivityRecord record;
+  record.step = 0;
+  for (std::size_t pass = 0; pass + 1 < settings_.ladder.size(); ++pass) {
+    evaluate(u);
+    const int before = record.upgrades;
+    switch_laws(record);
+    if (record.upgrades == before) break;
+  }
+  settings_.blend_steps = blend_steps;
+  criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (record.upgrades == 0) return 0;
+  record_laws(record);
+  records_.push_back(record);
+  return record.upgrades;
+}
+
 int Adaptivity::update(std::span<const double> u, int step) {
   if (criteria_.empty() || step % settings_.every != 0) return 0;
   const auto start = std::chrono::steady_clock::now();
   evaluate(u);
   AdaptivityRecord record;
   record.step = step;
+  switch_laws(record);
+  record_laws(record);
+  records_.push_back(record);
+  criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return record.upgrades + record.downgrades;
+}
+
+void Adaptivity::switch_laws(AdaptivityRecord& record) {
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
-    const std::string_view law = model_->kernel(cell).law;
-    const bool initial = &model_->kernel(cell) == &model_->initial_kernel(cell);
-    if (law == kLinearLaw && initial) {
-      if (cell_fails(cell)) {
-        switch_law(cell, kNonlinearLaw);
-        calm_evaluations_[cell] = 0;
+    const int rung = rung_of(model_->kernel(cell)), initial = rung_of(model_->initial_kernel(cell));
+    if (rung < 0 || initial < 0) continue;  // a law off the ladder never switches
+    if (cell_fails(cell)) {
+      calm_evaluations_[cell] = 0;
+      if (rung + 1 < static_cast<int>(settings_.ladder.size())) {
+        switch_law(cell, settings_.ladder[rung + 1]);
         ++record.upgrades;
       }
-    } else if (settings_.downgrade && !initial && std::string_view(model_->initial_kernel(cell).law) == kLinearLaw) {
+    } else if (settings_.downgrade && rung > initial) {
       calm_evaluations_[cell] = cell_is_calm(cell) ? calm_evaluations_[cell] + 1 : 0;
       if (calm_evaluations_[cell] >= settings_.calm_steps) {
-        switch_law(cell, kLinearLaw);
+        switch_law(cell, settings_.ladder[rung - 1]);
         calm_evaluations_[cell] = 0;
         ++record.downgrades;
       }
     }
   }
+}
+
+void Adaptivity::record_laws(AdaptivityRecord& record) {
   std::map<std::string, int> per_law;
   for (int cell = 0; cell < model_->cell_count(); ++cell) ++per_law[model_->kernel(cell).law];
   record.cells_per_law.assign(per_law.begin(), per_law.end());
-  records_.push_back(record);
-  criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return record.upgrades + record.downgrades;
 }
 
 std::vector<io::Field> Adaptivity::cell_fields() const {

@@ -40,7 +40,7 @@ const KeyTable& scene_keys() {
         "threads"}},
       {"solver.damping", {"mass", "stiffness"}},
       {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations"}},
-      {"adaptivity", {"criteria", "action", "every", "blend_steps", "downgrade"}},
+      {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
       {"adaptivity.criteria[]", {"name", "threshold"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
       {"output", {"directory", "every", "track"}},
@@ -295,6 +295,21 @@ void read_downgrade(const Value& value, AdaptivitySettings& spec) {
   read_optional(value, "calm_steps", spec.calm_steps, at_least(1));
 }
 
+/// At least two known laws, each once.
+void read_ladder(const Value& list, AdaptivitySettings& spec) {
+  if (!list.present()) return;
+  if (!list.is_list()) list.fail("expected a list of laws from the cheapest to the richest, got " + list.describe());
+  spec.ladder.clear();
+  spec.ladder_line = list.line();
+  for (const Value& item : list.items()) {
+    const std::string law = one_of(item, Registry::instance().laws(), "law");
+    for (const std::string& before : spec.ladder)
+      if (before == law) item.fail("law " + law + " is on the ladder twice");
+    spec.ladder.push_back(law);
+  }
+  if (spec.ladder.size() < 2) list.fail("a ladder needs at least two laws (the first is where cells start)");
+}
+
 AdaptivitySettings read_adaptivity(const Value& section) {
   AdaptivitySettings spec;
   if (!section.present()) return spec;
@@ -308,6 +323,7 @@ AdaptivitySettings read_adaptivity(const Value& section) {
     spec.criteria.push_back(c);
   }
   if (spec.criteria.empty()) criteria.fail("needs at least one criterion");
+  read_ladder(section.child("ladder"), spec);
   read_optional(section, "action", spec.action, [](const Value& v) {
     return one_of_enum(v, {AdaptivityAction::upgrade}, adaptivity_action_name, "action");
   });

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh_topology.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/scene/scene.hpp"
@@ -98,6 +99,16 @@ void check_materials(const Scene& scene, const Mesh& mesh) {
   }
 }
 
+/// Every law of the adaptivity ladder has a kernel for every element type of the mesh.
+void check_ladder(const Scene& scene, const Mesh& mesh) {
+  if (!scene.adaptivity.enabled) return;
+  for (const std::string& law : scene.adaptivity.ladder)
+    for (const ElementBlock& block : mesh.blocks)
+      if (!Registry::instance().find(law, block.element->name, "whole"))
+        throw InputError(place(scene, scene.adaptivity.ladder_line, "adaptivity.ladder") + "no kernel for law '" + law +
+                         "' on element '" + block.element->name + "' (see `tensormass kernels`)");
+}
+
 /// Every facet of a pressure group can carry a load and is a face of a cell.
 void check_pressure_facets(const Scene& scene, const Mesh& mesh) {
   if (scene.model.loads.pressures.empty()) return;
@@ -141,6 +152,7 @@ void check_constraints(const Scene& scene, const Mesh& mesh) {
 void validate_against_mesh(const Scene& scene, const Mesh& mesh) {
   check_groups(scene, mesh);
   check_materials(scene, mesh);
+  check_ladder(scene, mesh);
   check_pressure_facets(scene, mesh);
   check_constraints(scene, mesh);
 }

@@ -159,6 +159,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;               // static: repeats of the current load step after switches
   constexpr int kMaxResolves = 20;
+  if (adaptivity) {
+    detail::PhaseTimer timer(adaptivity_seconds);
+    adaptivity->start(last_good.displacement);
+  }
   const StepObserver observer = [&](const State& state) {
     if (adaptivity) {
       int switches = 0;

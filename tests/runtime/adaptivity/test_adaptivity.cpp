@@ -5,6 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "support/cantilever.hpp"
 #include "support/test_support.hpp"
@@ -70,11 +73,36 @@ TEST_F(AdaptiveBeam, HugeThresholdIsExactlyPureHooke) {
   EXPECT_EQ(max_difference(hooke, adaptive), 0.0);
 }
 
-TEST_F(AdaptiveBeam, ZeroThresholdIsPureStvk) {
+TEST_F(AdaptiveBeam, ZeroThresholdIsExactlyPureStvk) {
   const RunReport stvk = run(scene("stvk"));
   const RunReport adaptive = run(scene("hooke", "R_NL", 0.0));
-  EXPECT_EQ(adaptive.switches, 150);
-  EXPECT_LT(max_difference(stvk, adaptive), 1e-6 * stvk.max_displacement);
+  EXPECT_EQ(adaptive.switches, 150);  // all before the first load step
+  ASSERT_FALSE(adaptive.adaptivity.empty());
+  EXPECT_EQ(adaptive.adaptivity.front().step, 0);
+  EXPECT_EQ(max_difference(stvk, adaptive), 0.0);
+}
+
+TEST_F(AdaptiveBeam, LadderLimitsAreExactlyTheFirstAndLastRung) {
+  for (const std::vector<std::string>& ladder :
+       {std::vector<std::string>{"hooke", "neohookean"}, std::vector<std::string>{"hooke", "stvk", "neohookean"}}) {
+    Scene huge = scene("hooke", "R_NL", 1e9), zero = scene("hooke", "R_NL", 0.0);
+    huge.adaptivity.ladder = zero.adaptivity.ladder = ladder;
+    const RunReport first = run(scene("hooke")), last = run(scene("neohookean"));
+    const RunReport none = run(huge), all = run(zero);
+    EXPECT_EQ(none.switches, 0);
+    EXPECT_EQ(max_difference(first, none), 0.0) << ladder.size() << " rungs";
+    EXPECT_EQ(all.switches, 150 * (static_cast<int>(ladder.size()) - 1));
+    EXPECT_EQ(max_difference(last, all), 0.0) << ladder.size() << " rungs";
+  }
+}
+
+TEST_F(AdaptiveBeam, IntermediateThresholdOnANeoHookeanLadderBeatsHooke) {
+  Scene s = scene("hooke", "R_NL", 0.01);
+  s.adaptivity.ladder = {"hooke", "neohookean"};
+  const RunReport neohookean = run(scene("neohookean")), hooke = run(scene("hooke")), adaptive = run(s);
+  EXPECT_GT(adaptive.switches, 0);
+  EXPECT_LT(adaptive.switches, 150);
+  EXPECT_LT(max_difference(neohookean, adaptive), 0.5 * max_difference(neohookean, hooke));
 }
 
 TEST_F(AdaptiveBeam, IntermediateThresholdUpgradesSomeAndBeatsHooke) {
@@ -138,6 +166,77 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   std::vector<double> expected(u.size());
   Assembler(stvk).assemble(u, expected, nullptr);
   for (std::size_t i = 0; i < u.size(); ++i) EXPECT_NEAR(current[i], expected[i], 1e-9 * (1 + std::abs(expected[i])));
+}
+
+/// Adaptivity on R_NL alone with a ladder (the other settings at their defaults).
+AdaptivitySettings ladder_settings(double threshold, std::vector<std::string> ladder) {
+  AdaptivitySettings adaptive;
+  adaptive.enabled = true;
+  adaptive.criteria = {{"R_NL", threshold, 0}};
+  adaptive.ladder = std::move(ladder);
+  return adaptive;
+}
+
+TEST(Adaptivity, CellsClimbAndDescendOneRungAtATime) {
+  BeamSpec spec;
+  spec.cells = {6, 2, 1};
+  const Mesh mesh = make_beam(spec);
+  Scene s = test::cantilever("hooke");
+  Model model(mesh, s.model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive = ladder_settings(0.01, {"hooke", "stvk", "neohookean"});
+  adaptive.downgrade = true;
+  adaptive.calm_steps = 2;
+  Adaptivity adaptivity(adaptive, model, assembler);
+  std::vector<double> strained(model.dof_count()), rest(model.dof_count(), 0.0);
+  for (std::size_t i = 0; i < strained.size(); ++i) strained[i] = 0.2 * std::sin(0.9 * i);
+  auto laws = [&] {
+    std::set<std::string> names;
+    for (int cell = 0; cell < model.cell_count(); ++cell) names.insert(model.kernel(cell).law);
+    return names;
+  };
+  EXPECT_EQ(adaptivity.start(rest), 0);
+  EXPECT_EQ(adaptivity.update(strained, 1), model.cell_count());
+  EXPECT_EQ(laws(), std::set<std::string>{"stvk"});
+  EXPECT_EQ(adaptivity.update(strained, 2), model.cell_count());
+  EXPECT_EQ(laws(), std::set<std::string>{"neohookean"});
+  EXPECT_EQ(adaptivity.update(strained, 3), 0);  // the top rung
+  // Calm for calm_steps evaluations: one rung down each time, never below the initial law.
+  for (int step = 4; step < 12; ++step) adaptivity.update(rest, step);
+  EXPECT_EQ(laws(), std::set<std::string>{"hooke"});
+  for (int cell = 0; cell < model.cell_count(); ++cell) EXPECT_EQ(&model.kernel(cell), &model.initial_kernel(cell));
+  EXPECT_EQ(adaptivity.total_switches(), 4 * model.cell_count());
+}
+
+TEST(Adaptivity, StartClimbsAsFarAsTheCriteriaAsk) {
+  BeamSpec spec;
+  spec.cells = {4, 2, 1};
+  const Mesh mesh = make_beam(spec);
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive = ladder_settings(0.0, {"hooke", "stvk", "neohookean"});
+  adaptive.blend_steps = 3;  // nothing to blend from before the first step
+  Adaptivity adaptivity(adaptive, model, assembler);
+  const std::vector<double> rest(model.dof_count(), 0.0);
+  EXPECT_EQ(adaptivity.start(rest), 2 * model.cell_count());
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    EXPECT_STREQ(model.kernel(cell).law, "neohookean");
+    EXPECT_EQ(model.blend_from(cell), nullptr);
+  }
+  ASSERT_EQ(adaptivity.records().size(), 1u);
+  EXPECT_EQ(adaptivity.records()[0].step, 0);
+}
+
+TEST(Adaptivity, LadderWithoutKernelsForTheMeshIsRefused) {
+  BeamSpec spec;
+  spec.cells = {2, 1, 1};
+  const Mesh mesh = make_beam(spec);
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive = ladder_settings(0.01, {"hooke", "no_such_law"});
+  EXPECT_THROW(Adaptivity(adaptive, model, assembler), std::invalid_argument);
+  adaptive.ladder = {"hooke"};
+  EXPECT_THROW(Adaptivity(adaptive, model, assembler), std::invalid_argument);
 }
 
 TEST(Adaptivity, DowngradeReturnsToTheInitialKernelExactly) {

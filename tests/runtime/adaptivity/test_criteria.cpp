@@ -236,13 +236,16 @@ TEST(CriteriaFlags, QualityAndForceFlags) {
   }
 }
 
-TEST(CriteriaFlags, QualityFailsBelowThresholdOthersAbove) {
+/// Quality criteria fail strictly below the threshold, the others at or
+/// above it (so a threshold of 0 fails every cell, even one at rest).
+TEST(CriteriaFlags, QualityFailsBelowThresholdOthersAtOrAbove) {
   for (const std::string& name : criterion_names()) {
     const auto criterion = make_criterion(name);
     const bool quality = criterion->is_quality();
     EXPECT_EQ(criterion->fails(0.1, 0.2), quality) << name;
     EXPECT_EQ(criterion->fails(0.3, 0.2), !quality) << name;
-    EXPECT_FALSE(criterion->fails(0.2, 0.2)) << name;
+    EXPECT_EQ(criterion->fails(0.2, 0.2), !quality) << name;
+    EXPECT_EQ(criterion->fails(0.0, 0.0), !quality) << name;
   }
 }
 

@@ -50,6 +50,7 @@ adaptivity:
   every: 2
   blend_steps: 5
   downgrade: {hysteresis: 0.25, calm_steps: 7}
+  ladder: [hooke, stvk, neohookean]
 output: {directory: results, every: 10}
 )";
 
@@ -136,6 +137,8 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   EXPECT_TRUE(a.downgrade);
   EXPECT_DOUBLE_EQ(a.hysteresis, 0.25);
   EXPECT_EQ(a.calm_steps, 7);
+  EXPECT_EQ(a.ladder, (std::vector<std::string>{"hooke", "stvk", "neohookean"}));
+  EXPECT_EQ(a.ladder_line, 43);
 
   EXPECT_EQ(s.output.directory, (dir.path() / "results").string());
   EXPECT_EQ(s.output.every, 10);
@@ -201,6 +204,7 @@ TEST(SceneLoad, DowngradeAsBooleanAndExponentIntegers) {
   EXPECT_TRUE(s.adaptivity.downgrade);
   EXPECT_DOUBLE_EQ(s.adaptivity.hysteresis, 0.5);
   EXPECT_EQ(s.adaptivity.calm_steps, 10);
+  EXPECT_EQ(s.adaptivity.ladder, (std::vector<std::string>{"hooke", "stvk"}));  // today's behaviour
 }
 
 TEST(SceneLoad, SceneInCurrentDirectoryKeepsRelativePaths) {

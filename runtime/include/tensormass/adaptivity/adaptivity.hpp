@@ -1,10 +1,11 @@
 /// \file adaptivity.hpp
 /// The adaptive model: every `every` steps each element's criteria are
-/// evaluated; an element under Hooke that fails any enabled criterion is
-/// upgraded to StVK by swapping its kernel (O(1)), optionally blended over
-/// `blend_steps` steps; with downgrade on, an upgraded element whose criteria
-/// all stay within threshold x hysteresis for `calm_steps` evaluations
-/// returns to its initial kernel exactly.
+/// evaluated; an element that fails any enabled criterion climbs one rung
+/// of the law ladder (default hooke -> stvk) by swapping its kernel (O(1)),
+/// optionally blended over `blend_steps` steps; with downgrade on, an
+/// upgraded element whose criteria all stay within threshold x hysteresis
+/// for `calm_steps` evaluations descends one rung, and back on its initial
+/// law it has its initial kernel exactly.
 #ifndef TENSORMASS_ADAPTIVITY_HPP
 #define TENSORMASS_ADAPTIVITY_HPP
 
@@ -31,10 +32,16 @@ struct AdaptivityRecord {
 
 class Adaptivity {
  public:
-  /// The settings must name known criteria (validated by scene/);
+  /// The settings must name known criteria and a ladder of at least two
+  /// laws with kernels for the mesh's elements (validated by scene/);
   /// std::invalid_argument otherwise. The assembler gives R_S its nodal forces.
   Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler);
 
+  /// The evaluation before the first step, at displacement u (dof_count):
+  /// cells climb as many rungs as the criteria ask (a threshold of 0 puts
+  /// every cell on the last rung from the start). Recorded as step 0 when
+  /// it switched cells. Returns the number of switches.
+  int start(std::span<const double> u);
   /// Moves every blending cell one step towards its new law (call once per
   /// time step, before the next solve).
   void advance_blends();
@@ -56,6 +63,11 @@ class Adaptivity {
 
  private:
   void evaluate(std::span<const double> u);
+  /// Switches the laws after an evaluation; fills the record's counts.
+  void switch_laws(AdaptivityRecord& record);
+  void record_laws(AdaptivityRecord& record);
+  /// Index of the kernel's law on the ladder, or -1.
+  int rung_of(const tm_kernel& kernel) const;
   bool cell_fails(int cell) const;
   bool cell_is_calm(int cell) const;
   void switch_law(int cell, const std::string& law);

@@ -18,7 +18,7 @@ struct CriterionSpec {
 };
 
 /// What happens to an element that fails a criterion.
-enum class AdaptivityAction { upgrade };  ///< hooke -> stvk
+enum class AdaptivityAction { upgrade };  ///< one rung up the ladder
 
 /// The scene's name of an action ("upgrade").
 inline std::string_view adaptivity_action_name(AdaptivityAction) { return "upgrade"; }
@@ -26,6 +26,11 @@ inline std::string_view adaptivity_action_name(AdaptivityAction) { return "upgra
 struct AdaptivitySettings {
   bool enabled = false;
   std::vector<CriterionSpec> criteria;
+  /// Laws from the cheapest to the richest: a cell failing a criterion climbs
+  /// one rung; with downgrade, a calm cell descends one rung, never below its
+  /// initial law. Cells whose initial law is not on the ladder never switch.
+  std::vector<std::string> ladder{"hooke", "stvk"};
+  int ladder_line = 0;  ///< 1-based line of `ladder` in the scene file (0: default or not from a file)
   AdaptivityAction action = AdaptivityAction::upgrade;
   int every = 1;        ///< evaluate every this many steps
   int blend_steps = 0;  ///< steps over which a switched cell blends to its new law (0 = at once)

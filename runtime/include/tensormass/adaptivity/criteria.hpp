@@ -24,7 +24,7 @@
 /// v <= 0; R_VL and R_VLX are negative for an inverted element.
 ///
 /// Quality criteria (R_VL, R_VLX) fail when their value drops BELOW the
-/// threshold; the others fail above it. Lengths and volumes are measured on
+/// threshold; the others fail at or above it. Lengths and volumes are measured on
 /// the deformed element (rest + u).
 #ifndef TENSORMASS_CRITERIA_HPP
 #define TENSORMASS_CRITERIA_HPP
@@ -58,7 +58,9 @@ class Criterion {
   virtual bool is_quality() const { return false; }
   /// R_S needs the element's internal force.
   virtual bool needs_force() const { return false; }
-  bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value > threshold; }
+  /// Quality: value < threshold; others: value >= threshold, so that a
+  /// threshold of 0 fails every cell (the pure last rung of the ladder).
+  bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value >= threshold; }
 };
 
 /// The criterion named R_EL, R_V, R_VL, R_VLX, R_S or R_NL; throws
