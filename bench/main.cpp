@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_bench.hpp"
 #include "kernel_bench.hpp"
 #include "paper_bench.hpp"
 #include "runtime_bench.hpp"
@@ -23,6 +24,8 @@ constexpr const char* kUsage =
     "                                   (docs/results/runtime.md)\n"
     "  paper [--quick | --smoke] [--json FILE] [--out DIR]\n"
     "                                   the origin report's Table 1 and Figure 12 (docs/results/paper.md)\n"
+    "  adaptive [--quick] [--json FILE] [--only NAME]\n"
+    "                                   the adaptive model against the pure laws (docs/results/adaptive.md)\n"
     "  help                             this text\n";
 
 }  // namespace
@@ -43,6 +46,7 @@ int main(int argc, char** argv) {
     if (benchmark == "kernels") return tensormass::bench::kernels_command(args);
     if (benchmark == "runtime") return tensormass::bench::runtime_command(args);
     if (benchmark == "paper") return tensormass::bench::paper_command(args);
+    if (benchmark == "adaptive") return tensormass::bench::adaptive_command(args);
   } catch (const tensormass::NumericalError& error) {
     std::fprintf(stderr, "tensormass bench: numerical failure: %s\n", error.what());
     return 3;
@@ -50,7 +54,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tensormass bench: error: %s\n", error.what());
     return 2;
   }
-  std::fprintf(stderr, "tensormass bench: unknown benchmark '%s' (expected kernels, runtime or paper)\n\n%s",
+  std::fprintf(stderr, "tensormass bench: unknown benchmark '%s' (expected kernels, runtime, paper or adaptive)\n\n%s",
                benchmark.c_str(), kUsage);
   return 2;
 }

@@ -14,6 +14,7 @@ namespace tensormass {
 
 namespace {
 constexpr int kMaxDofs = 81;
+constexpr int kParallelCells = 4096;  // below this a parallel region costs more than it saves
 
 /// Every ladder law must have a kernel for every element type of the mesh.
 void check_ladder(const std::vector<std::string>& ladder, const Mesh& mesh) {
@@ -47,39 +48,54 @@ void Adaptivity::advance_blends() {
 }
 
 void Adaptivity::evaluate(std::span<const double> u) {
-  const Model& model = *model_;
-  const Mesh& mesh = model.mesh();
-  const int d = model.dim();
-  double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
   if (needs_force_) {
-    nodal_forces_.resize(model.dof_count());
+    nodal_forces_.resize(model_->dof_count());
     assembler_->assemble(u, nodal_forces_, nullptr);
   }
   // One pass per criterion, so that each keeps its own running time.
   for (std::size_t c = 0; c < criteria_.size(); ++c) {
     const auto start = std::chrono::steady_clock::now();
-    const Criterion& criterion = *criteria_[c];
-    for (const ElementBlock& block : mesh.blocks) {
-      for (int local = 0; local < block.count(); ++local) {
-        const int cell = block.first_cell + local;
-        const auto nodes = model.cell_nodes(cell);
-        for (std::size_t j = 0; j < nodes.size(); ++j)
-          for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
-        model.gather(cell, u, local_u);
-        if (criterion.needs_force()) model.gather(cell, nodal_forces_, force);
-        const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, local_u, force, d};
-        values_[c][cell] = criterion.evaluate(view);
-      }
-    }
+    for (const ElementBlock& block : model_->mesh().blocks) evaluate_block(*criteria_[c], block, u, values_[c]);
     criterion_seconds_[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 }
 
+void Adaptivity::evaluate_block(const Criterion& criterion, const ElementBlock& block, std::span<const double> u,
+                                std::vector<double>& values) const {
+  const Model& model = *model_;
+  const Mesh& mesh = model.mesh();
+  const int d = model.dim();
+  const bool rest_needed = criterion.needs_rest(), force_needed = criterion.needs_force();
+  // Each cell's value depends on that cell alone: any thread count gives the same values.
+#pragma omp parallel if (block.count() >= kParallelCells)
+  {
+    double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
+#pragma omp for schedule(static)
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      if (rest_needed) {
+        const auto nodes = model.cell_nodes(cell);
+        for (std::size_t j = 0; j < nodes.size(); ++j)
+          for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
+      }
+      model.gather(cell, u, local_u);
+      if (force_needed) model.gather(cell, nodal_forces_, force);
+      const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, local_u, force, d};
+      values[cell] = criterion.evaluate(view);
+    }
+  }
+}
+
 int Adaptivity::rung_of(const tm_kernel& kernel) const {
+  // A handful of distinct kernels: a linear search by address beats comparing names per cell.
+  for (const auto& [known, rung] : rung_cache_)
+    if (known == &kernel) return rung;
   const std::string_view law = kernel.law;
+  int rung = -1;
   for (std::size_t r = 0; r < settings_.ladder.size(); ++r)
-    if (settings_.ladder[r] == law) return static_cast<int>(r);
-  return -1;
+    if (settings_.ladder[r] == law) rung = static_cast<int>(r);
+  rung_cache_.emplace_back(&kernel, rung);
+  return rung;
 }
 
 bool Adaptivity::cell_fails(int cell) const {
@@ -162,8 +178,15 @@ void Adaptivity::switch_laws(AdaptivityRecord& record) {
 }
 
 void Adaptivity::record_laws(AdaptivityRecord& record) {
+  std::vector<std::pair<const tm_kernel*, int>> per_kernel;  // few distinct kernels
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    const tm_kernel* kernel = &model_->kernel(cell);
+    auto found = std::find_if(per_kernel.begin(), per_kernel.end(), [&](const auto& p) { return p.first == kernel; });
+    if (found == per_kernel.end()) per_kernel.emplace_back(kernel, 1);
+    else ++found->second;
+  }
   std::map<std::string, int> per_law;
-  for (int cell = 0; cell < model_->cell_count(); ++cell) ++per_law[model_->kernel(cell).law];
+  for (const auto& [kernel, count] : per_kernel) per_law[kernel->law] += count;
   record.cells_per_law.assign(per_law.begin(), per_law.end());
 }
 

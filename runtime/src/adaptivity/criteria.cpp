@@ -191,6 +191,7 @@ class EdgeLengthCriterion final : public Criterion {
 class VolumeCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_V"; }
+  bool needs_rest() const override { return false; }
   double evaluate(const ElementView& view) const override { return by_shape<VolumeCriterion>(view); }
 
   template <int D, int N>
@@ -237,6 +238,7 @@ class VolumeLengthHarmonicCriterion final : public Criterion {
 class StressCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_S"; }
+  bool needs_rest() const override { return false; }
   bool needs_force() const override { return true; }
   double evaluate(const ElementView& view) const override { return by_shape<StressCriterion>(view); }
 
@@ -264,6 +266,7 @@ class StressCriterion final : public Criterion {
 class NonlinearStrainCriterion final : public Criterion {
  public:
   std::string name() const override { return "R_NL"; }
+  bool needs_rest() const override { return false; }
   double evaluate(const ElementView& view) const override { return by_shape<NonlinearStrainCriterion>(view); }
 
   template <int D, int N>

@@ -9,10 +9,7 @@
 
 namespace tensormass {
 
-std::string default_split(const std::string& law, const tm_element_info& element) {
-  if (law == "hooke" && element.order == 1 && Registry::instance().find(law, element.name, "tensor")) return "tensor";
-  return "whole";
-}
+std::string default_split(const std::string&, const tm_element_info&) { return "whole"; }
 
 namespace {
 

@@ -23,7 +23,8 @@ TEST(NodeGraph, ListsExactlyTheNodesSharingACell) {
   std::set<std::pair<int, int>> listed;
   ASSERT_EQ(graph.node_count(), mesh.node_count());
   for (int node = 0; node < graph.node_count(); ++node) {
-    const auto begin = graph.columns.begin() + graph.row_start[node], end = graph.columns.begin() + graph.row_start[node + 1];
+    const auto begin = graph.columns.begin() + graph.row_start[node],
+               end = graph.columns.begin() + graph.row_start[node + 1];
     EXPECT_TRUE(std::is_sorted(begin, end));
     for (auto it = begin; it != end; ++it) {
       listed.insert({node, *it});

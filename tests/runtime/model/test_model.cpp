@@ -100,18 +100,20 @@ TEST(Model, UnvalidatedSpecIsRefusedWithoutCrashing) {
   EXPECT_THROW(Model(mesh, unknown_law.model), std::invalid_argument);
 }
 
-TEST(Model, DefaultSplitIsTensorForHookeOnLinearElementsOnly) {
-  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1}, 2);
-  const Model quadratic(mesh, test::cantilever("hooke").model);
-  EXPECT_STREQ(quadratic.kernel(0).split, "whole");
-  const Mesh linear_mesh = test::beam(2, "quad4", {4, 2, 1});
-  const Model linear(linear_mesh, test::cantilever("hooke").model);
-  EXPECT_STREQ(linear.kernel(0).split, "tensor");
+TEST(Model, DefaultSplitIsWholeAndAMaterialMayChooseAnother) {
+  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1});
+  const Model hooke(mesh, test::cantilever("hooke").model);
+  EXPECT_STREQ(hooke.kernel(0).split, "whole");
+  Scene tensor = test::cantilever("hooke");
+  tensor.model.materials[0].split = "tensor";
+  EXPECT_STREQ(Model(mesh, tensor.model).kernel(0).split, "tensor");
 }
 
 TEST(Model, SwitchingFromTensorHookeToStvkMatchesAFreshStvkModel) {
   const Mesh mesh = test::beam(3, "tet6", {2, 1, 1});
-  Model switched(mesh, test::cantilever("hooke").model);
+  Scene tensor_hooke = test::cantilever("hooke");
+  tensor_hooke.model.materials[0].split = "tensor";
+  Model switched(mesh, tensor_hooke.model);
   const Model reference(mesh, test::cantilever("stvk").model);
   std::vector<double> u(switched.dof_count());
   for (std::size_t i = 0; i < u.size(); ++i) u[i] = 0.01 * std::sin(1.0 + i);

@@ -63,6 +63,9 @@ class Adaptivity {
 
  private:
   void evaluate(std::span<const double> u);
+  /// values[cell] = the criterion on every cell of the block.
+  void evaluate_block(const Criterion& criterion, const ElementBlock& block, std::span<const double> u,
+                      std::vector<double>& values) const;
   /// Switches the laws after an evaluation; fills the record's counts.
   void switch_laws(AdaptivityRecord& record);
   void record_laws(AdaptivityRecord& record);
@@ -79,8 +82,9 @@ class Adaptivity {
   std::vector<std::unique_ptr<Criterion>> criteria_;
   std::vector<double> thresholds_;
   std::vector<std::string> names_;
-  std::vector<std::vector<double>> values_;  ///< per criterion, per cell
-  std::vector<int> calm_evaluations_;        ///< per cell
+  std::vector<std::vector<double>> values_;                           ///< per criterion, per cell
+  std::vector<int> calm_evaluations_;                                 ///< per cell
+  mutable std::vector<std::pair<const tm_kernel*, int>> rung_cache_;  ///< kernel -> rung_of
   bool needs_force_ = false;
   int total_switches_ = 0;
   double criteria_seconds_ = 0;

@@ -42,7 +42,7 @@ struct ElementView {
   const tm_element_info& element;  ///< reference element (edges, weights, shape values)
   const tm_kernel& kernel;         ///< current kernel (its consts layout: see kernel_abi.h)
   const double* consts;            ///< the element's constants
-  const double* rest;              ///< nodes by dim rest positions
+  const double* rest;              ///< nodes by dim rest positions (only when needs_rest())
   const double* u;                 ///< nodes by dim displacements
   const double* force;  ///< nodes by dim assembled internal forces at the element's nodes (only when needs_force())
   int dim;
@@ -58,6 +58,9 @@ class Criterion {
   virtual bool is_quality() const { return false; }
   /// R_S needs the element's internal force.
   virtual bool needs_force() const { return false; }
+  /// Criteria on edge lengths read the rest positions; the others only the
+  /// constants (quadrature weights and shape gradients) and u.
+  virtual bool needs_rest() const { return true; }
   /// Quality: value < threshold; others: value >= threshold, so that a
   /// threshold of 0 fails every cell (the pure last rung of the ladder).
   bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value >= threshold; }

@@ -51,8 +51,8 @@ class LinearPart {
   const Model* model_;
   const NodeGraph* graph_;
   int dim_;
-  std::vector<double> blocks_;           ///< graph columns by d by d, row-major blocks
-  std::vector<int> free_to_block_;       ///< free_pattern non-zero -> index in blocks_
+  std::vector<double> blocks_;                   ///< graph columns by d by d, row-major blocks
+  std::vector<int> free_to_block_;               ///< free_pattern non-zero -> index in blocks_
   std::vector<const tm_kernel*> folded_kernel_;  ///< per cell: the kernel folded, or nullptr
   int folded_count_ = 0;
   long changes_ = 0;

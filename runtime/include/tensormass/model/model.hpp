@@ -17,9 +17,11 @@
 
 namespace tensormass {
 
-/// The split used when a material names none: chosen from the measured
-/// kernel timings (docs/results/kernels.md): `tensor` for Hooke on
-/// first-order elements (its Hessian is a precomputed copy), `whole` otherwise.
+/// The split used when a material names none: `whole` for every law and
+/// element. (Hooke's `tensor` split, a precomputed Hessian, no longer pays:
+/// Hooke cells are folded into a constant matrix and never run a kernel per
+/// step, and its 159 constants per tet against 15 made the adaptive
+/// criteria, which read the constants of every cell, about 3x slower.)
 std::string default_split(const std::string& law, const tm_element_info& element);
 
 /// Index of the first material of `spec` whose region contains mesh-wide

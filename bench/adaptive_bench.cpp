@@ -1,0 +1,425 @@
+// `tensormass bench adaptive`: the adaptive model against the pure laws on
+// local-deformation scenes (see adaptive_bench.hpp).
+#include "adaptive_bench.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "machine_info.hpp"
+#include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/assembly/assembler.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/atomic_file.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/solvers/integrators.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
+
+namespace tensormass::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kUsage =
+    "usage: tensormass bench adaptive [--quick] [--json FILE] [--only NAME]\n"
+    "  --quick        smaller meshes and fewer steps (a smoke run; figures are not the targets')\n"
+    "  --json FILE    also write the results as JSON to FILE (atomically)\n"
+    "  --only NAME    one scene: indentation, cantilever or quad-beam\n";
+
+struct Options {
+  bool quick = false;
+  std::string json;
+  std::string only;
+};
+
+/// One scene and the runs to compare on it.
+struct Case {
+  std::string name;
+  std::string what;  // one line: mesh, material, loading
+  Mesh mesh;
+  Scene scene;  // the pure linear run; adaptive runs add the criterion and the ladder
+  std::vector<std::string> ladder;
+  std::string criterion = "R_NL";
+  std::vector<double> thresholds;
+  double error_target = 0.01;  // adaptive error at most this ...
+  double cost_target = 0.5;    // ... at at most this fraction of the rich law's step
+};
+
+/// What one run gives.
+struct Run {
+  std::string label;
+  std::optional<double> threshold;
+  double mean_ms = 0, assembly_ms = 0, solve_ms = 0, criteria_ms = 0;  // per step
+  long linear_iterations = 0;
+  int factorizations = 0;
+  long switches = 0;
+  std::map<std::string, int> cells_per_law;
+  double error = 0;     // against the rich run
+  double max_disp = 0;  // largest nodal displacement over all steps
+  std::string failure;
+  std::vector<std::vector<double>> trajectory;  // displacement after each step
+};
+
+// --- Scenes ------------------------------------------------------------------
+
+/// Adds a node group (dim 0) of the nodes for which `inside(x, y, z)` holds.
+template <typename Inside>
+void add_node_group(Mesh& mesh, const std::string& name, Inside inside) {
+  Group group;
+  group.name = name;
+  group.dim = 0;
+  for (int node = 0; node < mesh.node_count(); ++node) {
+    const double* x = &mesh.rest_positions[3 * node];
+    if (inside(x[0], x[1], x[2])) group.nodes.push_back(node);
+  }
+  mesh.groups.push_back(std::move(group));
+}
+
+MaterialSpec material(const std::string& law, double young, double poisson, double density) {
+  MaterialSpec m;
+  m.law = law;
+  m.young = young;
+  m.poisson = poisson;
+  m.density = density;
+  return m;
+}
+
+/// A 10 x 5 x 10 cm soft block (E 5 kPa, nu 0.45) on a fixed base; a 2 x 2 cm
+/// probe on the top face pushed 1.5 cm down over 0.5 s (implicit, dt 0.01).
+Case indentation(bool quick) {
+  Case c;
+  c.name = "indentation";
+  BeamSpec spec;
+  spec.dim = 3;
+  spec.cells = quick ? std::array<int, 3>{10, 5, 10} : std::array<int, 3>{20, 10, 20};
+  spec.size = {0.1, 0.05, 0.1};
+  spec.phases = {{"tet6", 1.0}};
+  c.mesh = make_beam(spec);
+  const double eps = 1e-9;
+  add_node_group(c.mesh, "base", [&](double, double y, double) { return y < eps; });
+  add_node_group(c.mesh, "probe", [&](double x, double y, double z) {
+    return y > 0.05 - eps && std::abs(x - 0.05) <= 0.01 + eps && std::abs(z - 0.05) <= 0.01 + eps;
+  });
+  Scene& s = c.scene;
+  s.path = "bench-adaptive-indentation.yaml";
+  s.model.materials = {material("hooke", 5e3, 0.45, 1000)};
+  s.model.fixed = {"base"};
+  PrescribedSpec probe;
+  probe.region = "probe";
+  probe.displacement = {0.0, -0.015, 0.0};
+  probe.profile.kind = ProfileKind::ramp;
+  probe.profile.duration = 0.5;
+  s.model.prescribed = {probe};
+  s.solver.type = SolverType::implicit_euler;
+  s.solver.dt = 0.01;
+  s.solver.steps = quick ? 20 : 50;
+  if (quick) s.model.prescribed[0].profile.duration = 0.2;
+  c.ladder = {"hooke", "neohookean"};
+  c.thresholds = {0.003, 0.01, 0.03};
+  c.what = std::to_string(c.mesh.cell_count()) + " tet4, E 5 kPa, nu 0.45, 2 x 2 cm probe 1.5 cm into 5 cm";
+  return c;
+}
+
+/// A beam clamped at x = 0 sagging under gravity (implicit, dt 0.01), ladder hooke -> stvk.
+Case gravity_beam(const std::string& name, int dim, std::array<int, 3> cells, std::array<double, 3> size,
+                  const std::string& cut, double young, int steps) {
+  Case c;
+  c.name = name;
+  BeamSpec spec;
+  spec.dim = dim;
+  spec.cells = cells;
+  spec.size = size;
+  spec.phases = {{cut, 1.0}};
+  c.mesh = make_beam(spec);
+  Scene& s = c.scene;
+  s.path = "bench-adaptive-" + name + ".yaml";
+  s.model.materials = {material("hooke", young, 0.3, 1000)};
+  s.model.fixed = {"clamp"};
+  s.model.loads.gravity = {0.0, -9.81, 0.0};
+  s.solver.type = SolverType::implicit_euler;
+  s.solver.dt = 0.01;
+  s.solver.steps = steps;
+  c.ladder = {"hooke", "stvk"};
+  c.cost_target = 0.7;
+  return c;
+}
+
+/// The 3D cantilever of issue 13: 5 x 1 x 1 m, 8,640 tets, E 20 MPa, 150 steps.
+Case cantilever(bool quick) {
+  Case c = gravity_beam("cantilever", 3, quick ? std::array<int, 3>{15, 3, 3} : std::array<int, 3>{30, 6, 8},
+                        {5.0, 1.0, 1.0}, "tet6", 2e7, quick ? 30 : 150);
+  c.thresholds = {0.003, 0.01, 0.03};
+  c.what = std::to_string(c.mesh.cell_count()) + " tet4, 5 x 1 x 1 m, E 20 MPa, gravity";
+  return c;
+}
+
+/// The origin's 600-quad beam: 6 x 1 m, E 10 MPa.
+Case quad_beam(bool quick) {
+  Case c = gravity_beam("quad-beam", 2, {60, 10, 1}, {6.0, 1.0, 1.0}, "quad4", 1e7, quick ? 30 : 150);
+  c.thresholds = {0.005, 0.015, 0.03};
+  c.what = "600 quad4, 6 x 1 m, E 10 MPa, gravity";
+  return c;
+}
+
+// --- Runs --------------------------------------------------------------------
+
+Scene run_scene_of(const Case& c, const std::string& law, std::optional<double> threshold) {
+  Scene s = c.scene;
+  s.model.materials[0].law = law;
+  if (threshold) {
+    s.adaptivity.enabled = true;
+    s.adaptivity.criteria = {{c.criterion, *threshold, 0}};
+    s.adaptivity.ladder = c.ladder;
+  }
+  return s;
+}
+
+Run simulate(const Case& c, const std::string& label, const Scene& scene, std::optional<double> threshold) {
+  Run run;
+  run.label = label;
+  run.threshold = threshold;
+  Model model(c.mesh, scene.model);
+  const Assembler assembler(model);
+  std::unique_ptr<Adaptivity> adaptivity;
+  if (scene.adaptivity.enabled) adaptivity = std::make_unique<Adaptivity>(scene.adaptivity, model, assembler);
+  auto linear = make_linear_solver(scene.solver.linear);
+  SolveStatistics statistics;
+  Integration integration{model, assembler, *linear, scene.solver, statistics};
+  State state;
+  state.displacement.assign(model.dof_count(), 0.0);
+  state.velocity.assign(model.dof_count(), 0.0);
+  const auto start = Clock::now();
+  if (adaptivity) adaptivity->start(state.displacement);
+  const StepObserver observer = [&](const State& s) {
+    if (adaptivity) {
+      adaptivity->advance_blends();
+      adaptivity->update(s.displacement, s.step);
+    }
+    run.trajectory.push_back(s.displacement);
+    return false;
+  };
+  try {
+    solve_implicit(integration, state, observer);
+  } catch (const NumericalError& failure) {
+    run.failure = failure.what();
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const double steps = std::max<std::size_t>(1, run.trajectory.size());
+  run.mean_ms = 1e3 * seconds / steps;
+  run.assembly_ms = 1e3 * statistics.assembly_seconds / steps;
+  run.solve_ms = 1e3 * statistics.solve_seconds / steps;
+  run.criteria_ms = adaptivity ? 1e3 * adaptivity->criteria_seconds() / steps : 0.0;
+  run.linear_iterations = statistics.linear_iterations;
+  run.factorizations = statistics.factorizations;
+  run.switches = adaptivity ? adaptivity->total_switches() : 0;
+  for (int cell = 0; cell < model.cell_count(); ++cell) ++run.cells_per_law[model.kernel(cell).law];
+  return run;
+}
+
+double node_distance(const std::vector<double>& a, const std::vector<double>& b, int node, int d) {
+  double squared = 0.0;
+  for (int k = 0; k < d; ++k) squared += (a[node * d + k] - b[node * d + k]) * (a[node * d + k] - b[node * d + k]);
+  return std::sqrt(squared);
+}
+
+/// Largest nodal displacement of a run over all steps.
+double largest_displacement(const Run& run, int d) {
+  const std::vector<double> zero(run.trajectory.empty() ? 0 : run.trajectory[0].size(), 0.0);
+  double largest = 0.0;
+  for (const auto& u : run.trajectory)
+    for (int node = 0; node < static_cast<int>(u.size()) / d; ++node)
+      largest = std::max(largest, node_distance(u, zero, node, d));
+  return largest;
+}
+
+/// Largest nodal distance to the reference over the steps both reached, over `scale`.
+double trajectory_error(const Run& run, const Run& reference, int d, double scale) {
+  double worst = 0.0;
+  const std::size_t steps = std::min(run.trajectory.size(), reference.trajectory.size());
+  for (std::size_t s = 0; s < steps; ++s)
+    for (int node = 0; node < static_cast<int>(run.trajectory[s].size()) / d; ++node)
+      worst = std::max(worst, node_distance(run.trajectory[s], reference.trajectory[s], node, d));
+  return worst / scale;
+}
+
+std::string laws_text(const std::map<std::string, int>& cells) {
+  std::string text;
+  for (const auto& [law, count] : cells) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + law;
+  return text;
+}
+
+// --- One scene ---------------------------------------------------------------
+
+struct CaseResult {
+  const Case* scene;
+  std::vector<Run> runs;  // linear, rich, adaptive...
+  bool pure_failed = false;
+};
+
+CaseResult run_case(const Case& c) {
+  CaseResult result{&c, {}, false};
+  const std::string& linear = c.ladder.front();
+  const std::string& rich = c.ladder.back();
+  std::printf("\n## %s: %s, %d steps, ladder [", c.name.c_str(), c.what.c_str(), c.scene.solver.steps);
+  for (std::size_t r = 0; r < c.ladder.size(); ++r) std::printf("%s%s", r ? ", " : "", c.ladder[r].c_str());
+  std::printf("], criterion %s\n\n", c.criterion.c_str());
+  std::fflush(stdout);
+  result.runs.push_back(simulate(c, linear, run_scene_of(c, linear, std::nullopt), std::nullopt));
+  result.runs.push_back(simulate(c, rich, run_scene_of(c, rich, std::nullopt), std::nullopt));
+  for (double t : c.thresholds) {
+    char label[64];
+    std::snprintf(label, sizeof label, "adaptive %s %g", c.criterion.c_str(), t);
+    result.runs.push_back(simulate(c, label, run_scene_of(c, linear, t), t));
+  }
+  const int d = c.mesh.dim;
+  const Run& reference = result.runs[1];
+  result.pure_failed = !result.runs[0].failure.empty() || !reference.failure.empty();
+  const double scale = std::max(largest_displacement(reference, d), 1e-300);
+  for (Run& run : result.runs) {
+    run.max_disp = largest_displacement(run, d);
+    run.error = trajectory_error(run, reference, d, scale);
+  }
+  std::printf("| run | ms/step | x rich | assembly | solve | criteria | lin. its | factor. | cells per law (end) | error |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+  for (const Run& run : result.runs) {
+    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.3f | %ld | %d | %s | %s |\n", run.label.c_str(), run.mean_ms,
+                run.mean_ms / reference.mean_ms, run.assembly_ms, run.solve_ms, run.criteria_ms, run.linear_iterations,
+                run.factorizations, laws_text(run.cells_per_law).c_str(),
+                run.failure.empty() ? (std::to_string(100.0 * run.error).substr(0, 5) + " %").c_str() : "failed");
+    if (!run.failure.empty()) std::printf("|   | failed: %s |||||||||\n", run.failure.c_str());
+  }
+  std::fflush(stdout);
+  return result;
+}
+
+/// The targets of issue 13 on one scene; prints each, returns nothing (misses are reported, not fatal).
+void print_targets(const CaseResult& result) {
+  const Case& c = *result.scene;
+  const Run& linear = result.runs[0];
+  const Run& rich = result.runs[1];
+  const Run* best = nullptr;  // cheapest adaptive run within the error target
+  double worst_ratio = 0.0, worst_criteria = 0.0;
+  for (std::size_t i = 2; i < result.runs.size(); ++i) {
+    const Run& run = result.runs[i];
+    if (!run.failure.empty()) continue;
+    worst_ratio = std::max(worst_ratio, run.mean_ms / rich.mean_ms);
+    worst_criteria = std::max(worst_criteria, run.criteria_ms / linear.mean_ms);
+    if (run.error <= c.error_target && (!best || run.mean_ms < best->mean_ms)) best = &run;
+  }
+  std::printf("\ntargets (%s):\n", c.name.c_str());
+  if (best)
+    std::printf("  adaptive within %.0f %% of %s at <= %.2fx its step: %s, %.3f %% at %.2fx -> %s\n",
+                100 * c.error_target, c.ladder.back().c_str(), c.cost_target, best->label.c_str(), 100 * best->error,
+                best->mean_ms / rich.mean_ms, best->mean_ms / rich.mean_ms <= c.cost_target ? "met" : "MISSED");
+  else
+    std::printf("  adaptive within %.0f %% of %s at <= %.2fx its step: no adaptive run within %.0f %% -> MISSED\n",
+                100 * c.error_target, c.ladder.back().c_str(), c.cost_target, 100 * c.error_target);
+  std::printf("  no adaptive run slower than %s x 1.05: worst %.2fx -> %s\n", c.ladder.back().c_str(), worst_ratio,
+              worst_ratio <= 1.05 ? "met" : "MISSED");
+  std::printf("  criteria <= 5 %% of a %s step: worst %.1f %% -> %s\n", c.ladder.front().c_str(), 100 * worst_criteria,
+              worst_criteria <= 0.05 ? "met" : "MISSED");
+}
+
+// --- JSON and the command ----------------------------------------------------
+
+std::string json_of(const std::vector<CaseResult>& results) {
+  std::ostringstream out;
+  out << "{\"machine\": \"" << cpu_model() << "\", \"threads\": " << omp_get_max_threads() << ", \"scenes\": [";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const Case& c = *results[i].scene;
+    out << (i ? ", " : "") << "{\"name\": \"" << c.name << "\", \"cells\": " << c.mesh.cell_count()
+        << ", \"steps\": " << c.scene.solver.steps << ", \"runs\": [";
+    for (std::size_t r = 0; r < results[i].runs.size(); ++r) {
+      const Run& run = results[i].runs[r];
+      out << (r ? ", " : "") << "{\"label\": \"" << run.label << "\", \"threshold\": ";
+      if (run.threshold) out << *run.threshold;
+      else out << "null";
+      out << ", \"ms_per_step\": " << run.mean_ms << ", \"assembly_ms\": " << run.assembly_ms
+          << ", \"solve_ms\": " << run.solve_ms << ", \"criteria_ms\": " << run.criteria_ms
+          << ", \"error\": " << run.error << ", \"switches\": " << run.switches << ", \"failed\": "
+          << (run.failure.empty() ? "false" : "true") << ", \"cells_per_law\": {";
+      bool first = true;
+      for (const auto& [law, count] : run.cells_per_law) {
+        out << (first ? "" : ", ") << "\"" << law << "\": " << count;
+        first = false;
+      }
+      out << "}}";
+    }
+    out << "]}";
+  }
+  out << "]}\n";
+  return out.str();
+}
+
+bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      exit_code = 0;
+      return false;
+    }
+    if (a == "--quick") {
+      options.quick = true;
+    } else if ((a == "--json" || a == "--only") && i + 1 < args.size()) {
+      (a == "--json" ? options.json : options.only) = args[++i];
+    } else {
+      std::fprintf(stderr, "tensormass bench adaptive: unexpected argument '%s'\n%s", a.c_str(), kUsage);
+      exit_code = 2;
+      return false;
+    }
+  }
+  if (!options.only.empty() && options.only != "indentation" && options.only != "cantilever" &&
+      options.only != "quad-beam") {
+    std::fprintf(stderr, "tensormass bench adaptive: unknown scene '%s'\n%s", options.only.c_str(), kUsage);
+    exit_code = 2;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int adaptive_command(const std::vector<std::string>& args) {
+  Options options;
+  int exit_code = 0;
+  if (!parse(args, options, exit_code)) return exit_code;
+  std::printf("# tensormass bench adaptive%s\n\n%s, %d OpenMP threads (defaults)\n", options.quick ? " --quick" : "",
+              cpu_model().c_str(), omp_get_max_threads());
+  std::printf("ms/step: wall time of the whole step (assembly, solve, criteria, rest); error: largest nodal\n"
+              "distance to the pure rich law over all steps / its largest displacement.\n");
+  std::vector<Case> cases;
+  if (options.only.empty() || options.only == "indentation") cases.push_back(indentation(options.quick));
+  if (options.only.empty() || options.only == "cantilever") cases.push_back(cantilever(options.quick));
+  if (options.only.empty() || options.only == "quad-beam") cases.push_back(quad_beam(options.quick));
+  std::vector<CaseResult> results;
+  bool failed = false;
+  for (const Case& c : cases) {
+    results.push_back(run_case(c));
+    print_targets(results.back());
+    failed = failed || results.back().pure_failed;
+  }
+  std::printf("\nnot measured yet: the thorax deep breath and the corotational rung (issue 13 continues)\n");
+  if (!options.json.empty()) {
+    try {
+      io::write_atomically(options.json, [&](std::ostream& out) { out << json_of(results); });
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "tensormass bench adaptive: %s\n", error.what());
+      return 1;
+    }
+  }
+  return failed ? 1 : 0;
+}
+
+}  // namespace tensormass::bench
