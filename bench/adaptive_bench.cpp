@@ -290,7 +290,8 @@ CaseResult run_case(const Case& c) {
     run.max_disp = largest_displacement(run, d);
     run.error = trajectory_error(run, reference, d, scale);
   }
-  std::printf("| run | ms/step | x rich | assembly | solve | criteria | lin. its | factor. | cells per law (end) | error |\n");
+  std::printf(
+      "| run | ms/step | x rich | assembly | solve | criteria | lin. its | factor. | cells per law (end) | error |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
   for (const Run& run : result.runs) {
     std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.3f | %ld | %d | %s | %s |\n", run.label.c_str(), run.mean_ms,
@@ -347,8 +348,8 @@ std::string json_of(const std::vector<CaseResult>& results) {
       else out << "null";
       out << ", \"ms_per_step\": " << run.mean_ms << ", \"assembly_ms\": " << run.assembly_ms
           << ", \"solve_ms\": " << run.solve_ms << ", \"criteria_ms\": " << run.criteria_ms
-          << ", \"error\": " << run.error << ", \"switches\": " << run.switches << ", \"failed\": "
-          << (run.failure.empty() ? "false" : "true") << ", \"cells_per_law\": {";
+          << ", \"error\": " << run.error << ", \"switches\": " << run.switches
+          << ", \"failed\": " << (run.failure.empty() ? "false" : "true") << ", \"cells_per_law\": {";
       bool first = true;
       for (const auto& [law, count] : run.cells_per_law) {
         out << (first ? "" : ", ") << "\"" << law << "\": " << count;
@@ -397,8 +398,9 @@ int adaptive_command(const std::vector<std::string>& args) {
   if (!parse(args, options, exit_code)) return exit_code;
   std::printf("# tensormass bench adaptive%s\n\n%s, %d OpenMP threads (defaults)\n", options.quick ? " --quick" : "",
               cpu_model().c_str(), omp_get_max_threads());
-  std::printf("ms/step: wall time of the whole step (assembly, solve, criteria, rest); error: largest nodal\n"
-              "distance to the pure rich law over all steps / its largest displacement.\n");
+  std::printf(
+      "ms/step: wall time of the whole step (assembly, solve, criteria, rest); error: largest nodal\n"
+      "distance to the pure rich law over all steps / its largest displacement.\n");
   std::vector<Case> cases;
   if (options.only.empty() || options.only == "indentation") cases.push_back(indentation(options.quick));
   if (options.only.empty() || options.only == "cantilever") cases.push_back(cantilever(options.quick));
