@@ -138,7 +138,7 @@ Scene make_scene(const BeamCase& beam, const Config& config, int steps) {
   scene.solver.linear.type = LinearSolverType::cholmod;
   if (config.threshold) {
     scene.adaptivity.enabled = true;
-    scene.adaptivity.criteria = {{config.mode, *config.threshold, 0}};
+    scene.adaptivity.criteria = {{config.mode, *config.threshold, 0, ""}};
     scene.adaptivity.action = AdaptivityAction::upgrade;
     scene.adaptivity.every = 1;
     scene.adaptivity.blend_steps = 0;  // the origin switches at once

@@ -3,6 +3,126 @@
 #include "tensormass/kernels/kernel_abi.h"
 
 extern "C" {
+int tm_corotational_hex20_whole_precompute(const double*, const double*, double*);
+double tm_corotational_hex20_whole_energy(const double*, const double*);
+void tm_corotational_hex20_whole_gradient(const double*, const double*, double*);
+void tm_corotational_hex20_whole_hessian(const double*, const double*, double*);
+void tm_corotational_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex20_whole_stress(const double*, const double*, double*);
+int tm_corotational_hex20_terms_precompute(const double*, const double*, double*);
+double tm_corotational_hex20_terms_energy(const double*, const double*);
+void tm_corotational_hex20_terms_gradient(const double*, const double*, double*);
+void tm_corotational_hex20_terms_hessian(const double*, const double*, double*);
+void tm_corotational_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex20_terms_stress(const double*, const double*, double*);
+int tm_corotational_hex8_whole_precompute(const double*, const double*, double*);
+double tm_corotational_hex8_whole_energy(const double*, const double*);
+void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
+void tm_corotational_hex8_whole_hessian(const double*, const double*, double*);
+void tm_corotational_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex8_whole_stress(const double*, const double*, double*);
+int tm_corotational_hex8_terms_precompute(const double*, const double*, double*);
+double tm_corotational_hex8_terms_energy(const double*, const double*);
+void tm_corotational_hex8_terms_gradient(const double*, const double*, double*);
+void tm_corotational_hex8_terms_hessian(const double*, const double*, double*);
+void tm_corotational_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex8_terms_stress(const double*, const double*, double*);
+int tm_corotational_prism6_whole_precompute(const double*, const double*, double*);
+double tm_corotational_prism6_whole_energy(const double*, const double*);
+void tm_corotational_prism6_whole_gradient(const double*, const double*, double*);
+void tm_corotational_prism6_whole_hessian(const double*, const double*, double*);
+void tm_corotational_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
+int tm_corotational_prism6_terms_precompute(const double*, const double*, double*);
+double tm_corotational_prism6_terms_energy(const double*, const double*);
+void tm_corotational_prism6_terms_gradient(const double*, const double*, double*);
+void tm_corotational_prism6_terms_hessian(const double*, const double*, double*);
+void tm_corotational_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_prism6_terms_stress(const double*, const double*, double*);
+int tm_corotational_pyramid5_whole_precompute(const double*, const double*, double*);
+double tm_corotational_pyramid5_whole_energy(const double*, const double*);
+void tm_corotational_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_corotational_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_corotational_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*);
+int tm_corotational_pyramid5_terms_precompute(const double*, const double*, double*);
+double tm_corotational_pyramid5_terms_energy(const double*, const double*);
+void tm_corotational_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_corotational_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_corotational_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_corotational_quad4_whole_precompute(const double*, const double*, double*);
+double tm_corotational_quad4_whole_energy(const double*, const double*);
+void tm_corotational_quad4_whole_gradient(const double*, const double*, double*);
+void tm_corotational_quad4_whole_hessian(const double*, const double*, double*);
+void tm_corotational_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
+int tm_corotational_quad4_terms_precompute(const double*, const double*, double*);
+double tm_corotational_quad4_terms_energy(const double*, const double*);
+void tm_corotational_quad4_terms_gradient(const double*, const double*, double*);
+void tm_corotational_quad4_terms_hessian(const double*, const double*, double*);
+void tm_corotational_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad4_terms_stress(const double*, const double*, double*);
+int tm_corotational_quad8_whole_precompute(const double*, const double*, double*);
+double tm_corotational_quad8_whole_energy(const double*, const double*);
+void tm_corotational_quad8_whole_gradient(const double*, const double*, double*);
+void tm_corotational_quad8_whole_hessian(const double*, const double*, double*);
+void tm_corotational_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad8_whole_stress(const double*, const double*, double*);
+int tm_corotational_quad8_terms_precompute(const double*, const double*, double*);
+double tm_corotational_quad8_terms_energy(const double*, const double*);
+void tm_corotational_quad8_terms_gradient(const double*, const double*, double*);
+void tm_corotational_quad8_terms_hessian(const double*, const double*, double*);
+void tm_corotational_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad8_terms_stress(const double*, const double*, double*);
+int tm_corotational_tet10_whole_precompute(const double*, const double*, double*);
+double tm_corotational_tet10_whole_energy(const double*, const double*);
+void tm_corotational_tet10_whole_gradient(const double*, const double*, double*);
+void tm_corotational_tet10_whole_hessian(const double*, const double*, double*);
+void tm_corotational_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tet10_whole_stress(const double*, const double*, double*);
+int tm_corotational_tet10_terms_precompute(const double*, const double*, double*);
+double tm_corotational_tet10_terms_energy(const double*, const double*);
+void tm_corotational_tet10_terms_gradient(const double*, const double*, double*);
+void tm_corotational_tet10_terms_hessian(const double*, const double*, double*);
+void tm_corotational_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tet10_terms_stress(const double*, const double*, double*);
+int tm_corotational_tet4_whole_precompute(const double*, const double*, double*);
+double tm_corotational_tet4_whole_energy(const double*, const double*);
+void tm_corotational_tet4_whole_gradient(const double*, const double*, double*);
+void tm_corotational_tet4_whole_hessian(const double*, const double*, double*);
+void tm_corotational_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tet4_whole_stress(const double*, const double*, double*);
+int tm_corotational_tet4_terms_precompute(const double*, const double*, double*);
+double tm_corotational_tet4_terms_energy(const double*, const double*);
+void tm_corotational_tet4_terms_gradient(const double*, const double*, double*);
+void tm_corotational_tet4_terms_hessian(const double*, const double*, double*);
+void tm_corotational_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tet4_terms_stress(const double*, const double*, double*);
+int tm_corotational_tri3_whole_precompute(const double*, const double*, double*);
+double tm_corotational_tri3_whole_energy(const double*, const double*);
+void tm_corotational_tri3_whole_gradient(const double*, const double*, double*);
+void tm_corotational_tri3_whole_hessian(const double*, const double*, double*);
+void tm_corotational_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tri3_whole_stress(const double*, const double*, double*);
+int tm_corotational_tri3_terms_precompute(const double*, const double*, double*);
+double tm_corotational_tri3_terms_energy(const double*, const double*);
+void tm_corotational_tri3_terms_gradient(const double*, const double*, double*);
+void tm_corotational_tri3_terms_hessian(const double*, const double*, double*);
+void tm_corotational_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tri3_terms_stress(const double*, const double*, double*);
+int tm_corotational_tri6_whole_precompute(const double*, const double*, double*);
+double tm_corotational_tri6_whole_energy(const double*, const double*);
+void tm_corotational_tri6_whole_gradient(const double*, const double*, double*);
+void tm_corotational_tri6_whole_hessian(const double*, const double*, double*);
+void tm_corotational_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tri6_whole_stress(const double*, const double*, double*);
+int tm_corotational_tri6_terms_precompute(const double*, const double*, double*);
+double tm_corotational_tri6_terms_energy(const double*, const double*);
+void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
+void tm_corotational_tri6_terms_hessian(const double*, const double*, double*);
+void tm_corotational_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_tri6_terms_stress(const double*, const double*, double*);
 int tm_hooke_hex20_whole_precompute(const double*, const double*, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
@@ -438,11 +558,92 @@ void tm_stvk_tri6_terms_stress(const double*, const double*, double*);
 }
 
 namespace {
+const char* const kCorotationalParameters[] = { "young", "poisson" };
 const char* const kHookeParameters[] = { "young", "poisson" };
 const char* const kNeohookeanParameters[] = { "young", "poisson" };
 const char* const kStvkParameters[] = { "young", "poisson" };
 
 const tm_kernel kKernels[] = {
+  {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
+   kCorotationalParameters, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
+   tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
+   0},
+  {"corotational", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
+   kCorotationalParameters, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
+   tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1168695,
+   0},
+  {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
+   kCorotationalParameters, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
+   tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
+   0},
+  {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
+   kCorotationalParameters, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
+   tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 75152,
+   0},
+  {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
+   kCorotationalParameters, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
+   tm_corotational_prism6_whole_hessian, tm_corotational_prism6_whole_gradient_hessian, tm_corotational_prism6_whole_stress, 3906, 4704, 23898,
+   0},
+  {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
+   kCorotationalParameters, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
+   tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 42576,
+   0},
+  {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
+   kCorotationalParameters, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
+   tm_corotational_pyramid5_whole_hessian, tm_corotational_pyramid5_whole_gradient_hessian, tm_corotational_pyramid5_whole_stress, 5064, 5984, 27832,
+   0},
+  {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
+   kCorotationalParameters, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
+   tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 49448,
+   0},
+  {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
+   kCorotationalParameters, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
+   tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
+   0},
+  {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
+   kCorotationalParameters, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
+   tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2880,
+   0},
+  {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
+   kCorotationalParameters, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
+   tm_corotational_quad8_whole_hessian, tm_corotational_quad8_whole_gradient_hessian, tm_corotational_quad8_whole_stress, 936, 1593, 10683,
+   0},
+  {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
+   kCorotationalParameters, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
+   tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 14454,
+   0},
+  {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
+   kCorotationalParameters, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
+   tm_corotational_tet10_whole_hessian, tm_corotational_tet10_whole_gradient_hessian, tm_corotational_tet10_whole_stress, 2892, 3712, 26876,
+   0},
+  {"corotational", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
+   kCorotationalParameters, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
+   tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 49264,
+   0},
+  {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
+   kCorotationalParameters, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
+   tm_corotational_tet4_whole_hessian, tm_corotational_tet4_whole_gradient_hessian, tm_corotational_tet4_whole_stress, 615, 712, 3047,
+   0},
+  {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
+   kCorotationalParameters, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
+   tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5422,
+   0},
+  {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
+   kCorotationalParameters, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
+   tm_corotational_tri3_whole_hessian, tm_corotational_tri3_whole_gradient_hessian, tm_corotational_tri3_whole_stress, 64, 97, 397,
+   0},
+  {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
+   kCorotationalParameters, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
+   tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 581,
+   0},
+  {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
+   kCorotationalParameters, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
+   tm_corotational_tri6_whole_hessian, tm_corotational_tri6_whole_gradient_hessian, tm_corotational_tri6_whole_stress, 264, 435, 2397,
+   0},
+  {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
+   kCorotationalParameters, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
+   tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3291,
+   0},
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
    tm_hooke_hex20_whole_hessian, tm_hooke_hex20_whole_gradient_hessian, tm_hooke_hex20_whole_stress, 10341, 19818, 447606,
@@ -734,8 +935,8 @@ const tm_kernel kKernels[] = {
 };
 }  // namespace
 
-extern "C" int tm_kernel_count(void) { return 72; }
+extern "C" int tm_kernel_count(void) { return 92; }
 
 extern "C" const tm_kernel* tm_kernel_at(int index) {
-  return index >= 0 && index < 72 ? &kKernels[index] : nullptr;
+  return index >= 0 && index < 92 ? &kKernels[index] : nullptr;
 }

@@ -2,6 +2,49 @@
 # The translation units of generated/, relative to it.
 set(TENSORMASS_GENERATED_SOURCES
   elements.cpp
+  kernels/corotational_hex20_terms.cpp
+  kernels/corotational_hex20_terms_part0.cpp
+  kernels/corotational_hex20_terms_part1.cpp
+  kernels/corotational_hex20_terms_part2.cpp
+  kernels/corotational_hex20_terms_part3.cpp
+  kernels/corotational_hex20_terms_part4.cpp
+  kernels/corotational_hex20_whole.cpp
+  kernels/corotational_hex8_terms.cpp
+  kernels/corotational_hex8_terms_part0.cpp
+  kernels/corotational_hex8_terms_part1.cpp
+  kernels/corotational_hex8_whole.cpp
+  kernels/corotational_prism6_terms.cpp
+  kernels/corotational_prism6_terms_part0.cpp
+  kernels/corotational_prism6_terms_part1.cpp
+  kernels/corotational_prism6_whole.cpp
+  kernels/corotational_pyramid5_terms.cpp
+  kernels/corotational_pyramid5_terms_part0.cpp
+  kernels/corotational_pyramid5_terms_part1.cpp
+  kernels/corotational_pyramid5_whole.cpp
+  kernels/corotational_quad4_terms.cpp
+  kernels/corotational_quad4_terms_part0.cpp
+  kernels/corotational_quad4_terms_part1.cpp
+  kernels/corotational_quad4_whole.cpp
+  kernels/corotational_quad8_terms.cpp
+  kernels/corotational_quad8_terms_part0.cpp
+  kernels/corotational_quad8_terms_part1.cpp
+  kernels/corotational_quad8_whole.cpp
+  kernels/corotational_tet10_terms.cpp
+  kernels/corotational_tet10_terms_part0.cpp
+  kernels/corotational_tet10_terms_part1.cpp
+  kernels/corotational_tet10_whole.cpp
+  kernels/corotational_tet4_terms.cpp
+  kernels/corotational_tet4_terms_part0.cpp
+  kernels/corotational_tet4_terms_part1.cpp
+  kernels/corotational_tet4_whole.cpp
+  kernels/corotational_tri3_terms.cpp
+  kernels/corotational_tri3_terms_part0.cpp
+  kernels/corotational_tri3_terms_part1.cpp
+  kernels/corotational_tri3_whole.cpp
+  kernels/corotational_tri6_terms.cpp
+  kernels/corotational_tri6_terms_part0.cpp
+  kernels/corotational_tri6_terms_part1.cpp
+  kernels/corotational_tri6_whole.cpp
   kernels/hooke_hex20_terms.cpp
   kernels/hooke_hex20_terms_part0.cpp
   kernels/hooke_hex20_terms_part1.cpp

@@ -28,9 +28,18 @@ def _environment(templates: Path) -> jinja2.Environment:
     )
 
 
-def _printed(block: Block, names: dict[str, str]) -> dict:
+# C statements computing a block's auxiliary quantities from H (polar_decomposition.hpp).
+_AUXILIARY_CODE = {
+    "rotation": ("double R[{dd}];", "tensormass::kernel::polar_rotation<{d}>(H, R);"),
+    "rotation_inverse": ("double Y[{y}];", "tensormass::kernel::rotation_inverse<{d}>(H, R, Y);"),
+}
+
+
+def _printed(block: Block, names: dict[str, str], dim: int = 0) -> dict:
+    sizes = {"d": dim, "dd": dim * dim, "y": 9 if dim == 3 else 1}
     return {
         "flops": block.flops,
+        "prelude": [line.format(**sizes) for aux in block.auxiliaries for line in _AUXILIARY_CODE[aux]],
         "assignments": [{"target": a.target, "declare": a.declare, "code": print_expr(a.expr, names)}
                         for a in block.assignments],
     }
@@ -76,16 +85,17 @@ def kernel_context(k: KernelIR) -> dict:
         "consts": k.consts_size,
         "flops": k.flops,
         "linear": k.linear,
+        "rotation": "rotation" in k.law_ir.tangent.auxiliaries,
         "parameters": list(law.parameters),
         "derived": [name for name, _ in law.derived],
         "derived_code": [(name, print_expr(expr, names)) for name, expr in law.derived],
         "weights": _literals(k.tables.weights),
         "reference_gradients": [[_literals(row) for row in q] for q in k.tables.reference_gradients],
-        "law_energy": _printed(k.law_ir.energy, names),
-        "law_stress": _printed(k.law_ir.stress, names),
-        "law_weighted_stress": _printed(k.law_ir.weighted_stress, names),
-        "law_tangent": _printed(k.law_ir.tangent, names),
-        "law_tangent_only": _printed(k.law_ir.tangent_only, names),
+        "law_energy": _printed(k.law_ir.energy, names, k.element.dim),
+        "law_stress": _printed(k.law_ir.stress, names, k.element.dim),
+        "law_weighted_stress": _printed(k.law_ir.weighted_stress, names, k.element.dim),
+        "law_tangent": _printed(k.law_ir.tangent, names, k.element.dim),
+        "law_tangent_only": _printed(k.law_ir.tangent_only, names, k.element.dim),
         "tangent_fill": _tangent_fill(k),
     }
     if isinstance(k.split_ir, TermsIR):

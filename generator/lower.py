@@ -34,9 +34,12 @@ __all__ = ["SPLITS", "DEFAULT_TENSOR_LIMIT", "SplitRefused", "build_kernel_ir", 
 
 
 def _base_symbol_names(element: ElementSpec) -> dict[str, str]:
-    """H{i} -> H[i], u{i} -> u[i]: the displacement gradient and the nodal displacements."""
+    """H{i} -> H[i], u{i} -> u[i], R{i} -> R[i], Y{i} -> Y[i]: the displacement
+    gradient, the nodal displacements, the polar rotation and its inverse term."""
     n, d = element.node_count, element.dim
     names = {f"H{i}": f"H[{i}]" for i in range(d * d)}
+    names.update({f"R{i}": f"R[{i}]" for i in range(d * d)})
+    names.update({f"Y{i}": f"Y[{i}]" for i in range(9 if d == 3 else 1)})
     names.update({f"u{i}": f"u[{i}]" for i in range(n * d)})
     return names
 

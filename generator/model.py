@@ -129,11 +129,12 @@ class LawDerivatives:
     def linear(self) -> bool:
         """True when psi is quadratic in H with a stress-free reference: the
         tangent A is constant and P(0) = 0, so an element's force is K u with
-        K independent of u (the runtime folds such cells into one constant matrix)."""
-        symbols = {sympy.Symbol(f"H{i}", real=True) for i in range(self.dim * self.dim)}
-        if any(entry.free_symbols & symbols for row in self.tangent for entry in row):
+        K independent of u (the runtime folds such cells into one constant matrix).
+        A tangent with any symbol besides the parameters (H.., or the rotation's R.., Y..) is not constant."""
+        parameters = {sympy.Symbol(name, real=True) for name, _ in self.law.derived}
+        if any(entry.free_symbols - parameters for row in self.tangent for entry in row):
             return False
-        at_rest = {h: 0 for h in symbols}
+        at_rest = {sympy.Symbol(f"H{i}", real=True): 0 for i in range(self.dim * self.dim)}
         return all(sympy.simplify(p.subs(at_rest)) == 0 for p in self.stress)
 
 
@@ -167,9 +168,15 @@ class Assignment:
 
 @dataclass(frozen=True)
 class Block:
-    """Straight-line code: temporaries then outputs, with its flop count."""
+    """Straight-line code: temporaries then outputs, with its flop count.
+
+    auxiliaries: per-point quantities the code reads that are not polynomial
+    in H, computed before it by support code, in this order: "rotation"
+    (R0.., F's polar rotation) and "rotation_inverse" (Y.., for dR/dH).
+    Their flops are counted in `flops` (AUXILIARY_FLOPS)."""
     assignments: tuple[Assignment, ...]
     flops: int
+    auxiliaries: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

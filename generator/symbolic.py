@@ -6,7 +6,15 @@ reference gradients at the quadrature points, as doubles) and, per law and
 dimension, `LawDerivatives`: SymPy expressions of psi(H), P = dpsi/dH and
 A = d2psi/dH2 in the displacement-gradient symbols H0..H{d*d-1} (row-major)
 and the law's derived parameters, and the law as a quadratic in one strain
-measure where it is one (for the tensor split). The chain rule
+measure where it is one (for the tensor split).
+
+Laws may use the rotation R of F's polar decomposition F = R S (and the
+stretch S = R^T F). R is not a polynomial of H: the kernels compute it at
+each point (symbols R0..) together with Y = (tr(S) I - S)^-1 in 3D, 1/tr(S)
+in 2D (symbols Y0..), which gives its derivative in closed form:
+dR = R [omega]x with omega = Y axial(R^T dF - dF^T R). The energy must depend
+on R only through an isotropic function of S, so that P = dpsi/dH holding R
+fixed (checked exactly at a rational F = R S). The chain rule
 g_ja = sum_q w_q sum_C P_aC G_jC and K_ja,kb = sum_q w_q sum_CD G_jC A_aC,bD G_kD
 links them to nodal displacements; the split stage decides how those sums
 are written.
@@ -22,7 +30,8 @@ from .load import REFERENCE_VARIABLES, GeneratorInputError
 from .model import ElementSpec, ElementTables, Inputs, LawDerivatives, LawSpec, StrainQuadratic, SymbolicIR
 
 # Names a law's energy may use, besides its derived parameters.
-KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "d", "I")
+KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "R", "S", "d", "I")
+ROTATION_NAMES = ("R", "S")
 FUNCTION_NAMES = ("tr", "det", "inv", "log", "exp", "sqrt", "transpose")
 _DIGITS = 40  # evaluation precision before rounding to double
 
@@ -51,6 +60,43 @@ def element_tables(element: ElementSpec, rule_name: str | None = None) -> Elemen
 def gradient_symbols(dim: int) -> tuple[sympy.Symbol, ...]:
     """H0..H{d*d-1}: the displacement gradient, row-major (H[a][C] = du_a/dX_C)."""
     return sympy.symbols(f"H0:{dim * dim}", real=True)
+
+
+def rotation_symbols(dim: int) -> tuple[sympy.Symbol, ...]:
+    """R0..R{d*d-1}: the rotation of F's polar decomposition, row-major."""
+    return sympy.symbols(f"R0:{dim * dim}", real=True)
+
+
+def rotation_inverse_symbols(dim: int) -> tuple[sympy.Symbol, ...]:
+    """Y0..: (tr(S) I - S)^-1 row-major in 3D; Y0 = 1/tr(S) in 2D."""
+    return sympy.symbols(f"Y0:{9 if dim == 3 else 1}", real=True)
+
+
+def uses_rotation(law: LawSpec) -> bool:
+    return bool(_energy_names(law) & set(ROTATION_NAMES))
+
+
+def rotation_derivatives(dim: int) -> tuple[sympy.Matrix, ...]:
+    """dR/dH_J (a d by d matrix) for each J = a*d + C, in the symbols R.. and Y..
+
+    3D: R^T dF - dF^T R = [(tr(S) I - S) omega]x for dR = R [omega]x; with
+    dF = e_a e_C^T the left side is [e_C x r]x, r = R^T e_a. 2D: omega =
+    (R_a1 delta_C0 - R_a0 delta_C1) / tr(S) and dR = R omega [[0, -1], [1, 0]]."""
+    R = sympy.Matrix(dim, dim, rotation_symbols(dim))
+    Y = rotation_inverse_symbols(dim)
+    derivatives = []
+    for a in range(dim):
+        for c in range(dim):
+            if dim == 2:
+                omega = Y[0] * (R[a, 1] * int(c == 0) - R[a, 0] * int(c == 1))
+                derivatives.append(R * sympy.Matrix([[0, -omega], [omega, 0]]))
+                continue
+            r = R[a, :].T
+            axis = sympy.Matrix([int(c == i) for i in range(3)]).cross(r)
+            w = sympy.Matrix(3, 3, Y) * axis
+            skew = sympy.Matrix([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+            derivatives.append(R * skew)
+    return tuple(derivatives)
 
 
 def parameter_symbols(law: LawSpec) -> dict[str, sympy.Symbol]:
@@ -106,28 +152,76 @@ def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
     H = sympy.Matrix(dim, dim, gradient_symbols(dim))
     F = identity + H
     C = F.T * F
+    R = sympy.Matrix(dim, dim, rotation_symbols(dim))
     names = {
         "F": F, "H": H, "C": C, "E": (C - identity) / 2, "eps": (H + H.T) / 2,
         "J": F.det(), "I1": C.trace(), "I2": (C.trace() ** 2 - (C * C).trace()) / 2,
-        "I3": C.det(), "d": sympy.Integer(dim), "I": identity,
+        "I3": C.det(), "R": R, "S": R.T * F, "d": sympy.Integer(dim), "I": identity,
     }
     psi = _evaluate(law, names)
-    allowed = set(gradient_symbols(dim)) | set(parameter_symbols(law).values())
+    allowed = set(gradient_symbols(dim)) | set(parameter_symbols(law).values()) | set(rotation_symbols(dim))
     if psi.free_symbols - allowed:
         raise GeneratorInputError(f"{law.source}: key 'energy': unexpected symbols {psi.free_symbols - allowed}")
     return psi
 
 
+def _rational_polar_point(dim: int) -> tuple[dict, dict]:
+    """A rational F = R0 S0 (R0 a Cayley rotation, S0 symmetric positive
+    definite): values of H.., R.. and Y.. where R = R0 and S = S0 exactly."""
+    half, third = sympy.Rational(1, 2), sympy.Rational(1, 3)
+    if dim == 2:
+        skew = sympy.Matrix([[0, -third], [third, 0]])
+        stretch = sympy.Matrix([[sympy.Rational(6, 5), sympy.Rational(1, 7)], [sympy.Rational(1, 7), sympy.Rational(9, 10)]])
+    else:
+        skew = sympy.Matrix([[0, -third, half], [third, 0, -sympy.Rational(1, 4)], [-half, sympy.Rational(1, 4), 0]])
+        stretch = sympy.Matrix([[sympy.Rational(6, 5), sympy.Rational(1, 7), sympy.Rational(-1, 9)],
+                                [sympy.Rational(1, 7), sympy.Rational(9, 10), sympy.Rational(1, 8)],
+                                [sympy.Rational(-1, 9), sympy.Rational(1, 8), sympy.Rational(11, 10)]])
+    identity = sympy.eye(dim)
+    rotation = (identity - skew).inv() * (identity + skew)
+    F = rotation * stretch
+    inverse = [1 / stretch.trace()] if dim == 2 else list((stretch.trace() * identity - stretch).inv())
+    values = dict(zip(gradient_symbols(dim), F - identity))
+    values.update(zip(rotation_symbols(dim), rotation))
+    values.update(zip(rotation_inverse_symbols(dim), inverse))
+    return values, {"stretch": stretch}
+
+
+def _check_rotation_enters_through_stretch(law: LawSpec, psi: sympy.Expr, P: tuple, dim: int) -> None:
+    """The term dpsi/dR : dR/dH that P = dpsi/dH|R leaves out must vanish; it
+    does when psi is an isotropic function of S (checked exactly at a rational point)."""
+    R = rotation_symbols(dim)
+    at, _ = _rational_polar_point(dim)
+    at.update({p: sympy.Rational(3 + i, 2) for i, p in enumerate(parameter_symbols(law).values())})
+    dpsi_dR = [sympy.diff(psi, r).subs(at) for r in R]
+    for J, dR in enumerate(rotation_derivatives(dim)):
+        left_out = sympy.nsimplify(sum(g * dr.subs(at) for g, dr in zip(dpsi_dR, dR)))
+        if sympy.simplify(left_out) != 0:
+            raise GeneratorInputError(
+                f"{law.source}: key 'energy': depends on R other than through an isotropic function "
+                f"of S = R^T F (dpsi/dR : dR/dH{J} = {left_out} at a test point); the generator "
+                "differentiates such energies holding R fixed")
+
+
 @functools.lru_cache(maxsize=None)
 def law_derivatives(law: LawSpec, dim: int) -> tuple[sympy.Expr, tuple, tuple]:
-    """(psi, P, A): P[I] = dpsi/dH_I, A[I][J] = d2psi/dH_I dH_J (full, symmetric)."""
+    """(psi, P, A): P[I] = dpsi/dH_I, A[I][J] = d2psi/dH_I dH_J (full, symmetric).
+
+    With R: P holds R fixed (see the module docstring) and A adds dP/dR : dR/dH_J."""
     psi = law_energy(law, dim)
     H = gradient_symbols(dim)
     P = tuple(sympy.diff(psi, h) for h in H)
+    rotation = uses_rotation(law)
+    if rotation:
+        _check_rotation_enters_through_stretch(law, psi, P, dim)
+        R, dR = rotation_symbols(dim), rotation_derivatives(dim)
     A = [[None] * len(H) for _ in H]
     for i in range(len(H)):
         for j in range(i, len(H)):
-            A[i][j] = A[j][i] = sympy.diff(P[i], H[j])
+            entry = sympy.diff(P[i], H[j])
+            if rotation:
+                entry += sum(sympy.diff(P[i], r) * dr for r, dr in zip(R, dR[j]))
+            A[i][j] = A[j][i] = entry
     return psi, P, tuple(tuple(row) for row in A)
 
 

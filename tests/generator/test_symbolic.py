@@ -62,6 +62,7 @@ def test_only_hooke_is_linear(dim):
     assert derive_law(_law("hooke"), dim).linear
     assert not derive_law(_law("stvk"), dim).linear
     assert not derive_law(_law("neohookean"), dim).linear
+    assert not derive_law(_law("corotational"), dim).linear  # constant-looking in H, but R moves
 
 
 def test_elasticity_tensor_of_hooke_is_isotropic():
@@ -89,3 +90,67 @@ def test_derive_gives_tables_per_element_and_derivatives_per_law_and_dimension()
     neo3 = symbolic.derivatives_of(neo, 3)
     assert neo3.quadratic is None and "one strain measure" in neo3.not_quadratic
     assert len(neo3.stress) == 9 and len(neo3.tangent) == 9
+
+
+def _at_rational_polar_point(law, dim):
+    """Values at F = R0 S0 (symbolic.py's rational test point) and lam = 2, mu = 3."""
+    from generator.symbolic import _rational_polar_point
+    at, extra = _rational_polar_point(dim)
+    at.update({LAM: 2, MU: 3})
+    return at, extra["stretch"]
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_corotational_stress_is_2mu_F_minus_R_plus_lam_trace_R(dim):
+    _, P, _ = law_derivatives(_law("corotational"), dim)
+    at, stretch = _at_rational_polar_point(_law("corotational"), dim)
+    F = sympy.eye(dim) + sympy.Matrix(dim, dim, [at[h] for h in gradient_symbols(dim)])
+    R = F * stretch.inv()
+    expected = 2 * 3 * (F - R) + 2 * (stretch.trace() - dim) * R
+    assert [sympy.simplify(p.subs(at) - e) for p, e in zip(P, expected)] == [0] * dim ** 2
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_corotational_tangent_is_the_derivative_of_its_stress_along_the_polar_rotation(dim):
+    """A = dP/dH with R = R(H): compare with a central difference of P, R taken
+    from the exact polar decomposition of F +- h E_J (SymPy, high precision)."""
+    import mpmath
+    from generator.symbolic import rotation_inverse_symbols, rotation_symbols
+    mpmath.mp.dps = 50
+    _, P, A = law_derivatives(_law("corotational"), dim)
+    at, _ = _at_rational_polar_point(_law("corotational"), dim)
+    H = gradient_symbols(dim)
+    F0 = sympy.eye(dim) + sympy.Matrix(dim, dim, [at[h] for h in H])
+
+    def values(F):
+        Fm = mpmath.matrix([[mpmath.mpf(sympy.Rational(F[i, j]).p) / sympy.Rational(F[i, j]).q
+                             for j in range(dim)] for i in range(dim)])
+        eigenvalues, V = mpmath.eigsy(Fm.T * Fm)
+        root = V * mpmath.diag([mpmath.sqrt(x) for x in eigenvalues]) * V.T
+        Rm = Fm * mpmath.inverse(root)
+        R = sympy.Matrix(dim, dim, [sympy.Float(Rm[i, j], 50) for i in range(dim) for j in range(dim)])
+        S = R.T * F
+        Y = [1 / S.trace()] if dim == 2 else list((S.trace() * sympy.eye(3) - S).inv())
+        v = dict(zip(H, F - sympy.eye(dim)))
+        v.update(zip(rotation_symbols(dim), R))
+        v.update(zip(rotation_inverse_symbols(dim), Y))
+        v.update({LAM: 2, MU: 3})
+        return v
+
+    step = sympy.Rational(1, 10 ** 12)
+    for j in range(dim * dim):
+        E = sympy.zeros(dim, dim)
+        E[j // dim, j % dim] = step
+        plus, minus = values(F0 + E), values(F0 - E)
+        for i in range(dim * dim):
+            difference = (P[i].subs(plus) - P[i].subs(minus)) / (2 * step)
+            assert float(A[i][j].subs(values(F0))) == pytest.approx(float(difference), rel=1e-9, abs=1e-9)
+
+
+def test_rotation_outside_an_isotropic_function_of_the_stretch_is_refused(tmp_path):
+    text = (ROOT / "laws" / "corotational.toml").read_text().replace(
+        'energy = "mu * tr(transpose(F - R)*(F - R)) + lam/2 * tr(S - I)**2"', 'energy = "mu * tr(R*F)"')
+    path = tmp_path / "twisted.toml"
+    path.write_text(text.replace('name = "corotational"', 'name = "twisted"'))
+    with pytest.raises(GeneratorInputError, match="isotropic function of S"):
+        law_derivatives(load_law(path), 3)

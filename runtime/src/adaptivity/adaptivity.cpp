@@ -24,6 +24,16 @@ void check_ladder(const std::vector<std::string>& ladder, const Mesh& mesh) {
       if (!Registry::instance().find(law, block.element->name, "whole"))
         throw std::invalid_argument("adaptivity ladder: no kernel for law '" + law + "' on " + block.element->name);
 }
+
+/// The ladder index a criterion asks for: its rung, or the last law.
+int target_rung(const CriterionSpec& criterion, const std::vector<std::string>& ladder) {
+  if (criterion.rung.empty()) return static_cast<int>(ladder.size()) - 1;
+  const auto found = std::find(ladder.begin(), ladder.end(), criterion.rung);
+  if (found == ladder.end() || found == ladder.begin())
+    throw std::invalid_argument("criterion " + criterion.name + ": rung '" + criterion.rung +
+                                "' is not a law above the first on the ladder");
+  return static_cast<int>(found - ladder.begin());
+}
 }  // namespace
 
 Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler)
@@ -32,6 +42,7 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
   for (const CriterionSpec& criterion : settings.criteria) {
     criteria_.push_back(make_criterion(criterion.name));
     thresholds_.push_back(criterion.threshold);
+    target_rungs_.push_back(target_rung(criterion, settings.ladder));
     names_.push_back(criterion.name);
     needs_force_ = needs_force_ || criteria_.back()->needs_force();
   }
@@ -98,15 +109,16 @@ int Adaptivity::rung_of(const tm_kernel& kernel) const {
   return rung;
 }
 
-bool Adaptivity::cell_fails(int cell) const {
+bool Adaptivity::fails_above(int cell, int rung) const {
   for (std::size_t c = 0; c < criteria_.size(); ++c)
-    if (criteria_[c]->fails(values_[c][cell], thresholds_[c])) return true;
+    if (target_rungs_[c] > rung && criteria_[c]->fails(values_[c][cell], thresholds_[c])) return true;
   return false;
 }
 
-bool Adaptivity::cell_is_calm(int cell) const {
+bool Adaptivity::calm_at(int cell, int rung) const {
   // Within threshold x hysteresis (quality criteria: above threshold / hysteresis).
   for (std::size_t c = 0; c < criteria_.size(); ++c) {
+    if (target_rungs_[c] < rung) continue;  // asks for a lower law: does not hold the cell here
     const double value = values_[c][cell];
     const bool calm = criteria_[c]->is_quality() ? value >= thresholds_[c] / settings_.hysteresis
                                                  : value <= thresholds_[c] * settings_.hysteresis;
@@ -160,14 +172,12 @@ void Adaptivity::switch_laws(AdaptivityRecord& record) {
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
     const int rung = rung_of(model_->kernel(cell)), initial = rung_of(model_->initial_kernel(cell));
     if (rung < 0 || initial < 0) continue;  // a law off the ladder never switches
-    if (cell_fails(cell)) {
+    if (fails_above(cell, rung)) {
       calm_evaluations_[cell] = 0;
-      if (rung + 1 < static_cast<int>(settings_.ladder.size())) {
-        switch_law(cell, settings_.ladder[rung + 1]);
-        ++record.upgrades;
-      }
+      switch_law(cell, settings_.ladder[rung + 1]);
+      ++record.upgrades;
     } else if (settings_.downgrade && rung > initial) {
-      calm_evaluations_[cell] = cell_is_calm(cell) ? calm_evaluations_[cell] + 1 : 0;
+      calm_evaluations_[cell] = calm_at(cell, rung) ? calm_evaluations_[cell] + 1 : 0;
       if (calm_evaluations_[cell] >= settings_.calm_steps) {
         switch_law(cell, settings_.ladder[rung - 1]);
         calm_evaluations_[cell] = 0;

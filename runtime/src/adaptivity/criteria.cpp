@@ -262,6 +262,19 @@ class StressCriterion final : public Criterion {
   }
 };
 
+/// The largest of per_point(H) over the element's quadrature points.
+template <int D, int N, typename PerPoint>
+double largest_over_points(const ElementView& view, PerPoint per_point) {
+  const QuadraturePoints<D, N> points(view);
+  double largest = 0.0;
+  for (int q = 0; q < points.count; ++q) {
+    double H[D][D];
+    displacement_gradient<D, N>(view.u, points.gradients_t(q), points.nodes, H);
+    largest = std::max(largest, per_point(H));
+  }
+  return largest;
+}
+
 /// R_NL = max over points of |1/2 H^T H|_F.
 class NonlinearStrainCriterion final : public Criterion {
  public:
@@ -271,14 +284,7 @@ class NonlinearStrainCriterion final : public Criterion {
 
   template <int D, int N>
   static double value(const ElementView& view) {
-    const QuadraturePoints<D, N> points(view);
-    double largest_squared = 0.0;
-    for (int q = 0; q < points.count; ++q) {
-      double H[D][D];
-      displacement_gradient<D, N>(view.u, points.gradients_t(q), points.nodes, H);
-      largest_squared = std::max(largest_squared, quadratic_strain_squared_norm<D>(H));
-    }
-    return 0.5 * std::sqrt(largest_squared);
+    return 0.5 * std::sqrt(largest_over_points<D, N>(view, quadratic_strain_squared_norm<D>));
   }
 
  private:
@@ -296,6 +302,35 @@ class NonlinearStrainCriterion final : public Criterion {
   }
 };
 
+/// R_E = max over points of |E|_F, E = (H + H^T + H^T H) / 2: the strain with
+/// the rotation removed (zero under any rigid motion), what a corotational law
+/// still treats linearly.
+class GreenStrainCriterion final : public Criterion {
+ public:
+  std::string name() const override { return "R_E"; }
+  bool needs_rest() const override { return false; }
+  double evaluate(const ElementView& view) const override { return by_shape<GreenStrainCriterion>(view); }
+
+  template <int D, int N>
+  static double value(const ElementView& view) {
+    return std::sqrt(largest_over_points<D, N>(view, green_strain_squared_norm<D>));
+  }
+
+ private:
+  /// |E|_F^2 with E = (H + H^T + H^T H) / 2.
+  template <int D>
+  static double green_strain_squared_norm(const double (&H)[D][D]) {
+    double squared = 0.0;
+    for (int c = 0; c < D; ++c)
+      for (int e = 0; e < D; ++e) {
+        double entry = 0.5 * (H[c][e] + H[e][c]);
+        for (int a = 0; a < D; ++a) entry += 0.5 * H[a][c] * H[a][e];
+        squared += entry * entry;
+      }
+    return squared;
+  }
+};
+
 }  // namespace
 
 std::unique_ptr<Criterion> make_criterion(const std::string& name) {
@@ -305,11 +340,12 @@ std::unique_ptr<Criterion> make_criterion(const std::string& name) {
   if (name == "R_VLX") return std::make_unique<VolumeLengthHarmonicCriterion>();
   if (name == "R_S") return std::make_unique<StressCriterion>();
   if (name == "R_NL") return std::make_unique<NonlinearStrainCriterion>();
-  throw std::invalid_argument("unknown criterion '" + name + "' (known: R_EL, R_V, R_VL, R_VLX, R_S, R_NL)");
+  if (name == "R_E") return std::make_unique<GreenStrainCriterion>();
+  throw std::invalid_argument("unknown criterion '" + name + "' (known: R_EL, R_V, R_VL, R_VLX, R_S, R_NL, R_E)");
 }
 
 const std::vector<std::string>& criterion_names() {
-  static const std::vector<std::string> names{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
+  static const std::vector<std::string> names{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E"};
   return names;
 }
 

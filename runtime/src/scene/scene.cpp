@@ -9,6 +9,7 @@
 #include <initializer_list>
 
 #include "scene/yaml_reader.hpp"
+#include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/simulation/track.hpp"
@@ -22,7 +23,7 @@ using scene_yaml::Value;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
-const std::vector<std::string> kCriteria = {"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
+const std::vector<std::string> kCriteria = criterion_names();
 
 /// Every map of the schema and its keys, by path pattern.
 const KeyTable& scene_keys() {
@@ -41,7 +42,7 @@ const KeyTable& scene_keys() {
       {"solver.damping", {"mass", "stiffness"}},
       {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations"}},
       {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
-      {"adaptivity.criteria[]", {"name", "threshold"}},
+      {"adaptivity.criteria[]", {"name", "threshold", "rung"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
       {"output", {"directory", "every", "track"}},
   };
@@ -280,6 +281,8 @@ CriterionSpec read_criterion(const Value& item) {
   c.line = item.line();
   c.name = one_of(item.required("name"), kCriteria, "criterion");
   c.threshold = non_negative(item.required("threshold"));
+  const Value rung = item.child("rung");
+  if (rung.present()) c.rung = one_of(rung, Registry::instance().laws(), "law");
   return c;
 }
 
@@ -310,6 +313,20 @@ void read_ladder(const Value& list, AdaptivitySettings& spec) {
   if (spec.ladder.size() < 2) list.fail("a ladder needs at least two laws (the first is where cells start)");
 }
 
+/// A criterion's rung is a law of the ladder above its first.
+void check_rungs(const Value& criteria, const AdaptivitySettings& spec) {
+  const std::vector<Value> items = criteria.items();
+  for (std::size_t i = 0; i < spec.criteria.size(); ++i) {
+    const std::string& rung = spec.criteria[i].rung;
+    if (rung.empty()) continue;
+    const auto found = std::find(spec.ladder.begin(), spec.ladder.end(), rung);
+    if (found == spec.ladder.end())
+      items[i].child("rung").fail("law " + rung + " is not on the ladder (" + scene_yaml::join(spec.ladder) + ")");
+    if (found == spec.ladder.begin())
+      items[i].child("rung").fail("law " + rung + " is the ladder's first law, where cells start: a rung above it");
+  }
+}
+
 AdaptivitySettings read_adaptivity(const Value& section) {
   AdaptivitySettings spec;
   if (!section.present()) return spec;
@@ -324,6 +341,7 @@ AdaptivitySettings read_adaptivity(const Value& section) {
   }
   if (spec.criteria.empty()) criteria.fail("needs at least one criterion");
   read_ladder(section.child("ladder"), spec);
+  check_rungs(criteria, spec);
   read_optional(section, "action", spec.action, [](const Value& v) {
     return one_of_enum(v, {AdaptivityAction::upgrade}, adaptivity_action_name, "action");
   });

@@ -44,7 +44,7 @@ class AdaptiveBeam : public ::testing::Test {
     s.output.directory = (directory_ / ("out-" + law + criterion + std::to_string(threshold))).string();
     if (!criterion.empty()) {
       s.adaptivity.enabled = true;
-      s.adaptivity.criteria = {{criterion, threshold, 0}};
+      s.adaptivity.criteria = {{criterion, threshold, 0, ""}};
     }
     return s;
   }
@@ -140,7 +140,7 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   const Assembler assembler(model);
   AdaptivitySettings adaptive;
   adaptive.enabled = true;
-  adaptive.criteria = {{"R_NL", 0.0, 0}};
+  adaptive.criteria = {{"R_NL", 0.0, 0, ""}};
   adaptive.blend_steps = 4;
   Adaptivity adaptivity(adaptive, model, assembler);
   std::vector<double> u(model.dof_count()), before(u.size()), after(u.size());
@@ -168,11 +168,18 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   for (std::size_t i = 0; i < u.size(); ++i) EXPECT_NEAR(current[i], expected[i], 1e-9 * (1 + std::abs(expected[i])));
 }
 
+/// The laws the model's cells are under.
+std::set<std::string> laws_of(const Model& model) {
+  std::set<std::string> names;
+  for (int cell = 0; cell < model.cell_count(); ++cell) names.insert(model.kernel(cell).law);
+  return names;
+}
+
 /// Adaptivity on R_NL alone with a ladder (the other settings at their defaults).
 AdaptivitySettings ladder_settings(double threshold, std::vector<std::string> ladder) {
   AdaptivitySettings adaptive;
   adaptive.enabled = true;
-  adaptive.criteria = {{"R_NL", threshold, 0}};
+  adaptive.criteria = {{"R_NL", threshold, 0, ""}};
   adaptive.ladder = std::move(ladder);
   return adaptive;
 }
@@ -190,11 +197,7 @@ TEST(Adaptivity, CellsClimbAndDescendOneRungAtATime) {
   Adaptivity adaptivity(adaptive, model, assembler);
   std::vector<double> strained(model.dof_count()), rest(model.dof_count(), 0.0);
   for (std::size_t i = 0; i < strained.size(); ++i) strained[i] = 0.2 * std::sin(0.9 * i);
-  auto laws = [&] {
-    std::set<std::string> names;
-    for (int cell = 0; cell < model.cell_count(); ++cell) names.insert(model.kernel(cell).law);
-    return names;
-  };
+  auto laws = [&] { return laws_of(model); };
   EXPECT_EQ(adaptivity.start(rest), 0);
   EXPECT_EQ(adaptivity.update(strained, 1), model.cell_count());
   EXPECT_EQ(laws(), std::set<std::string>{"stvk"});
@@ -227,6 +230,67 @@ TEST(Adaptivity, StartClimbsAsFarAsTheCriteriaAsk) {
   EXPECT_EQ(adaptivity.records()[0].step, 0);
 }
 
+/// u = (R - I) X: a rigid rotation by `angle` about z (in the plane in 2D).
+std::vector<double> rigid_rotation(const Model& model, double angle) {
+  const int d = model.dim();
+  std::vector<double> u(model.dof_count());
+  const std::vector<double>& X = model.mesh().rest_positions;
+  for (std::size_t node = 0; node < u.size() / d; ++node) {
+    const double x = X[3 * node], y = X[3 * node + 1];
+    u[node * d] = std::cos(angle) * x - std::sin(angle) * y - x;
+    u[node * d + 1] = std::sin(angle) * x + std::cos(angle) * y - y;
+  }
+  return u;
+}
+
+/// Criteria with rungs: R_NL (rotation or strain) asks for corotational, R_E
+/// (strain alone) for neo-Hookean, so a rotated cell stops at corotational, a
+/// strained one climbs to the top and comes back to corotational, not lower,
+/// while it is still rotated.
+TEST(Adaptivity, EachCriterionLiftsCellsOnlyAsFarAsItsRung) {
+  BeamSpec spec;
+  spec.cells = {6, 2, 1};
+  const Mesh mesh = make_beam(spec);
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive;
+  adaptive.enabled = true;
+  adaptive.ladder = {"hooke", "corotational", "neohookean"};
+  adaptive.criteria = {{"R_NL", 0.01, 0, "corotational"}, {"R_E", 0.01, 0, ""}};
+  adaptive.downgrade = true;
+  adaptive.calm_steps = 1;
+  Adaptivity adaptivity(adaptive, model, assembler);
+  auto laws = [&] { return laws_of(model); };
+  const std::vector<double> turned = rigid_rotation(model, 0.5), rest(model.dof_count(), 0.0);
+  std::vector<double> stretched = rest;
+  for (std::size_t node = 0; node < rest.size() / model.dim(); ++node)
+    stretched[node * model.dim()] = 0.2 * model.mesh().rest_positions[3 * node];
+  EXPECT_EQ(adaptivity.start(turned), model.cell_count());  // R_NL 0.17 fails, R_E is 0: one rung only
+  EXPECT_EQ(laws(), std::set<std::string>{"corotational"});
+  EXPECT_EQ(adaptivity.update(stretched, 1), model.cell_count());  // R_E 0.22
+  EXPECT_EQ(laws(), std::set<std::string>{"neohookean"});
+  EXPECT_EQ(adaptivity.update(turned, 2), model.cell_count());  // strain calm: down to what the rotation needs
+  EXPECT_EQ(laws(), std::set<std::string>{"corotational"});
+  EXPECT_EQ(adaptivity.update(turned, 3), 0);  // R_NL still fails: held at corotational
+  EXPECT_EQ(adaptivity.update(rest, 4), model.cell_count());
+  EXPECT_EQ(laws(), std::set<std::string>{"hooke"});
+}
+
+TEST(Adaptivity, CriterionRungMustBeALawAboveTheFirst) {
+  BeamSpec spec;
+  spec.cells = {2, 1, 1};
+  const Mesh mesh = make_beam(spec);
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive = ladder_settings(0.01, {"hooke", "corotational", "stvk"});
+  adaptive.criteria[0].rung = "hooke";
+  EXPECT_THROW(Adaptivity(adaptive, model, assembler), std::invalid_argument);
+  adaptive.criteria[0].rung = "neohookean";
+  EXPECT_THROW(Adaptivity(adaptive, model, assembler), std::invalid_argument);
+  adaptive.criteria[0].rung = "corotational";
+  EXPECT_NO_THROW(Adaptivity(adaptive, model, assembler));
+}
+
 TEST(Adaptivity, LadderWithoutKernelsForTheMeshIsRefused) {
   BeamSpec spec;
   spec.cells = {2, 1, 1};
@@ -251,7 +315,7 @@ TEST(Adaptivity, DowngradeReturnsToTheInitialKernelExactly) {
   const Assembler assembler(model);
   AdaptivitySettings adaptive;
   adaptive.enabled = true;
-  adaptive.criteria = {{"R_NL", 1e-3, 0}};
+  adaptive.criteria = {{"R_NL", 1e-3, 0, ""}};
   adaptive.downgrade = true;
   adaptive.hysteresis = 0.5;
   adaptive.calm_steps = 3;

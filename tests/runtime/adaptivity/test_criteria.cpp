@@ -152,6 +152,18 @@ double quadratic_strain_norm(const Matrix& A, int dim) {
   return 0.5 * std::sqrt(squared);
 }
 
+/// |E|_F of E = (A^T A - I) / 2, written from A itself (not through H).
+double green_strain_norm(const Matrix& A, int dim) {
+  double squared = 0.0;
+  for (int c = 0; c < dim; ++c)
+    for (int e = 0; e < dim; ++e) {
+      double entry = c == e ? -1.0 : 0.0;
+      for (int a = 0; a < dim; ++a) entry += A[a][c] * A[a][e];
+      squared += 0.25 * entry * entry;
+    }
+  return std::sqrt(squared);
+}
+
 // --- Geometry computed by the tests ------------------------------------------------
 
 double node_distance(const TestElement& element, bool deformed, int a, int b) {
@@ -216,8 +228,8 @@ constexpr double kTight = 1e-12;
 
 // --- Names, flags, thresholds ----------------------------------------------------------
 
-TEST(CriteriaNames, AreTheSixInOrderAndEachMakesItsCriterion) {
-  const std::vector<std::string> expected{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL"};
+TEST(CriteriaNames, AreTheSevenInOrderAndEachMakesItsCriterion) {
+  const std::vector<std::string> expected{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E"};
   EXPECT_EQ(criterion_names(), expected);
   for (const std::string& name : criterion_names()) EXPECT_EQ(make_criterion(name)->name(), name);
 }
@@ -256,6 +268,7 @@ TEST(CriteriaAtRest, RegularTet) {
   EXPECT_EQ(tet.value("R_EL"), 0.0);
   EXPECT_EQ(tet.value("R_V"), 0.0);
   EXPECT_EQ(tet.value("R_NL"), 0.0);
+  EXPECT_EQ(tet.value("R_E"), 0.0);
   EXPECT_EQ(tet.value("R_S"), 0.0);
   EXPECT_NEAR(tet.value("R_VL"), 1.0 / (6.0 * std::sqrt(2.0)), kTight);
   EXPECT_NEAR(tet.value("R_VLX"), 1.0, kTight);
@@ -293,6 +306,7 @@ TEST_P(CriteriaStretch, BoxesGiveStretchStrainVolumeAndQuadraticPart) {
     EXPECT_NEAR(element.value("R_EL"), std::fabs(s - 1), kTight) << type;
     EXPECT_NEAR(element.value("R_V"), std::fabs(s - 1), kTight) << type;
     EXPECT_NEAR(element.value("R_NL"), (s - 1) * (s - 1) / 2, kTight) << type;
+    EXPECT_NEAR(element.value("R_E"), std::fabs(s * s - 1) / 2, kTight) << type;
   }
 }
 
@@ -322,6 +336,7 @@ TEST(CriteriaRotation, LargeRotationKeepsLengthsVolumesQualityButNotTheQuadratic
     EXPECT_NEAR(element.value("R_V"), 0.0, kTight) << type;
     // 1/2 H^T H = I - sym(R) = (1 - cos theta) (I - n n^T): two unit eigenvalues in 2D and 3D.
     EXPECT_NEAR(element.value("R_NL"), std::sqrt(2.0) * (1 - std::cos(theta)), kTight) << type;
+    EXPECT_NEAR(element.value("R_E"), 0.0, kTight) << type << ": the rotation-free strain";
     EXPECT_NEAR(element.value("R_VL"), vl, kTight) << type;
     EXPECT_NEAR(element.value("R_VLX"), vlx, kTight) << type;
   }
@@ -457,6 +472,7 @@ TEST_P(CriteriaOnKernel, AgreeWithTheReferenceElementAtRest) {
   EXPECT_EQ(element.value("R_EL"), 0.0);
   EXPECT_NEAR(element.value("R_V"), 0.0, kTight);
   EXPECT_EQ(element.value("R_NL"), 0.0);
+  EXPECT_EQ(element.value("R_E"), 0.0);
   EXPECT_EQ(element.value("R_S"), 0.0);
   const double volume = reference_volume(info.name), mean = mean_edge(element, false);
   EXPECT_NEAR(element.value("R_VL"), volume / std::pow(mean, info.dim), kTight);
@@ -474,6 +490,7 @@ TEST_P(CriteriaOnKernel, ExactUnderAGeneralAffineDeformation) {
   EXPECT_NEAR(element.value("R_V"), std::fabs(J - 1), kTight);
   EXPECT_NEAR(element.value("R_EL"), max_edge_strain(element), kTight);
   EXPECT_NEAR(element.value("R_NL"), quadratic_strain_norm(A, dim), kTight);
+  EXPECT_NEAR(element.value("R_E"), green_strain_norm(A, dim), kTight);
   const double deformed_volume = J * determinant(rest_map(dim), dim) * reference_volume(info.name);
   EXPECT_NEAR(element.value("R_VL"), deformed_volume / std::pow(mean_edge(element, true), dim), kTight);
   set_all_forces(element, {0.6, -0.8, 0.0});
@@ -492,6 +509,7 @@ TEST_P(CriteriaOnKernel, SimilarityKeepsQualityAndScalesTheRest) {
   EXPECT_NEAR(element.value("R_VLX"), vlx, kTight);
   EXPECT_NEAR(element.value("R_EL"), s - 1, kTight);
   EXPECT_NEAR(element.value("R_V"), std::pow(s, dim) - 1, kTight);
+  EXPECT_NEAR(element.value("R_E"), std::sqrt(dim) * (s * s - 1) / 2, kTight) << "the rotation drops out";
 }
 
 TEST_P(CriteriaOnKernel, UniformStretchAlongX) {

@@ -45,7 +45,7 @@ solver:
 adaptivity:
   criteria:
     - {name: R_EL, threshold: 0.03}
-    - {name: R_V, threshold: 0.1}
+    - {name: R_V, threshold: 0.1, rung: stvk}
   action: upgrade
   every: 2
   blend_steps: 5
@@ -131,6 +131,8 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   EXPECT_DOUBLE_EQ(a.criteria[0].threshold, 0.03);
   EXPECT_EQ(a.criteria[0].line, 37);
   EXPECT_EQ(a.criteria[1].name, "R_V");
+  EXPECT_EQ(a.criteria[0].rung, "");  // the ladder's last law
+  EXPECT_EQ(a.criteria[1].rung, "stvk");
   EXPECT_EQ(a.action, tensormass::AdaptivityAction::upgrade);
   EXPECT_EQ(a.every, 2);
   EXPECT_EQ(a.blend_steps, 5);

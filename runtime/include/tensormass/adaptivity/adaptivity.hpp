@@ -71,8 +71,10 @@ class Adaptivity {
   void record_laws(AdaptivityRecord& record);
   /// Index of the kernel's law on the ladder, or -1.
   int rung_of(const tm_kernel& kernel) const;
-  bool cell_fails(int cell) const;
-  bool cell_is_calm(int cell) const;
+  /// A criterion whose rung is above `rung` fails on the cell.
+  bool fails_above(int cell, int rung) const;
+  /// Every criterion whose rung is at or above `rung` is calm on the cell.
+  bool calm_at(int cell, int rung) const;
   void switch_law(int cell, const std::string& law);
 
   AdaptivitySettings settings_;
@@ -81,6 +83,7 @@ class Adaptivity {
   std::vector<double> nodal_forces_;  ///< dof_count, for R_S
   std::vector<std::unique_ptr<Criterion>> criteria_;
   std::vector<double> thresholds_;
+  std::vector<int> target_rungs_;  ///< per criterion: the ladder index it asks for
   std::vector<std::string> names_;
   std::vector<std::vector<double>> values_;                           ///< per criterion, per cell
   std::vector<int> calm_evaluations_;                                 ///< per cell

@@ -12,9 +12,13 @@
 namespace tensormass {
 
 struct CriterionSpec {
-  std::string name;  ///< R_EL, R_V, R_VL, R_VLX, R_S, R_NL (criteria.hpp)
+  std::string name;  ///< R_EL, R_V, R_VL, R_VLX, R_S, R_NL, R_E (criteria.hpp)
   double threshold = 0;
   int line = 0;  ///< 1-based line in the scene file (0: not from a file)
+  /// The law this criterion asks for when it fails: a failing cell climbs
+  /// towards it, never past it, and it no longer holds a cell above it.
+  /// Empty: the ladder's last law.
+  std::string rung;
 };
 
 /// What happens to an element that fails a criterion.
@@ -26,9 +30,11 @@ inline std::string_view adaptivity_action_name(AdaptivityAction) { return "upgra
 struct AdaptivitySettings {
   bool enabled = false;
   std::vector<CriterionSpec> criteria;
-  /// Laws from the cheapest to the richest: a cell failing a criterion climbs
-  /// one rung; with downgrade, a calm cell descends one rung, never below its
-  /// initial law. Cells whose initial law is not on the ladder never switch.
+  /// Laws from the cheapest to the richest: a cell failing a criterion whose
+  /// rung is above the cell's law climbs one rung; with downgrade, a cell that
+  /// is calm for every criterion whose rung is at or above its law descends one
+  /// rung, never below its initial law. Cells whose initial law is not on the
+  /// ladder never switch.
   std::vector<std::string> ladder{"hooke", "stvk"};
   int ladder_line = 0;  ///< 1-based line of `ladder` in the scene file (0: default or not from a file)
   AdaptivityAction action = AdaptivityAction::upgrade;

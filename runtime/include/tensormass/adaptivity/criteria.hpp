@@ -14,7 +14,14 @@
 ///          to zero); a force (N): the shape-weighted average of the
 ///          nodal forces over the element
 ///   R_NL   max over quadrature points of |1/2 H^T H|_F, the quadratic part
-///          of the Green-Lagrange strain that the linear law drops
+///          of the Green-Lagrange strain that the linear law drops (grows
+///          with rotation as well as with strain)
+///   R_E    max over quadrature points of |E|_F, E = (F^T F - I)/2: the
+///          strain without the rotation (0 under any rigid motion), which a
+///          corotational law still treats linearly
+///
+/// With the ladder [hooke, corotational, rich], R_NL large and R_E small means
+/// rotation (corotational suffices); R_E large means strain (the rich law).
 ///
 /// Note on R_S: the forces of ONE element sum to zero (translation
 /// invariance), and a tet4/tri3 (or any affine first-order element) weighs
@@ -66,7 +73,7 @@ class Criterion {
   bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value >= threshold; }
 };
 
-/// The criterion named R_EL, R_V, R_VL, R_VLX, R_S or R_NL; throws
+/// The criterion named R_EL, R_V, R_VL, R_VLX, R_S, R_NL or R_E; throws
 /// std::invalid_argument for any other name.
 std::unique_ptr<Criterion> make_criterion(const std::string& name);
 

@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "tensormass/kernels/polar_decomposition.hpp"
+
 // Loops over the nodes are marked for vectorisation: with -fopenmp-simd (set
 // by the build with TENSORMASS_SIMD) GCC vectorises them as loops instead of
 // unrolling them into shuffles, 3x faster at 8 nodes.
