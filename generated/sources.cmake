@@ -137,6 +137,49 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/neohookean_tri6_terms_part0.cpp
   kernels/neohookean_tri6_terms_part1.cpp
   kernels/neohookean_tri6_whole.cpp
+  kernels/stable_neohookean_hex20_terms.cpp
+  kernels/stable_neohookean_hex20_terms_part0.cpp
+  kernels/stable_neohookean_hex20_terms_part1.cpp
+  kernels/stable_neohookean_hex20_terms_part2.cpp
+  kernels/stable_neohookean_hex20_terms_part3.cpp
+  kernels/stable_neohookean_hex20_terms_part4.cpp
+  kernels/stable_neohookean_hex20_whole.cpp
+  kernels/stable_neohookean_hex8_terms.cpp
+  kernels/stable_neohookean_hex8_terms_part0.cpp
+  kernels/stable_neohookean_hex8_terms_part1.cpp
+  kernels/stable_neohookean_hex8_whole.cpp
+  kernels/stable_neohookean_prism6_terms.cpp
+  kernels/stable_neohookean_prism6_terms_part0.cpp
+  kernels/stable_neohookean_prism6_terms_part1.cpp
+  kernels/stable_neohookean_prism6_whole.cpp
+  kernels/stable_neohookean_pyramid5_terms.cpp
+  kernels/stable_neohookean_pyramid5_terms_part0.cpp
+  kernels/stable_neohookean_pyramid5_terms_part1.cpp
+  kernels/stable_neohookean_pyramid5_whole.cpp
+  kernels/stable_neohookean_quad4_terms.cpp
+  kernels/stable_neohookean_quad4_terms_part0.cpp
+  kernels/stable_neohookean_quad4_terms_part1.cpp
+  kernels/stable_neohookean_quad4_whole.cpp
+  kernels/stable_neohookean_quad8_terms.cpp
+  kernels/stable_neohookean_quad8_terms_part0.cpp
+  kernels/stable_neohookean_quad8_terms_part1.cpp
+  kernels/stable_neohookean_quad8_whole.cpp
+  kernels/stable_neohookean_tet10_terms.cpp
+  kernels/stable_neohookean_tet10_terms_part0.cpp
+  kernels/stable_neohookean_tet10_terms_part1.cpp
+  kernels/stable_neohookean_tet10_whole.cpp
+  kernels/stable_neohookean_tet4_terms.cpp
+  kernels/stable_neohookean_tet4_terms_part0.cpp
+  kernels/stable_neohookean_tet4_terms_part1.cpp
+  kernels/stable_neohookean_tet4_whole.cpp
+  kernels/stable_neohookean_tri3_terms.cpp
+  kernels/stable_neohookean_tri3_terms_part0.cpp
+  kernels/stable_neohookean_tri3_terms_part1.cpp
+  kernels/stable_neohookean_tri3_whole.cpp
+  kernels/stable_neohookean_tri6_terms.cpp
+  kernels/stable_neohookean_tri6_terms_part0.cpp
+  kernels/stable_neohookean_tri6_terms_part1.cpp
+  kernels/stable_neohookean_tri6_whole.cpp
   kernels/stvk_hex20_terms.cpp
   kernels/stvk_hex20_terms_part0.cpp
   kernels/stvk_hex20_terms_part1.cpp

@@ -85,6 +85,7 @@ def kernel_context(k: KernelIR) -> dict:
         "consts": k.consts_size,
         "flops": k.flops,
         "linear": k.linear,
+        "invertible": k.invertible,
         "rotation": "rotation" in k.law_ir.tangent.auxiliaries,
         "parameters": list(law.parameters),
         "derived": [name for name, _ in law.derived],
@@ -138,7 +139,8 @@ def manifest(lowered: LoweredIR) -> str:
     """manifest.json: every kernel with its sizes and flops, every refusal with its reason."""
     rows = [{"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
              "dim": k.element.dim, "consts": k.consts_size, "flops_energy": k.flops.energy,
-             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear}
+             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
+             "invertible": k.invertible}
             for k in lowered.kernels]
     refused = [{"law": r.law, "element": r.element, "split": r.split, "reason": r.reason} for r in lowered.refused]
     return json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"

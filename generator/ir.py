@@ -101,6 +101,7 @@ class KernelIR:
     symbol_names: tuple[tuple[str, str], ...]
     split_ir: SplitIR
     linear: bool  # force = K u with K constant (LawDerivatives.linear)
+    invertible: bool = False  # the law is defined for det F <= 0 (LawSpec.invertible)
 
     @property
     def prefix(self) -> str:

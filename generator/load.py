@@ -25,6 +25,7 @@ ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
 RULE_KEYS = {"degree", "points", "weights"}
 FORMAT_KEYS = {"type", "node_order"}
 LAW_KEYS = {"name", "description", "energy", "parameters", "derived"}
+LAW_OPTIONAL_KEYS = {"invertible"}
 
 
 class GeneratorInputError(Exception):
@@ -191,7 +192,9 @@ def load_element(path: Path) -> ElementSpec:
 def load_law(path: Path) -> LawSpec:
     source = str(path)
     data = _read_toml(path)
-    _check_keys(data, LAW_KEYS, LAW_KEYS, source, "")
+    _check_keys(data, LAW_KEYS | LAW_OPTIONAL_KEYS, LAW_KEYS, source, "")
+    if not isinstance(data.get("invertible", False), bool):
+        raise _fail(source, "invertible", "expected true or false")
     if data["name"] != path.stem:
         raise _fail(source, "name", f"'{data['name']}' must equal the file name '{path.stem}'")
     parameters = data["parameters"]
@@ -222,6 +225,7 @@ def load_law(path: Path) -> LawSpec:
         energy=data["energy"],
         parameters=tuple(parameters),
         derived=tuple(derived),
+        invertible=data.get("invertible", False),
     )
 
 

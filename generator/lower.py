@@ -61,7 +61,7 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     consts = len(law.derived) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
-                     linear=derivatives.linear)
+                    linear=derivatives.linear, invertible=law.invertible)
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

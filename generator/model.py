@@ -79,6 +79,7 @@ class LawSpec:
     energy: str  # SymPy text in the kinematic symbols
     parameters: tuple[str, ...]  # user-facing parameters, in kernel order
     derived: tuple[tuple[str, sympy.Expr], ...]  # (name, expression of parameters)
+    invertible: bool = False  # defined and finite for det F <= 0 (checked by the symbolic stage)
 
 
 @dataclass(frozen=True)

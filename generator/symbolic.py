@@ -257,9 +257,37 @@ def strain_quadratic(law: LawSpec, dim: int) -> StrainQuadratic:
     return StrainQuadratic(strain=strain, elasticity=cc)
 
 
+def _inverted_point(dim: int) -> dict:
+    """H at a rational F with det F < 0 (an inverted element)."""
+    if dim == 2:
+        F = sympy.Matrix([[sympy.Rational(-1, 2), sympy.Rational(1, 5)], [sympy.Rational(1, 7), 1]])
+    else:
+        F = sympy.Matrix([[sympy.Rational(-1, 2), sympy.Rational(1, 5), 0],
+                          [sympy.Rational(1, 7), 1, sympy.Rational(1, 9)],
+                          [0, sympy.Rational(1, 4), sympy.Rational(6, 5)]])
+    assert F.det() < 0
+    return dict(zip(gradient_symbols(dim), F - sympy.eye(dim)))
+
+
+def _check_invertible(law: LawSpec, psi: sympy.Expr, P: tuple, dim: int) -> None:
+    """A law declared invertible has a finite, real energy and stress at an inverted F."""
+    if uses_rotation(law):
+        raise GeneratorInputError(f"{law.source}: key 'invertible': a law written with R cannot be invertible "
+                                  "(at det F < 0 the polar factor is a reflection)")
+    at = _inverted_point(dim)
+    at.update({p: sympy.Rational(3 + i, 2) for i, p in enumerate(parameter_symbols(law).values())})
+    for name, expr in [("energy", psi)] + [(f"stress P{i}", p) for i, p in enumerate(P)]:
+        value = sympy.N(expr.subs(at), 30)  # numeric: simplify would factor the logs' large rationals
+        if not (value.is_real and value.is_finite):
+            raise GeneratorInputError(f"{law.source}: key 'invertible': the {name} is {value} at an inverted F "
+                                      "(det F < 0); an invertible law must be defined there")
+
+
 def derive_law(law: LawSpec, dim: int) -> LawDerivatives:
     """psi, P and A of the law in dimension dim, and its strain quadratic or why it has none."""
     psi, P, A = law_derivatives(law, dim)
+    if law.invertible:
+        _check_invertible(law, psi, P, dim)
     try:
         quadratic, why = strain_quadratic(law, dim), ""
     except GeneratorInputError as error:

@@ -76,3 +76,11 @@ def test_load_all_returns_typed_sorted_inputs():
 def test_load_all_needs_files(tmp_path):
     with pytest.raises(GeneratorInputError, match="no element files"):
         load_all(tmp_path, ROOT / "laws")
+
+
+def test_law_invertible_must_be_a_boolean(tmp_path):
+    path = tmp_path / "stable_neohookean.toml"
+    path.write_text((ROOT / "laws" / "stable_neohookean.toml").read_text().replace("invertible = true",
+                                                                                   'invertible = "yes"'))
+    with pytest.raises(GeneratorInputError, match=r"stable_neohookean.toml.*invertible.*true or false"):
+        load_law(path)

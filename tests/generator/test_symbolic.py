@@ -154,3 +154,24 @@ def test_rotation_outside_an_isotropic_function_of_the_stretch_is_refused(tmp_pa
     path.write_text(text.replace('name = "corotational"', 'name = "twisted"'))
     with pytest.raises(GeneratorInputError, match="isotropic function of S"):
         law_derivatives(load_law(path), 3)
+
+
+@pytest.mark.parametrize("name", ["neohookean", "corotational"])
+def test_invertible_is_refused_for_laws_undefined_or_reflected_at_inversion(tmp_path, name):
+    text = (ROOT / "laws" / f"{name}.toml").read_text().replace('parameters = ["young", "poisson"]',
+                                                                'parameters = ["young", "poisson"]\ninvertible = true')
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text)
+    with pytest.raises(GeneratorInputError, match="invertible"):
+        derive_law(load_law(path), 3)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_stable_neohookean_is_invertible_and_stress_free_at_rest(dim):
+    law = _law("stable_neohookean")
+    assert law.invertible
+    derivatives = derive_law(law, dim)
+    at_rest = {h: 0 for h in gradient_symbols(dim)}
+    assert all(sympy.simplify(p.subs(at_rest)) == 0 for p in derivatives.stress)
+    assert sympy.simplify(derivatives.energy.subs(at_rest)) == 0
+    assert not derivatives.linear

@@ -89,6 +89,14 @@ Matrix3 reference_piola(const std::string& law, const Matrix3& F, double lam, do
     for (int i = 0; i < 9; ++i) P[i] = mu * (F[i] - inverse_transpose[i]) + lam * std::log(J) * inverse_transpose[i];
     return P;
   }
+  if (law == "stable_neohookean") {  // mu' F (1 - 1/(I_C + 1)) + lam' (J - alpha) J F^-T
+    const double mu_s = 4.0 / 3.0 * mu, lam_s = lam + 5.0 / 6.0 * mu, alpha = 1.0 + 0.75 * mu_s / lam_s;
+    const double J = determinant(F), I_C = contract(F, F);
+    const Matrix3 cofactor = transpose(inverse(F));  // times J below: J F^-T
+    Matrix3 P{};
+    for (int i = 0; i < 9; ++i) P[i] = mu_s * F[i] * (1.0 - 1.0 / (I_C + 1.0)) + lam_s * (J - alpha) * J * cofactor[i];
+    return P;
+  }
   if (law == "corotational") {  // P = 2 mu (F - R) + lam tr(S - I) R, S = R^T F
     const Matrix3 R = polar_rotation_by_eigenvectors(F);
     const Matrix3 S = multiply(transpose(R), F);
@@ -121,6 +129,12 @@ double reference_density(const std::string& law, const Matrix3& F, double lam, d
       for (int a = 0; a < dim; ++a) I1 += F[a * 3 + i] * F[a * 3 + i];
     const double log_J = std::log(determinant(F));
     return 0.5 * mu * (I1 - dim) - mu * log_J + 0.5 * lam * log_J * log_J;
+  }
+  if (law == "stable_neohookean") {  // Smith et al. 2018 with W(I) = 0; I_C is the 3D one (F33 = 1 in 2D)
+    const double mu_s = 4.0 / 3.0 * mu, lam_s = lam + 5.0 / 6.0 * mu, alpha = 1.0 + 0.75 * mu_s / lam_s;
+    const double J = determinant(F), I_C = contract(F, F);
+    return 0.5 * mu_s * (I_C - 3.0) + 0.5 * lam_s * (J - alpha) * (J - alpha) -
+           0.5 * mu_s * std::log((I_C + 1.0) / 4.0) - 0.5 * lam_s * (1.0 - alpha) * (1.0 - alpha);
   }
   if (law == "corotational") {  // mu |F - R|^2 + lam/2 tr(S - I)^2 (zero third row and column in 2D)
     const Matrix3 R = polar_rotation_by_eigenvectors(F);
@@ -439,6 +453,34 @@ INSTANTIATE_TEST_SUITE_P(AllButHooke, ObjectiveLaw, testing::ValuesIn(kernels_wh
                          })),
                          KernelParamName());
 
+// --- Invertible laws: defined and restoring through inversion ---------------
+
+class InvertibleLaw : public testing::TestWithParam<const tm_kernel*> {};
+
+/// An element flipped along x (F = diag(-1/2, 1, 1)): energy, forces and
+/// tangent are finite, the energy is above the rest state's, and P_xx < 0 at
+/// every point, so the forces push the element back to a positive volume.
+TEST_P(InvertibleLaw, InvertedElementIsPushedBack) {
+  const tm_kernel& kernel = *GetParam();
+  const Element e = make_element(kernel, 61);
+  ASSERT_EQ(e.status, 0);
+  Matrix3 flip = identity3();
+  flip[0] = -0.5;
+  const Vector u = homogeneous_displacement(e, flip);
+  const double W = energy(e, u);
+  EXPECT_TRUE(std::isfinite(W));
+  EXPECT_GT(W, 0.0);
+  for (const double g : gradient(e, u)) EXPECT_TRUE(std::isfinite(g));
+  for (const double k : hessian(e, u)) EXPECT_TRUE(std::isfinite(k));
+  const Vector P = stress(e, u);
+  for (int q = 0; q < kernel.quadrature_points; ++q)
+    EXPECT_LT(P[static_cast<std::size_t>(q * kernel.dim * kernel.dim)], 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Flagged, InvertibleLaw,
+                         testing::ValuesIn(kernels_where([](const tm_kernel& k) { return k.invertible != 0; })),
+                         KernelParamName());
+
 // --- Hooke: uniform strain on one distorted element, a quadratic energy -----
 
 class HookeLaw : public testing::TestWithParam<const tm_kernel*> {};
@@ -546,7 +588,7 @@ TEST_P(LawsAtRest, HessiansEqualHookeAndGradientIsZero) {
     const auto [lam, mu] = lame(e.params);
     EXPECT_LE(max_abs(stress(e, zero)), 1e-12 * (lam + 2 * mu)) << "stress at rest";
   }
-  EXPECT_EQ(laws, 4);
+  EXPECT_EQ(laws, 5);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllElements, LawsAtRest, testing::ValuesIn(element_names()), ElementParamName());

@@ -14,7 +14,7 @@
 namespace tmtest {
 namespace {
 
-const std::vector<std::string> kLaws = {"corotational", "hooke", "neohookean", "stvk"};
+const std::vector<std::string> kLaws = {"corotational", "hooke", "neohookean", "stable_neohookean", "stvk"};
 const std::vector<std::string> kSplits = {"tensor", "terms", "whole"};
 const std::vector<std::string> kFirstOrder = {"tri3", "quad4", "tet4", "hex8", "prism6", "pyramid5"};
 
@@ -35,7 +35,7 @@ bool contains(const std::vector<std::string>& list, const std::string& name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-TEST(Registry, HasTheTenElementsAndFourLaws) {
+TEST(Registry, HasTheTenElementsAndFiveLaws) {
   std::set<std::string> names;
   for (const tm_element_info* info : registry().elements()) names.insert(info->name);
   std::set<std::string> expected;
@@ -47,7 +47,7 @@ TEST(Registry, HasTheTenElementsAndFourLaws) {
 }
 
 /// whole and terms for every (law, element) pair; tensor exactly for hooke
-/// and stvk on the six first-order elements: 10 x 4 x 2 + 2 x 6 = 92.
+/// and stvk on the six first-order elements: 10 x 5 x 2 + 2 x 6 = 112.
 TEST(Registry, OffersTheExpectedTriples) {
   int expected_count = 0;
   for (const auto& [element, facts] : expected_elements())
@@ -63,7 +63,7 @@ TEST(Registry, OffersTheExpectedTriples) {
         EXPECT_EQ(kernel->element, element);
         EXPECT_EQ(kernel->split, split);
       }
-  EXPECT_EQ(expected_count, 92);
+  EXPECT_EQ(expected_count, 112);
   EXPECT_EQ(registry().kernels().size(), static_cast<std::size_t>(expected_count));
   EXPECT_EQ(tm_kernel_count(), expected_count);
 }
@@ -108,6 +108,12 @@ TEST(Registry, KernelsAreUniqueAndComplete) {
 TEST(Registry, LinearFlagMarksExactlyHooke) {
   for (const tm_kernel* kernel : registry().kernels())
     EXPECT_EQ(kernel->linear, std::string(kernel->law) == "hooke" ? 1 : 0)
+        << kernel->law << "/" << kernel->element << "/" << kernel->split;
+}
+
+TEST(Registry, InvertibleFlagMarksExactlyStableNeohookean) {
+  for (const tm_kernel* kernel : registry().kernels())
+    EXPECT_EQ(kernel->invertible, std::string(kernel->law) == "stable_neohookean" ? 1 : 0)
         << kernel->law << "/" << kernel->element << "/" << kernel->split;
 }
 

@@ -218,6 +218,7 @@ int Model::first_inverted_cell(std::span<const double> u) const {
     const InversionCheck inverted = inversion_check(dim_, block.element->nodes);
     for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
       const tm_kernel& kernel = *kernels_[cell];
+      if (kernel.invertible) continue;  // defined through inversion: not a failure
       gather(cell, u, local);
       if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) return cell;
     }

@@ -122,5 +122,20 @@ TEST(Model, SwitchingFromTensorHookeToStvkMatchesAFreshStvkModel) {
   EXPECT_EQ(switched.law_id(0), reference.law_id(0));
 }
 
+/// Flipping every cell along x (u_x = -2 x, so F_xx = -1) inverts them all:
+/// the check names one under neo-Hookean and none under the invertible
+/// stable neo-Hookean, whose energy stays finite there.
+TEST(Model, InversionCheckSkipsInvertibleLaws) {
+  const Mesh mesh = test::beam(3, "tet6", {2, 1, 1});
+  const Model neohookean(mesh, test::cantilever("neohookean").model);
+  const Model stable(mesh, test::cantilever("stable_neohookean").model);
+  std::vector<double> flipped(neohookean.dof_count(), 0.0);
+  for (int node = 0; node < mesh.node_count(); ++node) flipped[3 * node] = -2.0 * mesh.rest_positions[3 * node];
+  EXPECT_EQ(neohookean.first_inverted_cell(flipped), 0);
+  EXPECT_EQ(stable.first_inverted_cell(flipped), -1);
+  EXPECT_TRUE(std::isfinite(stable.strain_energy(flipped)));
+  EXPECT_GT(stable.strain_energy(flipped), 0.0);
+}
+
 }  // namespace
 }  // namespace tensormass

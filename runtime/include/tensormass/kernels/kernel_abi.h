@@ -54,6 +54,9 @@ typedef struct tm_kernel {
   /// 1 when the energy is quadratic in u with a stress-free reference
   /// (Hooke): gradient = hessian * u and the hessian does not depend on u.
   int linear;
+  /// 1 when the law is defined and restoring for det F <= 0 (stable
+  /// neo-Hookean): the runtime lets such elements invert instead of stopping.
+  int invertible;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).

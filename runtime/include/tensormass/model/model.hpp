@@ -114,7 +114,7 @@ class Model {
   /// Total strain energy at displacement u (dof_count).
   double strain_energy(std::span<const double> u) const;
   /// First cell whose deformation gradient has det <= 0 (or NaN) at a
-  /// quadrature point, or -1.
+  /// quadrature point, or -1; cells under an invertible law (tm_kernel::invertible) are skipped.
   int first_inverted_cell(std::span<const double> u) const;
   /// Gathers the cell's displacements (nodes by dim) from u.
   void gather(int cell, std::span<const double> u, double* local) const;
