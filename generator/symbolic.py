@@ -187,7 +187,7 @@ def _rational_polar_point(dim: int) -> tuple[dict, dict]:
     return values, {"stretch": stretch}
 
 
-def _check_rotation_enters_through_stretch(law: LawSpec, psi: sympy.Expr, P: tuple, dim: int) -> None:
+def _check_rotation_enters_through_stretch(law: LawSpec, psi: sympy.Expr, dim: int) -> None:
     """The term dpsi/dR : dR/dH that P = dpsi/dH|R leaves out must vanish; it
     does when psi is an isotropic function of S (checked exactly at a rational point)."""
     R = rotation_symbols(dim)
@@ -213,7 +213,7 @@ def law_derivatives(law: LawSpec, dim: int) -> tuple[sympy.Expr, tuple, tuple]:
     P = tuple(sympy.diff(psi, h) for h in H)
     rotation = uses_rotation(law)
     if rotation:
-        _check_rotation_enters_through_stretch(law, psi, P, dim)
+        _check_rotation_enters_through_stretch(law, psi, dim)
         R, dR = rotation_symbols(dim), rotation_derivatives(dim)
     A = [[None] * len(H) for _ in H]
     for i in range(len(H)):

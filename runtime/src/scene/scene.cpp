@@ -23,7 +23,6 @@ using scene_yaml::Value;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
-const std::vector<std::string> kCriteria = criterion_names();
 
 /// Every map of the schema and its keys, by path pattern.
 const KeyTable& scene_keys() {
@@ -279,7 +278,7 @@ CriterionSpec read_criterion(const Value& item) {
   item.expect_map();
   CriterionSpec c;
   c.line = item.line();
-  c.name = one_of(item.required("name"), kCriteria, "criterion");
+  c.name = one_of(item.required("name"), criterion_names(), "criterion");
   c.threshold = non_negative(item.required("threshold"));
   const Value rung = item.child("rung");
   if (rung.present()) c.rung = one_of(rung, Registry::instance().laws(), "law");
