@@ -77,19 +77,6 @@ struct Run {
 
 // --- Scenes ------------------------------------------------------------------
 
-/// Adds a node group (dim 0) of the nodes for which `inside(x, y, z)` holds.
-template <typename Inside>
-void add_node_group(Mesh& mesh, const std::string& name, Inside inside) {
-  Group group;
-  group.name = name;
-  group.dim = 0;
-  for (int node = 0; node < mesh.node_count(); ++node) {
-    const double* x = &mesh.rest_positions[3 * node];
-    if (inside(x[0], x[1], x[2])) group.nodes.push_back(node);
-  }
-  mesh.groups.push_back(std::move(group));
-}
-
 MaterialSpec material(const std::string& law, double young, double poisson, double density) {
   MaterialSpec m;
   m.law = law;
@@ -111,8 +98,8 @@ Case indentation(bool quick) {
   spec.phases = {{"tet6", 1.0}};
   c.mesh = make_beam(spec);
   const double eps = 1e-9;
-  add_node_group(c.mesh, "base", [&](double, double y, double) { return y < eps; });
-  add_node_group(c.mesh, "probe", [&](double x, double y, double z) {
+  c.mesh.add_node_group("base", [&](double, double y, double) { return y < eps; });
+  c.mesh.add_node_group("probe", [&](double x, double y, double z) {
     return y > 0.05 - eps && std::abs(x - 0.05) <= 0.01 + eps && std::abs(z - 0.05) <= 0.01 + eps;
   });
   Scene& s = c.scene;

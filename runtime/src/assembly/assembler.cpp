@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tensormass/assembly/psd_projection.hpp"
+
 namespace tensormass {
 
 namespace {
@@ -25,6 +27,15 @@ void blend_cell(const Model& model, int cell, const double* u, double* g, double
     before.gradient(u, model.consts(cell), old_g);
   }
   for (int i = 0; i < dofs; ++i) g[i] = w * g[i] + (1 - w) * old_g[i];
+}
+
+/// The energy of one kernel cell: w W_new + (1 - w) W_old while it blends.
+double cell_energy(const Model& model, int cell, const double* u) {
+  const double energy = model.kernel(cell).energy(u, model.consts(cell));
+  const tm_kernel* before = model.blend_from(cell);
+  if (!before) return energy;
+  const double w = model.blend_weight(cell);
+  return w * energy + (1 - w) * before->energy(u, model.consts(cell));
 }
 
 }  // namespace
@@ -154,6 +165,33 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
   }
 }
 
+double Assembler::energy(std::span<const double> u) const {
+  const Model& model = *model_;
+  const int folded = linear_ ? (linear_->update(), linear_->folded_count()) : 0;
+  double total = 0.0;
+  if (folded > 0) {
+    std::vector<double> g(u.size());
+    linear_->multiply(u, g);
+    for (std::size_t d = 0; d < u.size(); ++d) total += 0.5 * u[d] * g[d];
+  }
+  const int cells = model.cell_count();
+  if (folded == cells) return total;
+  const int chunks = (cells + kChunkCells - 1) / kChunkCells;
+  std::vector<double> chunk_energy(chunks, 0.0);
+#pragma omp parallel for schedule(dynamic, 1) if (cells - folded >= kParallelCells)
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    double local[CellBuffers::kMaxDofs], sum = 0.0;
+    for (int cell = chunk * kChunkCells; cell < std::min(cells, (chunk + 1) * kChunkCells); ++cell) {
+      if (linear_ && linear_->folded(cell)) continue;
+      model.gather(cell, u, local);
+      sum += cell_energy(model, cell, local);
+    }
+    chunk_energy[chunk] = sum;
+  }
+  for (double e : chunk_energy) total += e;
+  return total;
+}
+
 void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                               CellBuffers& buffers) const {
   const Model& model = *model_;
@@ -168,6 +206,7 @@ void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<dou
   } else {
     kernel.gradient(buffers.u, model.consts(cell), buffers.g);
   }
+  if (stiffness && project_hessians_) project_to_positive_semidefinite(local_k, kernel.dofs);
   if (stiffness) {
     const int* scatter = scatter_.data() + scatter_offsets_[cell];
     const int dofs2 = kernel.dofs * kernel.dofs;

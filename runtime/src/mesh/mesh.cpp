@@ -20,6 +20,18 @@ const Group* Mesh::group(std::string_view name) const {
   return nullptr;
 }
 
+const Group& Mesh::add_node_group(std::string name, const std::function<bool(double, double, double)>& inside) {
+  Group group;
+  group.name = std::move(name);
+  group.dim = 0;
+  for (int node = 0; node < node_count(); ++node) {
+    const double* x = &rest_positions[3 * node];
+    if (inside(x[0], x[1], x[2])) group.nodes.push_back(node);
+  }
+  groups.push_back(std::move(group));
+  return groups.back();
+}
+
 std::pair<int, int> Mesh::locate(int cell) const {
   for (int b = 0; b < static_cast<int>(blocks.size()); ++b) {
     const ElementBlock& block = blocks[b];

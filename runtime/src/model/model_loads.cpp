@@ -48,6 +48,7 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
           integral_n2[j] += w_det * N * N;
         }
       }
+      energy_scale_ += spec.materials[cell_material_[cell]].young * volume;
       double diagonal_sum = 0.0;
       for (int j = 0; j < n; ++j) diagonal_sum += integral_n2[j];
       const auto nodes = cell_nodes(cell);
@@ -210,6 +211,32 @@ void Model::apply_nodal_forces_and_pressure(const ModelSpec& spec) {
   }
 }
 
+namespace {
+
+/// The unit axis (z in 2D) and the angle in radians (std::invalid_argument for a zero axis).
+PrescribedRotation prepared_rotation(const RotationSpec& spec, int dim) {
+  std::array<double, 3> axis = dim == 2 ? std::array<double, 3>{0.0, 0.0, 1.0} : spec.axis;
+  const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(length > 0)) throw std::invalid_argument("Model: a prescribed rotation with a zero axis");
+  for (double& a : axis) a /= length;
+  const double sign = dim == 2 && spec.axis[2] < 0 ? -1.0 : 1.0;  // 2D: the axis given as -z turns the other way
+  return {axis, spec.centre, sign * spec.angle * M_PI / 180.0};
+}
+
+}  // namespace
+
+std::array<double, 3> PrescribedRotation::displacement(const double* x, double fraction) const {
+  // Rodrigues: R v = v cos t + (k x v) sin t + k (k.v)(1 - cos t), v = x - centre.
+  const double t = fraction * radians, c = std::cos(t), s = std::sin(t);
+  const std::array<double, 3> v = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
+  const std::array<double, 3> k = axis;
+  const std::array<double, 3> kxv = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+  const double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+  std::array<double, 3> u;
+  for (int a = 0; a < 3; ++a) u[a] = v[a] * c + kxv[a] * s + k[a] * kv * (1 - c) - v[a];
+  return u;
+}
+
 void Model::collect_constraints(const ModelSpec& spec) {
   std::map<int, PrescribedDof> by_dof;  // a later constraint on a dof wins
   profiles_.push_back(TimeProfile{});   // 0: constant, for fixed groups
@@ -219,9 +246,15 @@ void Model::collect_constraints(const ModelSpec& spec) {
   for (const PrescribedSpec& prescribed : spec.prescribed) {
     profiles_.push_back(prescribed.profile);
     const int profile = static_cast<int>(profiles_.size()) - 1;
+    int rotation = -1;
+    if (prescribed.rotates) {
+      rotations_.push_back(prepared_rotation(prescribed.rotation, dim_));
+      rotation = static_cast<int>(rotations_.size()) - 1;
+    }
     for (int node : model_group(*mesh_, prescribed.region).nodes)
       for (int a = 0; a < dim_; ++a)
-        if (prescribed.components[a]) by_dof[node * dim_ + a] = {node * dim_ + a, prescribed.displacement[a], profile};
+        if (prescribed.components[a] || prescribed.rotates)
+          by_dof[node * dim_ + a] = {node * dim_ + a, prescribed.displacement[a], profile, rotation};
   }
   for (const auto& [dof, p] : by_dof) prescribed_.push_back(p);
   free_index_.assign(dof_count(), -1);

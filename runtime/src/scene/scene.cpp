@@ -29,15 +29,16 @@ const KeyTable& scene_keys() {
   static const KeyTable table = {
       {"", {"mesh", "materials", "fixed", "prescribed", "loads", "solver", "adaptivity", "output"}},
       {"materials[]", {"region", "law", "young", "poisson", "density", "split"}},
-      {"prescribed[]", {"region", "displacement", "profile"}},
+      {"prescribed[]", {"region", "displacement", "rotation", "profile"}},
+      {"prescribed[].rotation", {"axis", "centre", "angle"}},
       {"prescribed[].profile", kProfileKeys},
       {"loads", {"gravity", "nodal_forces", "pressure", "profile"}},
       {"loads.nodal_forces[]", {"region", "force"}},
       {"loads.pressure[]", {"region", "pressure"}},
       {"loads.profile", kProfileKeys},
       {"solver",
-       {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "damping", "linear",
-        "threads"}},
+       {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "predictor", "damping",
+        "linear", "threads", "project_hessian"}},
       {"solver.damping", {"mass", "stiffness"}},
       {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations"}},
       {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
@@ -94,6 +95,13 @@ double open_fraction(const Value& value) {
   const double x = value.number();
   if (!(x > 0 && x < 1)) value.fail("must be > 0 and < 1, got " + value.scalar());
   return x;
+}
+
+bool boolean(const Value& value) {
+  const std::string text = value.scalar();
+  if (!value.is_scalar() || (text != "true" && text != "false"))
+    value.fail("expected true or false, got " + value.describe());
+  return text == "true";
 }
 
 std::function<int(const Value&)> at_least(int minimum) {
@@ -183,6 +191,19 @@ void read_displacement(const Value& value, PrescribedSpec& spec) {
   }
 }
 
+/// {axis, centre, angle}: axis 2 or 3 numbers, not zero (default z);
+/// centre (default the origin); angle in degrees (required).
+RotationSpec read_rotation(const Value& value) {
+  value.expect_map();
+  RotationSpec rotation;
+  read_optional(value, "axis", rotation.axis, vector3);
+  const auto& a = rotation.axis;
+  if (a[0] == 0 && a[1] == 0 && a[2] == 0) value.child("axis").fail("must not be zero");
+  read_optional(value, "centre", rotation.centre, vector3);
+  rotation.angle = value.required("angle").number();
+  return rotation;
+}
+
 std::vector<PrescribedSpec> read_prescribed(const Value& list) {
   std::vector<PrescribedSpec> out;
   if (!list.present()) return out;
@@ -191,7 +212,15 @@ std::vector<PrescribedSpec> read_prescribed(const Value& list) {
     PrescribedSpec spec;
     spec.line = item.line();
     spec.region = item.required("region").text();
-    read_displacement(item.required("displacement"), spec);
+    const Value rotation = item.child("rotation");
+    if (rotation.present()) {
+      spec.rotates = true;
+      spec.rotation = read_rotation(rotation);
+      spec.displacement = {0.0, 0.0, 0.0};
+      read_optional(item, "displacement", spec.displacement, vector3);
+    } else {
+      read_displacement(item.required("displacement", "(or 'rotation')"), spec);
+    }
     read_optional(item, "profile", spec.profile, read_profile);
     out.push_back(spec);
   }
@@ -268,6 +297,10 @@ SolverSettings read_solver(const Value& section) {
   read_optional(section, "dt", solver.dt, positive);
   read_optional(section, "steps", solver.steps, at_least(1));
   read_optional(section, "newton_iterations", solver.newton_iterations, at_least(1));
+  read_optional(section, "predictor", solver.predictor, [](const Value& v) {
+    return one_of_enum(v, {StepPredictor::velocity, StepPredictor::none}, step_predictor_name, "predictor");
+  });
+  read_optional(section, "project_hessian", solver.project_hessian, boolean);
   read_damping(section.child("damping"), solver);
   solver.linear = read_linear(section.child("linear"));
   read_optional(section, "threads", solver.threads, at_least(0));

@@ -54,6 +54,9 @@ void check_groups(const Scene& scene, const Mesh& mesh) {
   for (std::size_t i = 0; i < scene.model.prescribed.size(); ++i) {
     const PrescribedSpec& p = scene.model.prescribed[i];
     require_group(scene, mesh, p.region, p.line, indexed("prescribed", i, ".region"));
+    if (p.rotates && mesh.dim == 2 && (p.rotation.axis[0] != 0 || p.rotation.axis[1] != 0))
+      throw InputError(place(scene, p.line, indexed("prescribed", i, ".rotation.axis")) +
+                       "a 2D mesh turns in its plane, about z: give axis [0, 0, 1] or leave it out");
   }
   for (std::size_t i = 0; i < scene.model.loads.nodal_forces.size(); ++i) {
     const NodalForceSpec& f = scene.model.loads.nodal_forces[i];
@@ -139,7 +142,7 @@ void check_constraints(const Scene& scene, const Mesh& mesh) {
   for (const PrescribedSpec& p : scene.model.prescribed)
     for (int node : mesh.group(p.region)->nodes)
       for (int a = 0; a < dim; ++a)
-        if (p.components[a]) constrained[static_cast<std::size_t>(node) * dim + a] = 1;
+        if (p.components[a] || p.rotates) constrained[static_cast<std::size_t>(node) * dim + a] = 1;
   const std::size_t count = std::count(constrained.begin(), constrained.end(), 1);
   if (scene.solver.is_static() && count == 0)
     throw InputError(scene.path + ": a static solve needs fixed or prescribed nodes (key 'fixed' or 'prescribed')");

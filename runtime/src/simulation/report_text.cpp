@@ -45,6 +45,7 @@ std::string format_report(const Scene& scene, const RunReport& report) {
     text << "  newton    " << s.newton_iterations << " iterations";
     if (!s.newton_per_step.empty())
       text << format(" (%.2f per step)", static_cast<double>(s.newton_iterations) / s.newton_per_step.size());
+    if (s.shortened_steps > 0) text << ", " << s.shortened_steps << " shortened by the line search";
     text << "; linear iterations " << s.linear_iterations;
     if (s.factorizations > 0) text << ", factorisations " << s.factorizations;
     text << "\n";

@@ -122,7 +122,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   validate_against_mesh(scene, mesh);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   Model model(mesh, scene.model);
-  const Assembler assembler(model);
+  Assembler assembler(model);
+  assembler.set_hessian_projection(scene.solver.project_hessian);
   const bool dynamic = scene.solver.is_dynamic();
   std::unique_ptr<Adaptivity> adaptivity;
   if (scene.adaptivity.enabled) {

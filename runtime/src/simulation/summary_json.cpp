@@ -68,9 +68,11 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   j << "  \"solver\": {\"type\": " << quoted(std::string(solver_type_name(scene.solver.type)))
     << ", \"linear\": " << quoted(report.linear_solver);
   if (dynamic)
-    j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations;
+    j << ", \"dt\": " << number(scene.solver.dt) << ", \"newton_iterations\": " << scene.solver.newton_iterations
+      << ", \"predictor\": " << quoted(std::string(step_predictor_name(scene.solver.predictor)));
   else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  j << ", \"project_hessian\": " << (scene.solver.project_hessian ? "true" : "false");
   j << ", \"threads\": " << omp_get_max_threads()
     << ", \"omp_wait_policy\": " << quoted(wait_policy ? wait_policy : "unset") << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
@@ -83,7 +85,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     << ", \"total\": " << number(report.wall_seconds) << "},\n";
   j << "  \"newton_iterations\": {\"total\": " << s.newton_iterations << ", \"per_step\": [";
   for (std::size_t i = 0; i < s.newton_per_step.size(); ++i) j << (i ? ", " : "") << s.newton_per_step[i];
-  j << "]},\n";
+  j << "], \"shortened_by_line_search\": " << s.shortened_steps << "},\n";
   auto series = [&](const char* name, const std::vector<double>& values) {
     j << "\"" << name << "\": [";
     for (std::size_t i = 0; i < values.size(); ++i) j << (i ? ", " : "") << number(values[i]);

@@ -1,6 +1,9 @@
 // Backward Euler: M (v1 - v0) / dt = f(t1) - g(u1) - C v1, u1 = u0 + dt v1,
-// with Rayleigh damping C = alpha M + beta K(u). Newton on u1 starting at
-// u0, so one iteration is the classic linearised step (Baraff-Witkin).
+// with Rayleigh damping C = alpha M + beta K(u). Newton on u1 starting from
+// the predictor u0 + dt v0 (solver.predictor), so one iteration is the
+// classic linearised step (Baraff-Witkin) from there; each Newton step is
+// shortened by a backtracking line search on the step's incremental
+// potential when the full step would raise it or invert a cell.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,6 +11,124 @@
 #include "solvers/integration_support.hpp"
 
 namespace tensormass {
+
+namespace {
+
+/// One backward Euler step from (u0, v0) to time t1: its residual and the
+/// incremental potential whose gradient it is,
+///   Phi(u) = sum_free m/2 (|u - u0 - dt v0|^2 / dt^2 + alpha |u - u0|^2 / dt)
+///            + W(u) - f.u + beta / (2 dt) du.K du,   du = (u - u0) on the free dofs.
+/// K is the tangent at the current Newton iterate, held fixed along a line
+/// search, so that Phi's slope there is the residual's (Rayleigh stiffness
+/// damping of a non-linear K has no potential of its own).
+struct EulerStep {
+  Integration& run;
+  const std::vector<double>& u0;
+  const std::vector<double>& v0;
+  const std::vector<double>& f;  ///< external force at t1 (dof_count)
+
+  int free_count() const { return run.model.free_dof_count(); }
+
+  /// r (free dofs) = M ((v - v0) / dt + alpha v) + beta K v + g - f, v = (u - u0) / dt.
+  void residual(const std::vector<double>& u, const std::vector<double>& g, const SparseMatrix& K,
+                std::vector<double>& r) const {
+    const SolverSettings& s = run.settings;
+    const auto& free = run.model.free_dofs();
+    const auto& mass = run.model.lumped_mass();
+    const int n = free_count();
+    std::vector<double> v_free(n), kv(n, 0.0);
+    for (int i = 0; i < n; ++i) v_free[i] = (u[free[i]] - u0[free[i]]) / s.dt;
+    if (s.damping_stiffness != 0.0) K.multiply(v_free, kv);
+    for (int i = 0; i < n; ++i) {
+      const int d = free[i];
+      r[i] = mass[d] * ((v_free[i] - v0[d]) / s.dt + s.damping_mass * v_free[i]) + s.damping_stiffness * kv[i] + g[d] -
+             f[d];
+    }
+  }
+
+  /// Phi(u) with K the tangent of the current iterate.
+  double potential(const std::vector<double>& u, const SparseMatrix& K) const {
+    const SolverSettings& s = run.settings;
+    const auto& free = run.model.free_dofs();
+    const auto& mass = run.model.lumped_mass();
+    const int n = free_count();
+    double inertia = 0.0, external = 0.0;
+    std::vector<double> du(n), kdu(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      const int d = free[i];
+      du[i] = u[d] - u0[d];
+      const double ahead = du[i] - s.dt * v0[d];
+      inertia += 0.5 * mass[d] * (ahead * ahead / (s.dt * s.dt) + s.damping_mass * du[i] * du[i] / s.dt);
+      external += f[d] * u[d];
+    }
+    double damping = 0.0;
+    if (s.damping_stiffness != 0.0) {
+      K.multiply(du, kdu);
+      damping = 0.5 * s.damping_stiffness / s.dt * dot(du, kdu);
+    }
+    double energy = 0.0;
+    {
+      detail::PhaseTimer timer(run.statistics.assembly_seconds);
+      energy = run.assembler.energy(u);
+    }
+    return inertia + energy - external + damping;
+  }
+};
+
+/// The start of the step's Newton iterations: u0 + dt v0 on the free dofs
+/// (solver.predictor: velocity) unless that inverts a cell, else u0; the
+/// prescribed dofs at their values at t1.
+std::vector<double> predict(const EulerStep& step, double t1) {
+  const Model& model = step.run.model;
+  std::vector<double> u = step.u0;
+  model.apply_constraints(t1, u);
+  if (step.run.settings.predictor == StepPredictor::none) return u;
+  std::vector<double> ahead = u;
+  for (int d : model.free_dofs()) ahead[d] += step.run.settings.dt * step.v0[d];
+  return model.first_inverted_cell(ahead) < 0 ? ahead : u;
+}
+
+/// What a line search did: the step length taken, and whether the new u
+/// was checked free of inverted cells.
+struct SearchResult {
+  double length = 1.0;
+  bool uninverted = false;
+};
+
+/// Moves u along `direction` (free dofs): the full step unless it raises
+/// Phi by Armijo's test (slope: r.direction, negative for descent) or
+/// inverts a cell of a law that cannot invert; then halved, at most 10
+/// times. When no length passes, the full step is taken (the step's
+/// inversion check then names the cell).
+SearchResult line_search(const EulerStep& step, const SparseMatrix& K, double slope,
+                         const std::vector<double>& direction, std::vector<double>& u) {
+  const Model& model = step.run.model;
+  const auto& free = model.free_dofs();
+  const double start = step.potential(u, K);
+  // Each cell's energy carries a round-off of about 1e-16 of E times its
+  // volume whatever its value (its terms cancel near rest), and so does
+  // the total: changes below that say nothing about descent.
+  const double noise = 1e-12 * std::abs(start) + 1e-14 * model.energy_scale();
+  std::vector<double> trial(u.size());
+  auto move = [&](double length) {
+    trial = u;
+    for (std::size_t i = 0; i < free.size(); ++i) trial[free[i]] += length * direction[i];
+  };
+  double length = 1.0;
+  for (int halving = 0; halving <= 10; ++halving, length *= 0.5) {
+    move(length);
+    if (model.first_inverted_cell(trial) >= 0) continue;
+    if (!(slope < 0)) break;  // not a descent direction: only the inversion guard applies
+    const double energy = step.potential(trial, K);
+    if (std::isfinite(energy) && energy <= start + 1e-4 * length * slope + noise) break;
+  }
+  const bool found = length >= 1.0 / 1024;
+  if (!found) move(1.0);
+  u.swap(trial);
+  return {found ? length : 1.0, found};
+}
+
+}  // namespace
 
 void solve_implicit(Integration& run, State& state, const StepObserver& observer) {
   const Model& model = run.model;
@@ -18,7 +139,7 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
   const auto& mass = model.lumped_mass();
   state.displacement.resize(dofs, 0.0);
   state.velocity.resize(dofs, 0.0);
-  std::vector<double> g(dofs), v(dofs), r(n), step(n, 0.0), damping(n), kv(n), v_free(n);
+  std::vector<double> g(dofs), v(dofs), r(n), direction(n, 0.0);
   SparseMatrix K = run.assembler.pattern(), J = run.assembler.pattern();
   const double mass_factor = 1.0 / (dt * dt) + alpha / dt, stiffness_factor = 1.0 + beta / dt;
   for (int s = 1; s <= settings.steps; ++s) {
@@ -26,20 +147,15 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
     const double t1 = state.time + dt;
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
     const std::vector<double> u0 = state.displacement, v0 = state.velocity;
-    std::vector<double> u = u0;
-    model.apply_constraints(t1, u);
     const std::vector<double> f = external_force(model, model.load_factor(t1));
+    const EulerStep step{run, u0, v0, f};
+    std::vector<double> u = predict(step, t1);
     double reference = 0.0;
     int iterations = 0;
+    bool uninverted = false;  // u checked by the last line search
     for (int iteration = 1; iteration <= settings.newton_iterations; ++iteration) {
       detail::assemble(run, u, g, &K);
-      for (int d = 0; d < dofs; ++d) v[d] = (u[d] - u0[d]) / dt;
-      for (int i = 0; i < n; ++i) v_free[i] = v[free[i]];
-      if (beta != 0.0) K.multiply(v_free, kv);
-      for (int i = 0; i < n; ++i) {
-        const int d = free[i];
-        r[i] = mass[d] * ((v[d] - v0[d]) / dt + alpha * v[d]) + (beta != 0.0 ? beta * kv[i] : 0.0) + g[d] - f[d];
-      }
+      step.residual(u, g, K, r);
       detail::require_finite(r, "the residual " + where);
       const double residual = norm(r);
       if (iteration == 1) reference = std::max(residual, 1e-300);
@@ -48,12 +164,15 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
       for (int k = 0; k < K.nonzeros(); ++k) J.values[k] = stiffness_factor * K.values[k];
       for (int i = 0; i < n; ++i) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];
       for (double& x : r) x = -x;
-      detail::linear_solve(run, J, r, step);  // warm start: the previous correction
-      for (int i = 0; i < n; ++i) u[free[i]] += step[i];
+      detail::linear_solve(run, J, r, direction);  // warm start: the previous correction
+      const double slope = -dot(r, direction);     // r holds -residual here
+      const SearchResult search = line_search(step, K, slope, direction, u);
+      if (search.length < 1.0) ++run.statistics.shortened_steps;
+      uninverted = search.uninverted;
       iterations = iteration;
     }
     detail::require_finite(u, "the displacement " + where);
-    detail::require_no_inversion(model, u, where);
+    if (!uninverted) detail::require_no_inversion(model, u, where);
     for (int d = 0; d < dofs; ++d) v[d] = (u[d] - u0[d]) / dt;
     state.displacement = std::move(u);
     state.velocity = v;

@@ -44,10 +44,12 @@ inline void require_finite(std::span<const double> values, const std::string& wh
     if (!std::isfinite(x)) throw NumericalError(what + " is not finite (NaN or infinity)");
 }
 
-/// Throws NumericalError naming the first inverted element.
+/// Throws NumericalError naming the first inverted element and its law.
 inline void require_no_inversion(const Model& model, std::span<const double> u, const std::string& where) {
   const int cell = model.first_inverted_cell(u);
-  if (cell >= 0) throw NumericalError(model.mesh().describe_cell(cell) + " inverted (det F <= 0) " + where);
+  if (cell < 0) return;
+  throw NumericalError(model.mesh().describe_cell(cell) + " inverted (det F <= 0) under law " + model.kernel(cell).law +
+                       " " + where + " (a law that cannot invert; stable_neohookean is defined through inversion)");
 }
 
 }  // namespace tensormass::detail

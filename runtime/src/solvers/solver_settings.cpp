@@ -15,4 +15,8 @@ std::string_view linear_solver_type_name(LinearSolverType type) {
   return type == LinearSolverType::cg ? "cg" : "cholmod";
 }
 
+std::string_view step_predictor_name(StepPredictor predictor) {
+  return predictor == StepPredictor::none ? "none" : "velocity";
+}
+
 }  // namespace tensormass

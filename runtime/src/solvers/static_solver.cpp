@@ -34,9 +34,10 @@ std::string format_number(double x) {
   return text.str();
 }
 
-/// Potential energy W(u) - f.u of the static problem.
-double potential(const Model& model, const std::vector<double>& u, const std::vector<double>& f) {
-  return model.strain_energy(u) - dot(f, u);
+/// Potential energy W(u) - f.u of the static problem (W as assembled: blends, folded cells).
+double potential(Integration& run, const std::vector<double>& u, const std::vector<double>& f) {
+  detail::PhaseTimer timer(run.statistics.assembly_seconds);
+  return run.assembler.energy(u) - dot(f, u);
 }
 
 /// The relative residual a Newton step's linear solve must reach (inexact
@@ -90,11 +91,12 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
       } else if (trial_residual <= residual || halving == 8 || !(slope < 0)) {
         break;
       } else {
-        if (std::isnan(energy)) energy = potential(model, u, f);
-        if (potential(model, trial_u, f) <= energy + 1e-4 * alpha * slope) break;
+        if (std::isnan(energy)) energy = potential(run, u, f);
+        if (potential(run, trial_u, f) <= energy + 1e-4 * alpha * slope) break;
       }
       alpha *= 0.5;
     }
+    if (alpha < 1.0) ++run.statistics.shortened_steps;
     if (debug)
       std::fprintf(stderr, "newton %d: residual %.3e, step %.3g\n", iteration, trial_residual / reference, alpha);
     const double previous = residual;

@@ -174,3 +174,94 @@ TEST(Assembler, FoldedAssemblyIsIdenticalOnOneAndTwoThreads) {
 
 }  // namespace
 }  // namespace tensormass
+
+namespace tensormass {
+namespace {
+
+/// Central difference of the assembled energy along `direction` against
+/// g(u).direction, relative to the size of the forces.
+double energy_slope_error(const Assembler& assembler, const Model& model, const std::vector<double>& u,
+                          const std::vector<double>& direction) {
+  std::vector<double> g(model.dof_count());
+  assembler.assemble(u, g, nullptr);
+  const double h = 1e-6;
+  std::vector<double> ahead = u, behind = u;
+  for (std::size_t i = 0; i < u.size(); ++i) ahead[i] += h * direction[i], behind[i] -= h * direction[i];
+  const double slope = (assembler.energy(ahead) - assembler.energy(behind)) / (2 * h);
+  double exact = 0, scale = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) exact += g[i] * direction[i], scale += std::abs(g[i] * direction[i]);
+  return std::abs(slope - exact) / scale;
+}
+
+TEST(Assembler, EnergyIsThePotentialOfTheAssembledForcesWithFoldedAndBlendingCells) {
+  const Mesh mesh = test::beam(2, "quad4", {8, 2, 1});
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler folded(model), per_cell(model, false);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.05);
+  const std::vector<double> direction = wavy_displacement(model.dof_count(), 1.0);
+  for (int cell = 0; cell < model.cell_count(); cell += 3) model.set_law(cell, "stvk");
+  const tm_kernel* stvk = &model.kernel(0);
+  model.set_law(0, "neohookean");
+  model.start_blend(0, stvk);
+  model.set_blend_weight(0, 0.3);
+  EXPECT_LT(energy_slope_error(folded, model, u, direction), 1e-7);
+  // Folding changes the summation, not the value.
+  EXPECT_NEAR(folded.energy(u), per_cell.energy(u), 1e-12 * std::abs(per_cell.energy(u)));
+  // Without blends it is the model's total strain energy.
+  model.set_blend_weight(0, 1.0);
+  EXPECT_NEAR(folded.energy(u), model.strain_energy(u), 1e-12 * std::abs(model.strain_energy(u)));
+}
+
+TEST(Assembler, EnergyIsIdenticalOnOneAndTwoThreads) {
+  const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
+  Model model(mesh, test::cantilever("stvk").model);
+  const Assembler assembler(model);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.01);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const double one = assembler.energy(u);
+  omp_set_num_threads(2);
+  const double two = assembler.energy(u);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one, two);
+}
+
+/// The smallest of x.K x / x.x over a few wavy vectors x of the free dofs.
+double smallest_rayleigh_quotient(const SparseMatrix& K) {
+  double smallest = INFINITY;
+  for (int k = 1; k <= 20; ++k) {
+    std::vector<double> x(K.rows), y(K.rows);
+    for (int i = 0; i < K.rows; ++i) x[i] = std::sin(0.37 * k * i + k);
+    K.multiply(x, y);
+    double xKx = 0, xx = 0;
+    for (int i = 0; i < K.rows; ++i) xKx += x[i] * y[i], xx += x[i] * x[i];
+    smallest = std::min(smallest, xKx / xx);
+  }
+  return smallest;
+}
+
+TEST(Assembler, ProjectedHessiansGiveAPositiveSemidefiniteTangentUnderCompression) {
+  // A StVK beam squashed to 40 % along x: its tangent is indefinite.
+  const Mesh mesh = test::beam(3, "tet6", {6, 2, 2});
+  const Model model(mesh, test::cantilever("stvk").model);
+  Assembler assembler(model);
+  std::vector<double> u(model.dof_count(), 0.0), g(model.dof_count());
+  for (int node = 0; node < mesh.node_count(); ++node) u[node * 3] = -0.6 * mesh.rest_positions[3 * node];
+  SparseMatrix plain = assembler.pattern(), projected = assembler.pattern();
+  assembler.assemble(u, g, &plain);
+  assembler.set_hessian_projection(true);
+  assembler.assemble(u, g, &projected);
+  EXPECT_LT(smallest_rayleigh_quotient(plain), 0.0);
+  EXPECT_GE(smallest_rayleigh_quotient(projected), 0.0);
+  // At rest every element Hessian is positive semi-definite already: unchanged.
+  std::vector<double> rest(model.dof_count(), 0.0);
+  SparseMatrix at_rest = assembler.pattern(), at_rest_plain = assembler.pattern();
+  assembler.assemble(rest, g, &at_rest);
+  assembler.set_hessian_projection(false);
+  assembler.assemble(rest, g, &at_rest_plain);
+  for (std::size_t k = 0; k < at_rest.values.size(); ++k)
+    EXPECT_NEAR(at_rest.values[k], at_rest_plain.values[k], 1e-9 * std::abs(at_rest_plain.values[k]) + 1e-6);
+}
+
+}  // namespace
+}  // namespace tensormass

@@ -129,6 +129,17 @@ std::vector<ErrorCase> vector_cases() {
              {"scene.yaml:9:", "loads.nodal_forces[0].force[1]", "'x'"}),
       append("DisplacementOneComponent", "prescribed:\n  - {region: top, displacement: [0]}\n",
              {"scene.yaml:9:", "prescribed[0].displacement", "2 or 3"}),
+      append("NeitherDisplacementNorRotation", "prescribed:\n  - {region: top}\n",
+             {"scene.yaml:9:", "missing required key 'prescribed[0].displacement'", "or 'rotation'"}),
+      append("RotationWithoutAngle", "prescribed:\n  - {region: top, rotation: {axis: [1, 0, 0]}}\n",
+             {"scene.yaml:9:", "prescribed[0].rotation.angle"}),
+      append("RotationZeroAxis", "prescribed:\n  - {region: top, rotation: {axis: [0, 0, 0], angle: 90}}\n",
+             {"scene.yaml:9:", "prescribed[0].rotation.axis", "must not be zero"}),
+      append("RotationUnknownKey", "prescribed:\n  - {region: top, rotation: {angle: 90, center: [0, 0]}}\n",
+             {"scene.yaml:9:", "unknown key 'prescribed[0].rotation.center'", "centre"}),
+      append("PredictorUnknown", "  predictor: linear\n", {"scene.yaml:8:", "solver.predictor", "velocity, none"}),
+      append("ProjectHessianNotABoolean", "  project_hessian: yes please\n",
+             {"scene.yaml:8:", "solver.project_hessian", "true or false"}),
   };
 }
 

@@ -25,6 +25,7 @@ prescribed:
   - region: wall
     displacement: [~, -0.01]
     profile: ramp
+  - {region: end, rotation: {axis: [1, 0, 0], centre: [0, 0.5, 0.5], angle: 180}, displacement: [0.1, 0]}
 loads:
   gravity: [0, -9.81]
   nodal_forces: [{region: tip, force: [0, -1.5, 0.4]}]
@@ -39,6 +40,8 @@ solver:
   dt: 0.01
   steps: 100
   newton_iterations: 3
+  predictor: none
+  project_hessian: true
   damping: {mass: 0.1, stiffness: 0.001}
   linear: {type: cg, tolerance: 1.0e-9, max_iterations: 500}
   threads: 2
@@ -78,7 +81,7 @@ TEST(SceneLoad, FullSceneMaterialsAndConstraints) {
   EXPECT_EQ(s.model.fixed, (std::vector<std::string>{"clamp", "base"}));
   EXPECT_EQ(s.model.fixed_lines, (std::vector<int>{10, 10}));
 
-  ASSERT_EQ(s.model.prescribed.size(), 2u);
+  ASSERT_EQ(s.model.prescribed.size(), 3u);
   const tensormass::PrescribedSpec& d = s.model.prescribed[0];
   EXPECT_EQ(d.region, "diaphragm");
   EXPECT_EQ(d.line, 12);
@@ -92,6 +95,13 @@ TEST(SceneLoad, FullSceneMaterialsAndConstraints) {
   EXPECT_EQ(w.displacement, (std::array<double, 3>{0, -0.01, 0}));
   EXPECT_EQ(w.profile.kind, tensormass::ProfileKind::ramp);
   EXPECT_DOUBLE_EQ(w.profile.duration, 1.0);
+  EXPECT_FALSE(w.rotates);
+  const tensormass::PrescribedSpec& r = s.model.prescribed[2];
+  EXPECT_TRUE(r.rotates);
+  EXPECT_EQ(r.rotation.axis, (std::array<double, 3>{1, 0, 0}));
+  EXPECT_EQ(r.rotation.centre, (std::array<double, 3>{0, 0.5, 0.5}));
+  EXPECT_DOUBLE_EQ(r.rotation.angle, 180.0);
+  EXPECT_EQ(r.displacement, (std::array<double, 3>{0.1, 0, 0}));
 }
 
 TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
@@ -101,11 +111,11 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   ASSERT_EQ(s.model.loads.nodal_forces.size(), 1u);
   EXPECT_EQ(s.model.loads.nodal_forces[0].region, "tip");
   EXPECT_EQ(s.model.loads.nodal_forces[0].force, (std::array<double, 3>{0, -1.5, 0.4}));
-  EXPECT_EQ(s.model.loads.nodal_forces[0].line, 20);
+  EXPECT_EQ(s.model.loads.nodal_forces[0].line, 21);
   ASSERT_EQ(s.model.loads.pressures.size(), 1u);
   EXPECT_EQ(s.model.loads.pressures[0].region, "top");
   EXPECT_DOUBLE_EQ(s.model.loads.pressures[0].pressure, -1000);
-  EXPECT_EQ(s.model.loads.pressures[0].line, 22);
+  EXPECT_EQ(s.model.loads.pressures[0].line, 23);
   EXPECT_EQ(s.model.loads.profile.kind, tensormass::ProfileKind::ramp);
   EXPECT_DOUBLE_EQ(s.model.loads.profile.duration, 2.0);
 
@@ -117,6 +127,8 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   EXPECT_DOUBLE_EQ(v.dt, 0.01);
   EXPECT_EQ(v.steps, 100);
   EXPECT_EQ(v.newton_iterations, 3);
+  EXPECT_EQ(v.predictor, tensormass::StepPredictor::none);
+  EXPECT_TRUE(v.project_hessian);
   EXPECT_DOUBLE_EQ(v.damping_mass, 0.1);
   EXPECT_DOUBLE_EQ(v.damping_stiffness, 0.001);
   EXPECT_EQ(v.linear.type, tensormass::LinearSolverType::cg);
@@ -129,7 +141,7 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   ASSERT_EQ(a.criteria.size(), 2u);
   EXPECT_EQ(a.criteria[0].name, "R_EL");
   EXPECT_DOUBLE_EQ(a.criteria[0].threshold, 0.03);
-  EXPECT_EQ(a.criteria[0].line, 37);
+  EXPECT_EQ(a.criteria[0].line, 40);
   EXPECT_EQ(a.criteria[1].name, "R_V");
   EXPECT_EQ(a.criteria[0].rung, "");  // the ladder's last law
   EXPECT_EQ(a.criteria[1].rung, "stvk");
@@ -140,7 +152,7 @@ TEST(SceneLoad, FullSceneLoadsSolverAdaptivityOutput) {
   EXPECT_DOUBLE_EQ(a.hysteresis, 0.25);
   EXPECT_EQ(a.calm_steps, 7);
   EXPECT_EQ(a.ladder, (std::vector<std::string>{"hooke", "stvk", "neohookean"}));
-  EXPECT_EQ(a.ladder_line, 43);
+  EXPECT_EQ(a.ladder_line, 46);
 
   EXPECT_EQ(s.output.directory, (dir.path() / "results").string());
   EXPECT_EQ(s.output.every, 10);
@@ -161,6 +173,8 @@ TEST(SceneLoad, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.solver.load_steps, 10);
   EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-10);
   EXPECT_EQ(s.solver.max_iterations, 50);
+  EXPECT_EQ(s.solver.predictor, tensormass::StepPredictor::velocity);
+  EXPECT_FALSE(s.solver.project_hessian);
   EXPECT_EQ(s.solver.linear.type, tensormass::LinearSolverType::cholmod);
   EXPECT_EQ(s.solver.threads, 0);
   EXPECT_FALSE(s.adaptivity.enabled);

@@ -224,3 +224,23 @@ TEST(SceneValidation, EveryDofConstrainedIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SceneGroups, RotationOfA2DMeshMustTurnAboutZ) {
+  TempDir dir;
+  const std::string rotating = replaced(kGroupsScene, "  - {region: top, displacement: [0, 0.1]}",
+                                        "  - {region: top, rotation: {axis: [1, 0, 0], angle: 30}}");
+  const Scene scene = tensormass::load_scene(dir.write("scene.yaml", rotating));
+  try {
+    tensormass::validate_against_mesh(scene, groups_mesh());
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"scene.yaml:7: prescribed[0].rotation.axis", "about z"});
+  }
+  const Scene in_plane =
+      tensormass::load_scene(dir.write("scene.yaml", replaced(rotating, "axis: [1, 0, 0], ", "centre: [0.5, 0.5], ")));
+  EXPECT_NO_THROW(tensormass::validate_against_mesh(in_plane, groups_mesh()));
+}
+
+}  // namespace

@@ -17,7 +17,8 @@ namespace tensormass::test {
 inline State integrate(const Mesh& mesh, const Scene& scene, SolveStatistics& statistics,
                        const StepObserver& observer = {}) {
   const Model model(mesh, scene.model);
-  const Assembler assembler(model);
+  Assembler assembler(model);
+  assembler.set_hessian_projection(scene.solver.project_hessian);
   auto linear = make_linear_solver(scene.solver.linear);
   Integration run{model, assembler, *linear, scene.solver, statistics};
   State state;

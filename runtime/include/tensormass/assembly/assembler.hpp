@@ -39,6 +39,17 @@ class Assembler {
   /// restricted to the free dofs (its pattern must be pattern()). Not
   /// re-entrant: it brings the folded linear part up to date first.
   void assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
+  /// The strain energy W(u) (u: dof_count) whose gradient assemble() gives:
+  /// the folded part 1/2 u.K_L u, the other cells' kernels (blending cells
+  /// w W_new + (1 - w) W_old), summed per chunk in a fixed order (the same
+  /// value on any thread count). Not re-entrant, like assemble().
+  double energy(std::span<const double> u) const;
+  /// When on, each kernel cell's Hessian is projected to positive
+  /// semi-definite before it is scattered (project_to_positive_semidefinite):
+  /// the scene key solver.project_hessian. Folded (linear) cells are
+  /// positive semi-definite already. Off by default.
+  void set_hessian_projection(bool on) { project_hessians_ = on; }
+  bool hessian_projection() const { return project_hessians_; }
   int colour_count() const { return static_cast<int>(colour_start_.size()) - 1; }
   /// Cells folded into the constant linear part (0 when folding is off).
   int folded_cell_count() const { return linear_ ? linear_->folded_count() : 0; }
@@ -67,6 +78,7 @@ class Assembler {
   std::vector<int> scatter_;                  ///< per cell, dofs by dofs: index in values or -1
   std::vector<int> colour_start_;             ///< colours+1, into coloured_chunks_
   std::vector<int> coloured_chunks_;          ///< chunk c holds cells [c*S, (c+1)*S)
+  bool project_hessians_ = false;
 };
 
 }  // namespace tensormass

@@ -13,6 +13,7 @@
 #ifndef TENSORMASS_MESH_HPP
 #define TENSORMASS_MESH_HPP
 
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -72,6 +73,10 @@ struct Mesh {
   std::string describe_cell(int cell) const;
   /// Checks indices, finite coordinates and block numbering; throws InputError.
   void validate() const;
+  /// Adds a node group (dim 0) of the nodes whose rest position x (3
+  /// coordinates) satisfies inside(x[0], x[1], x[2]); returns it. For meshes
+  /// built in code (tests, benchmarks, Python): files carry their groups.
+  const Group& add_node_group(std::string name, const std::function<bool(double, double, double)>& inside);
 };
 
 }  // namespace tensormass

@@ -7,6 +7,7 @@
 #ifndef TENSORMASS_MODEL_HPP
 #define TENSORMASS_MODEL_HPP
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,11 +36,22 @@ std::string material_split(const MaterialSpec& material, const tm_element_info& 
 /// or nullptr when the registry has none.
 const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element);
 
-/// A displacement imposed on one degree of freedom: amplitude * profile(t).
+/// A displacement imposed on one degree of freedom: amplitude * profile(t),
+/// plus the motion of a prescribed rotation when it has one.
 struct PrescribedDof {
   int dof;
   double amplitude;
-  int profile;  ///< index into Model::profiles
+  int profile;        ///< index into Model::profiles
+  int rotation = -1;  ///< index into Model::rotations, or -1
+};
+
+/// A prescribed rotation, ready to apply: unit axis, centre, full angle in radians.
+struct PrescribedRotation {
+  std::array<double, 3> axis;
+  std::array<double, 3> centre;
+  double radians;
+  /// The displacement of the point at rest `x` turned by `fraction` of the angle.
+  std::array<double, 3> displacement(const double* x, double fraction) const;
 };
 
 class Model {
@@ -105,12 +117,17 @@ class Model {
   const std::vector<int>& free_dofs() const { return free_dofs_; }
   const std::vector<PrescribedDof>& prescribed() const { return prescribed_; }
   const std::vector<TimeProfile>& profiles() const { return profiles_; }
+  const std::vector<PrescribedRotation>& rotations() const { return rotations_; }
   /// Dynamic solvers: the factor of every load at time t (LoadsSpec::profile).
   double load_factor(double t) const { return load_profile_.factor(t); }
 
   /// Sets every constrained dof of `u` (dof_count) to its value at time `t`;
   /// the static solver passes the load factor as t with ramp profiles.
   void apply_constraints(double t, std::span<double> u, bool static_load_factor = false) const;
+  /// Sum over the cells of Young's modulus times rest volume (J, or J/m in
+  /// 2D): the size of energies whose round-off decides whether a change of
+  /// the total energy is meaningful (line searches).
+  double energy_scale() const { return energy_scale_; }
   /// Total strain energy at displacement u (dof_count).
   double strain_energy(std::span<const double> u) const;
   /// First cell whose deformation gradient has det <= 0 (or NaN) at a
@@ -142,9 +159,11 @@ class Model {
   std::vector<int> free_index_, free_dofs_;
   std::vector<PrescribedDof> prescribed_;
   std::vector<TimeProfile> profiles_;
+  std::vector<PrescribedRotation> rotations_;
   TimeProfile load_profile_;
   long law_revision_ = 0;
   long consts_revision_ = 0;
+  double energy_scale_ = 0;
 };
 
 }  // namespace tensormass

@@ -41,12 +41,25 @@ struct TimeProfile {
   double factor(double t) const;
 };
 
-/// Prescribed displacement of every node of a group (components given).
+/// A rigid rotation about the line through `centre` along `axis` (2D: the
+/// z axis through centre), by `angle` degrees at full profile.
+struct RotationSpec {
+  std::array<double, 3> axis{0.0, 0.0, 1.0};  ///< any non-zero length
+  std::array<double, 3> centre{};
+  double angle = 0;  ///< degrees, right-handed about axis
+};
+
+/// Prescribed motion of every node of a group. Without a rotation: the
+/// given components of `displacement` times the profile. With one: every
+/// component, the node at rest X going to R(p angle)(X - c) + c + p d, with
+/// p the profile's factor and d `displacement` (zero unless given).
 struct PrescribedSpec {
   std::string region;
   std::array<double, 3> displacement{};              ///< amplitude per component
   std::array<bool, 3> components{true, true, true};  ///< which components are constrained
   TimeProfile profile;
+  bool rotates = false;
+  RotationSpec rotation;  ///< when rotates
   int line = 0;
 };
 

@@ -32,6 +32,7 @@ struct SolveStatistics {
   double assembly_seconds = 0;
   double solve_seconds = 0;  ///< factorisation and linear solves
   int newton_iterations = 0;
+  int shortened_steps = 0;  ///< Newton steps the line search cut below full length
   long linear_iterations = 0;
   int factorizations = 0;            ///< numeric factorisations of a direct solver
   std::vector<int> newton_per_step;  ///< per step (load step)

@@ -12,10 +12,15 @@ namespace tensormass {
 /// Static Newton with load steps, implicit (backward) Euler, explicit symplectic Euler.
 enum class SolverType { static_newton, implicit_euler, explicit_euler };
 enum class LinearSolverType { cholmod, cg };
+/// Where an implicit step's Newton iterations start for the free dofs:
+/// u0 + dt v0 (the motion continued), or u0 (only the prescribed dofs moved).
+enum class StepPredictor { velocity, none };
 
 /// The scene's names: "static", "implicit", "explicit"; "cholmod", "cg".
 std::string_view solver_type_name(SolverType type);
 std::string_view linear_solver_type_name(LinearSolverType type);
+/// The scene's names: "velocity", "none".
+std::string_view step_predictor_name(StepPredictor predictor);
 
 struct LinearSolverSettings {
   LinearSolverType type = LinearSolverType::cholmod;
@@ -38,6 +43,13 @@ struct SolverSettings {
   int newton_iterations = 1;     ///< implicit: Newton iterations per step (1 = linearised step)
   double damping_mass = 0;       ///< Rayleigh alpha (1/s)
   double damping_stiffness = 0;  ///< Rayleigh beta (s); not with the explicit solver
+  /// implicit: the start of each step's Newton iterations. Starting from u0
+  /// with only the prescribed dofs moved squashes the cells next to them
+  /// before the first tangent (thin cells on a moving boundary invert).
+  StepPredictor predictor = StepPredictor::velocity;
+  /// static and implicit: project each kernel cell's Hessian to positive
+  /// semi-definite (Assembler::set_hessian_projection)
+  bool project_hessian = false;
   LinearSolverSettings linear;
   int threads = 0;  ///< 0 = OpenMP default
 
