@@ -56,6 +56,8 @@ struct Case {
   /// Runs on the ladder [linear, corotational, rich]: R_NL (rotation or
   /// strain) asks for corotational, R_E (strain alone) for the rich law.
   std::vector<std::pair<double, double>> corotational_thresholds;  // (R_NL, R_E)
+  /// Pure runs of other laws, for their cost and error beside the ladder's.
+  std::vector<std::string> other_laws = {"corotational"};
   double error_target = 0.01;                                      // adaptive error at most this ...
   double cost_target = 0.5;  // ... at at most this fraction of the rich law's step
 };
@@ -119,6 +121,9 @@ Case indentation(bool quick) {
   c.ladder = {"hooke", "neohookean"};
   c.thresholds = {0.003, 0.01, 0.03};
   c.corotational_thresholds = {{0.003, 0.01}, {0.003, 0.03}};
+  // StVK inverts under the probe (issue 14); stable neo-Hookean is the
+  // inversion-safe alternative to the rich law.
+  c.other_laws = {"corotational", "stvk", "stable_neohookean"};
   c.what = std::to_string(c.mesh.cell_count()) + " tet4, E 5 kPa, nu 0.45, 2 x 2 cm probe 1.5 cm into 5 cm";
   return c;
 }
@@ -280,7 +285,8 @@ CaseResult run_case(const Case& c) {
   std::fflush(stdout);
   result.runs.push_back(simulate(c, linear, run_scene_of(c, linear, std::nullopt), std::nullopt));
   result.runs.push_back(simulate(c, rich, run_scene_of(c, rich, std::nullopt), std::nullopt));
-  result.runs.push_back(simulate(c, "corotational", run_scene_of(c, "corotational", std::nullopt), std::nullopt));
+  for (const std::string& law : c.other_laws)
+    result.runs.push_back(simulate(c, law, run_scene_of(c, law, std::nullopt), std::nullopt));
   for (double t : c.thresholds) {
     char label[64];
     std::snprintf(label, sizeof label, "adaptive %s %g", c.criterion.c_str(), t);

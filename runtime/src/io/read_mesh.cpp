@@ -24,17 +24,31 @@ std::string lower_extension(const std::string& path) {
   return extension;
 }
 
-}  // namespace
-
-Mesh read_mesh(const std::string& path) {
-  const std::string extension = lower_extension(path);
+/// Refuses extensions no reader takes, before the file is opened.
+void check_extension(const std::string& path, const std::string& extension) {
   if (extension != ".msh" && extension != ".vtu" && extension != ".vtk")
     throw InputError(path + ": unknown mesh format '" + extension + "' (expected .msh, .vtu or .vtk)");
-  detail::InputCursor input(path, detail::read_whole_file(path, "mesh"));
+}
+
+}  // namespace
+
+namespace detail {
+
+Mesh read_mesh_data(const std::string& path, std::string data) {
+  const std::string extension = lower_extension(path);
+  check_extension(path, extension);
+  InputCursor input(path, std::move(data));
   if (input.at_end()) throw InputError(path + ": the file is empty");
-  if (extension == ".msh") return detail::read_gmsh(input);
-  if (extension == ".vtu") return detail::read_vtu(input);
-  return detail::read_legacy_vtk(input);
+  if (extension == ".msh") return read_gmsh(input);
+  if (extension == ".vtu") return read_vtu(input);
+  return read_legacy_vtk(input);
+}
+
+}  // namespace detail
+
+Mesh read_mesh(const std::string& path) {
+  check_extension(path, lower_extension(path));
+  return detail::read_mesh_data(path, detail::read_whole_file(path, "mesh"));
 }
 
 }  // namespace tensormass

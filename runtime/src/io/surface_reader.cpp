@@ -20,6 +20,7 @@
 
 #include "io/gmsh_session.hpp"
 #include "io/input_cursor.hpp"
+#include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass {
@@ -545,24 +546,55 @@ std::string TriangleSurface::describe_point(int point) const {
   return text;
 }
 
-TriangleSurface read_surface(const std::string& path) {
-  std::string extension = lower(std::filesystem::path(path).extension().string());
-  if (extension != ".stl" && extension != ".obj" && extension != ".msh")
-    throw InputError(path + ": unknown surface format '" + extension + "' (expected .stl, .obj or .msh)");
-  const std::string data = detail::read_whole_file(path, "surface");
-  if (data.find_first_not_of(" \t\r\n\v\f") == std::string::npos) throw InputError(path + ": the file is empty");
+namespace {
 
-  SurfaceBuilder builder(path, extension == ".stl" ? "facet" : extension == ".obj" ? "face at line" : "element");
-  if (extension == ".stl") read_stl(path, data, builder);
-  else if (extension == ".obj")
-    read_obj(path, std::string_view(data).starts_with("\xEF\xBB\xBF") ? std::string_view(data).substr(3) : data,
-             builder);
-  else read_msh_with_gmsh(path, builder);
+std::string surface_extension(const std::string& path) {
+  return lower(std::filesystem::path(path).extension().string());
+}
 
+void check_not_empty(const std::string& path, std::string_view data) {
+  if (data.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos) throw InputError(path + ": the file is empty");
+}
+
+/// The checks and clean-up shared by every format.
+TriangleSurface finish(const std::string& path, SurfaceBuilder& builder) {
   TriangleSurface& surface = builder.surface();
   if (surface.triangle_count() == 0) throw InputError(path + ": no triangles (empty surface)");
   merge_and_compact(surface);
   return std::move(surface);
+}
+
+}  // namespace
+
+namespace detail {
+
+TriangleSurface read_surface_data(const std::string& path, std::string_view data) {
+  const std::string extension = surface_extension(path);
+  if (extension != ".stl" && extension != ".obj")
+    throw InputError(path + ": surface data in memory must be .stl or .obj, not '" + extension + "'");
+  check_not_empty(path, data);
+  if (extension == ".stl") {
+    SurfaceBuilder builder(path, "facet");
+    read_stl(path, data, builder);
+    return finish(path, builder);
+  }
+  SurfaceBuilder builder(path, "face at line");
+  read_obj(path, data.starts_with("\xEF\xBB\xBF") ? data.substr(3) : data, builder);
+  return finish(path, builder);
+}
+
+}  // namespace detail
+
+TriangleSurface read_surface(const std::string& path) {
+  const std::string extension = surface_extension(path);
+  if (extension != ".stl" && extension != ".obj" && extension != ".msh")
+    throw InputError(path + ": unknown surface format '" + extension + "' (expected .stl, .obj or .msh)");
+  const std::string data = detail::read_whole_file(path, "surface");
+  if (extension != ".msh") return detail::read_surface_data(path, data);
+  check_not_empty(path, data);
+  SurfaceBuilder builder(path, "element");
+  read_msh_with_gmsh(path, builder);
+  return finish(path, builder);
 }
 
 }  // namespace tensormass
