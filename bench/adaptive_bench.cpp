@@ -58,8 +58,8 @@ struct Case {
   std::vector<std::pair<double, double>> corotational_thresholds;  // (R_NL, R_E)
   /// Pure runs of other laws, for their cost and error beside the ladder's.
   std::vector<std::string> other_laws = {"corotational"};
-  double error_target = 0.01;                                      // adaptive error at most this ...
-  double cost_target = 0.5;  // ... at at most this fraction of the rich law's step
+  double error_target = 0.01;  // adaptive error at most this ...
+  double cost_target = 0.5;    // ... at at most this fraction of the rich law's step
 };
 
 /// What one run gives.

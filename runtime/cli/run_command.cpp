@@ -1,4 +1,4 @@
-// tensormass run SCENE.yaml [--set a.b=value ...] [--quiet]
+// tensormass run SCENE.yaml [--set a.b=value ...] [--resume] [--quiet]
 #include <cstdio>
 #include <string>
 
@@ -12,9 +12,11 @@ namespace tensormass::cli {
 namespace {
 
 constexpr const char* kRunUsage =
-    "usage: tensormass run SCENE.yaml [--set KEY=VALUE ...] [--quiet]\n"
+    "usage: tensormass run SCENE.yaml [--set KEY=VALUE ...] [--resume] [--quiet]\n"
     "  --set KEY=VALUE  override a scene key (YAML value), e.g. --set solver.steps=10\n"
     "                   or --set materials.0.young=2e6\n"
+    "  --resume         continue from the output directory's checkpoint.bin (written every\n"
+    "                   output.checkpoint_every steps), or start afresh when there is none\n"
     "  --quiet          no progress and no summary (errors still go to stderr)\n";
 
 }  // namespace
@@ -22,7 +24,7 @@ constexpr const char* kRunUsage =
 int run_command(const Arguments& args) {
   std::string scene_path;
   std::vector<std::string> overrides;
-  bool quiet = false;
+  bool quiet = false, resume = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (arg == "--help" || arg == "-h") {
@@ -33,6 +35,8 @@ int run_command(const Arguments& args) {
       overrides.push_back(args[++i]);
     } else if (arg.rfind("--set=", 0) == 0) {
       overrides.push_back(arg.substr(6));
+    } else if (arg == "--resume") {
+      resume = true;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -47,6 +51,7 @@ int run_command(const Arguments& args) {
   const Scene scene = load_scene(scene_path, overrides);
   RunOptions options;
   options.progress = !quiet;
+  options.resume = resume;
   const RunReport report = run_scene(scene, options);
   if (!quiet) std::fputs(format_report(scene, report).c_str(), stdout);
   return 0;

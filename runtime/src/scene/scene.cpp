@@ -44,7 +44,7 @@ const KeyTable& scene_keys() {
       {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
       {"adaptivity.criteria[]", {"name", "threshold", "rung"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
-      {"output", {"directory", "every", "track"}},
+      {"output", {"directory", "every", "track", "checkpoint_every"}},
   };
   return table;
 }
@@ -405,6 +405,7 @@ OutputSettings read_output(const Value& section, const fs::path& directory) {
     section.expect_map();
     read_optional(section, "directory", output.directory, [](const Value& v) { return v.text(); });
     read_optional(section, "every", output.every, at_least(0));
+    read_optional(section, "checkpoint_every", output.checkpoint_every, at_least(0));
     read_track(section.child("track"), output);
   }
   output.directory = resolve_path(directory, output.directory);

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numeric>
+#include <optional>
 
 #include "common/phase_timer.hpp"
 #include "simulation/progress.hpp"
@@ -20,6 +22,7 @@
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model.hpp"
+#include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
@@ -105,6 +108,33 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
   }
 }
 
+/// Refuses what checkpoints do not cover yet (before any output).
+void check_checkpoint_options(const Scene& scene, const RunOptions& options) {
+  if (scene.adaptivity.enabled && (options.resume || scene.output.checkpoint_every > 0))
+    throw InputError(scene.path +
+                     ": checkpoints (output.checkpoint_every, --resume) do not cover the adaptive model yet: "
+                     "remove the adaptivity section or the checkpoints");
+}
+
+/// The output directory's checkpoint when there is one, checked against
+/// this scene, mesh and model; InputError when it belongs to another run.
+std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Mesh& mesh,
+                                              const Model& model) {
+  if (!fs::exists(path)) return std::nullopt;
+  Checkpoint checkpoint = read_checkpoint(path);
+  if (checkpoint.mesh_fingerprint != mesh_fingerprint(mesh))
+    throw InputError("checkpoint " + path + " was written for another mesh than " + scene.mesh +
+                     " (remove it, or give another output.directory, to start afresh)");
+  if (checkpoint.scene_fingerprint != scene_fingerprint(scene))
+    throw InputError("checkpoint " + path + " was written for another version of " + scene.path +
+                     " (materials, constraints, loads, solver, adaptivity or output.every/track differ; remove it, "
+                     "or give another output.directory, to start afresh)");
+  const std::size_t dofs = model.dof_count();
+  if (checkpoint.state.displacement.size() != dofs || checkpoint.state.velocity.size() != dofs)
+    throw InputError("checkpoint " + path + ": its state does not fit the model's " + std::to_string(dofs) + " dofs");
+  return checkpoint;
+}
+
 /// Simulated and time-loop seconds of a dynamic run (see RunReport::loop_seconds).
 void time_loop(const Scene& scene, const State& state, double adaptivity_seconds, RunReport& report) {
   if (scene.solver.is_static()) return;
@@ -120,6 +150,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // Everything that can be wrong with the input is found before any output.
   const Mesh mesh = read_mesh(scene.mesh);
   validate_against_mesh(scene, mesh);
+  check_checkpoint_options(scene, options);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   Model model(mesh, scene.model);
   Assembler assembler(model);
@@ -133,6 +164,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   }
   std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
   std::vector<GroupTrack> tracks = make_tracks(scene, mesh);
+  const std::string checkpoint_path = (fs::path(scene.output.directory) / kCheckpointFile).string();
+  std::optional<Checkpoint> checkpoint;
+  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, mesh, model);
 
   RunReport report;
   report.output_directory = scene.output.directory;
@@ -203,13 +237,50 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     // Running sum of the finished steps (a repeated static step is popped
     // before it is ever counted here).
     for (; counted_steps < statistics.step_ms.size(); ++counted_steps) stepping_ms += statistics.step_ms[counted_steps];
+    const int every = scene.output.checkpoint_every;
+    if (every > 0 && state.step % every == 0) {
+      detail::PhaseTimer timer(report.output_seconds);
+      Checkpoint saved{mesh_fingerprint(mesh),
+                       scene_fingerprint(scene),
+                       state,
+                       linear->save_state(),
+                       statistics,
+                       report.step_assembly_ms,
+                       report.step_solve_ms,
+                       report.step_criteria_ms,
+                       {},
+                       series};
+      saved.statistics.warnings.clear();
+      for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
+      write_checkpoint(checkpoint_path, saved);
+    }
     progress.update(state.step, counted_steps ? stepping_ms / counted_steps : 0.0);
     return false;
   };
   State state;
   state.displacement.assign(model.dof_count(), 0.0);
   state.velocity.assign(model.dof_count(), 0.0);
-  for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+  if (checkpoint) {
+    // Everything the steps so far left behind, as the killed run had it.
+    state = checkpoint->state;
+    last_good = state;
+    linear->restore_state(checkpoint->linear_solver, assembler.pattern());
+    statistics = checkpoint->statistics;
+    report.step_assembly_ms = checkpoint->step_assembly_ms;
+    report.step_solve_ms = checkpoint->step_solve_ms;
+    report.step_criteria_ms = checkpoint->step_criteria_ms;
+    for (std::size_t t = 0; t < tracks.size() && t < checkpoint->tracks.size(); ++t)
+      tracks[t].restore(checkpoint->tracks[t].rows, checkpoint->tracks[t].first_shift);
+    series = checkpoint->series;
+    counted_steps = statistics.step_ms.size();
+    stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
+    phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
+    report.resumed_from_step = state.step;
+    std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
+                 state.time);
+  } else {
+    for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+  }
   try {
     switch (scene.solver.type) {
       case SolverType::static_newton: solve_static(run, state, observer); break;

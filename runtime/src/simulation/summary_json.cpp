@@ -78,6 +78,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
     << ", \"free_dofs\": " << report.free_dofs << ",\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";
+  if (report.resumed_from_step >= 0) j << "  \"resumed_from_step\": " << report.resumed_from_step << ",\n";
   j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";
   j << "  \"time_per_phase_s\": {\"criteria\": " << number(report.criteria_seconds)
     << ", \"assembly\": " << number(s.assembly_seconds) << ", \"solve\": " << number(s.solve_seconds)

@@ -54,6 +54,12 @@ class ConjugateGradientSolver final : public LinearSolver {
 
 }  // namespace
 
+void LinearSolver::restore_state(std::span<const double> saved, const SparseMatrix&) {
+  if (!saved.empty())
+    throw InputError("the checkpoint holds a direct solver's factor; this run's linear solver (" + name() +
+                     ") keeps none");
+}
+
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings) {
   if (settings.type == LinearSolverType::cg) return std::make_unique<ConjugateGradientSolver>(settings);
   return make_cholmod_solver(settings);

@@ -119,11 +119,34 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
   int factorizations() const override { return factorizations_; }
 
+  /// [simplicial, factorisations, 3 reuse counts, the factorised values...], empty before a factor.
+  std::vector<double> save_state() const override {
+    if (factorized_values_.empty()) return {};
+    const std::array<double, 3> counts = reuse_.saved();
+    std::vector<double> saved = {simplicial_ ? 1.0 : 0.0, double(factorizations_), counts[0], counts[1], counts[2]};
+    saved.insert(saved.end(), factorized_values_.begin(), factorized_values_.end());
+    return saved;
+  }
+
+  void restore_state(std::span<const double> saved, const SparseMatrix& pattern) override {
+    if (saved.empty()) return;
+    if (saved.size() != kSavedCounts + pattern.values.size())
+      throw InputError("the saved sparse Cholesky state holds " + std::to_string(saved.size()) +
+                       " numbers; this model's matrix needs " + std::to_string(kSavedCounts + pattern.values.size()));
+    SparseMatrix A = pattern;
+    A.values.assign(saved.begin() + kSavedCounts, saved.end());
+    simplicial_ = saved[0] != 0.0;  // the run had fallen back to LDL^T: analyse the same way
+    factorize_now(A);
+    factorizations_ = static_cast<int>(saved[1]);
+    reuse_.restore({saved[2], saved[3], saved[4]});
+  }
+
  private:
   void factorize_now(const SparseMatrix& A) {
     cholmod_sparse view = view_of(A);
     const SerialBlas serial;
-    if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) analyse(view, CHOLMOD_AUTO);
+    if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros())
+      analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
     factorized_values_.clear();
@@ -167,6 +190,7 @@ class CholmodSolver final : public LinearSolver {
     if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
   }
 
+  static constexpr std::size_t kSavedCounts = 5;
   LinearSolverSettings settings_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;

@@ -50,7 +50,7 @@ void solve_explicit(Integration& run, State& state, const StepObserver& observer
     std::fprintf(stderr, "tensormass: warning: %s\n", text.str().c_str());  // now, not after a long run
   }
   std::vector<double> g(dofs), next(dofs);
-  for (int s = 1; s <= settings.steps; ++s) {
+  for (int s = state.step + 1; s <= settings.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
     const double t = state.time, t1 = t + dt;
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";

@@ -3,6 +3,8 @@
 #ifndef TENSORMASS_SOLVERS_FACTOR_REUSE_POLICY_HPP
 #define TENSORMASS_SOLVERS_FACTOR_REUSE_POLICY_HPP
 
+#include <array>
+
 namespace tensormass::detail {
 
 /// Costs are counted in solves with the factor (one forward and backward
@@ -36,6 +38,13 @@ class FactorReusePolicy {
   }
   /// Whether the next changed matrix should be factorised afresh.
   bool refactorize() const { return refactorize_; }
+  /// The counts of the current cycle, and back (checkpoints).
+  std::array<double, 3> saved() const { return {cycle_cost_, double(cycle_solves_), refactorize_ ? 1.0 : 0.0}; }
+  void restore(const std::array<double, 3>& saved) {
+    cycle_cost_ = saved[0];
+    cycle_solves_ = static_cast<int>(saved[1]);
+    refactorize_ = saved[2] != 0.0;
+  }
 
  private:
   double factorization_cost_;

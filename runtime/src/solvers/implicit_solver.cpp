@@ -139,10 +139,12 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
   const auto& mass = model.lumped_mass();
   state.displacement.resize(dofs, 0.0);
   state.velocity.resize(dofs, 0.0);
-  std::vector<double> g(dofs), v(dofs), r(n), direction(n, 0.0);
+  std::vector<double> g(dofs), v(dofs), r(n);
+  std::vector<double>& direction = state.warm_start;
+  direction.resize(n, 0.0);
   SparseMatrix K = run.assembler.pattern(), J = run.assembler.pattern();
   const double mass_factor = 1.0 / (dt * dt) + alpha / dt, stiffness_factor = 1.0 + beta / dt;
-  for (int s = 1; s <= settings.steps; ++s) {
+  for (int s = state.step + 1; s <= settings.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
     const double t1 = state.time + dt;
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";

@@ -118,15 +118,14 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
 void solve_static(Integration& run, State& state, const StepObserver& observer) {
   const Model& model = run.model;
   const int steps = run.settings.load_steps;
-  state.displacement.assign(model.dof_count(), 0.0);
-  state.velocity.assign(model.dof_count(), 0.0);
+  state.displacement.resize(model.dof_count(), 0.0);  // from rest, or from a restored load step
+  state.velocity.resize(model.dof_count(), 0.0);
   // A load step solved again (the observer switched laws) counts once, with
   // the time and iterations of all its solves.
   double carried_ms = 0;
   int carried_iterations = 0;
-  std::vector<double> previous, before_previous;  // converged u of the load steps before, for the predictor
   bool repeating = false;
-  for (int step = 1; step <= steps;) {
+  for (int step = state.step + 1; step <= steps;) {
     const auto start = std::chrono::steady_clock::now();
     const double factor = static_cast<double>(step) / steps;
     const std::string where = "in load step " + std::to_string(step) + "/" + std::to_string(steps);
@@ -135,6 +134,8 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
     // cantilever of bench runtime, against 3.15 with the linear one. A
     // repeated step starts where it ended.
     std::vector<double> u = state.displacement;
+    const std::vector<double>& previous = state.previous_displacement;
+    const std::vector<double>& before_previous = state.earlier_displacement;
     const bool extrapolate = !repeating && previous.size() == u.size();
     const bool quadratic = extrapolate && before_previous.size() == u.size();
     if (quadratic)
@@ -147,12 +148,11 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
     run.statistics.newton_iterations += iterations;
     run.statistics.newton_per_step.push_back(carried_iterations + iterations);
     run.statistics.step_ms.push_back(carried_ms + 1e3 * detail::seconds_since(start));
-    State next{u, state.velocity, factor, step};
+    // The history the next load step extrapolates from travels with the
+    // state the observer sees (a checkpoint of it resumes bit for bit).
+    State next{u, state.velocity, factor, step, {}, state.displacement, previous};
     const bool repeat = observer && observer(next);
-    if (!repeat) {
-      before_previous = std::move(previous);
-      previous = state.displacement;
-    }
+    if (repeat) next.previous_displacement = previous, next.earlier_displacement = before_previous;
     repeating = repeat;
     state = std::move(next);
     if (repeat) {

@@ -15,6 +15,8 @@ struct OutputSettings {
   /// Groups (with cells) whose centroid is written to track_<group>.csv every step (track.hpp).
   std::vector<std::string> track;
   std::vector<int> track_lines;  ///< 1-based line of each `track` entry (0: from --set), for messages
+  /// Write checkpoint.bin (the full state, checkpoint.hpp) every this many steps; 0 = never.
+  int checkpoint_every = 0;
 };
 
 }  // namespace tensormass

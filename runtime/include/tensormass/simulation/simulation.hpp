@@ -18,6 +18,9 @@ namespace tensormass {
 
 struct RunOptions {
   bool progress = true;  ///< progress on stderr (a bar on a terminal, lines otherwise)
+  /// Continue from the output directory's checkpoint.bin (checkpoint.hpp)
+  /// when there is one; start afresh when there is none.
+  bool resume = false;
 };
 
 /// What a run produced, for the end-of-run summary and tests.
@@ -25,6 +28,7 @@ struct RunReport {
   std::string output_directory;
   std::vector<std::string> files;  ///< written, relative to output_directory
   State state;
+  int resumed_from_step = -1;  ///< the checkpoint's step when the run was resumed, else -1
   SolveStatistics statistics;
   double wall_seconds = 0;
   double output_seconds = 0;

@@ -57,6 +57,13 @@ class GroupTrack {
   /// Appends the state at `time`; the first call sets the reference of the displacements.
   void record(double time, std::span<const double> u);
   const std::vector<TrackRow>& rows() const { return rows_; }
+  /// The weighted displacement of the first row, which later rows are measured from.
+  const std::array<double, 3>& first_shift() const { return first_; }
+  /// Replaces the rows and the first shift by saved ones (a resumed run).
+  void restore(std::vector<TrackRow> rows, const std::array<double, 3>& first_shift) {
+    rows_ = std::move(rows);
+    first_ = first_shift;
+  }
   /// Writes the rows as CSV (see the file comment), atomically.
   void write_csv(const std::string& path) const;
 

@@ -19,12 +19,19 @@
 
 namespace tensormass {
 
-/// The mechanical state, dof_count() each.
+/// The mechanical state, dof_count() each, and what an integrator carries
+/// from one step to the next: an integrator continues from `step`, so a run
+/// restored from a checkpoint goes on bit for bit.
 struct State {
   std::vector<double> displacement;
   std::vector<double> velocity;
   double time = 0;  ///< seconds (dynamic) or load factor in [0, 1] (static)
   int step = 0;     ///< steps (load steps) completed
+  /// implicit: the last Newton correction (free dofs), where the next linear solve starts
+  std::vector<double> warm_start;
+  /// static: the converged displacements of the two load steps before this
+  /// one (the predictor's extrapolation); empty until there are any
+  std::vector<double> previous_displacement, earlier_displacement;
 };
 
 /// Wall-clock seconds per phase and iteration counts, accumulated.

@@ -9,6 +9,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/solvers/solver_settings.hpp"
@@ -29,6 +30,14 @@ class LinearSolver {
   virtual std::string name() const = 0;
   /// Numeric factorisations so far (0 for iterative solvers).
   virtual int factorizations() const { return 0; }
+  /// What the solver keeps between solves, flat, for a checkpoint (a direct
+  /// solver: the matrix its factor came from and its reuse counts); empty
+  /// when it keeps nothing (CG: the caller holds its warm start).
+  virtual std::vector<double> save_state() const { return {}; }
+  /// Restores save_state()'s output, for matrices with `pattern`'s pattern:
+  /// a direct solver factorises the saved matrix again, which gives the same
+  /// factor bit for bit. Throws InputError when `saved` does not fit.
+  virtual void restore_state(std::span<const double> saved, const SparseMatrix& pattern);
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings);

@@ -1,0 +1,67 @@
+/// \file checkpoint.hpp
+/// The full state of a run at the end of a step, written every
+/// `output.checkpoint_every` steps to `checkpoint.bin` in the output
+/// directory, so that `tensormass run SCENE --resume` continues a killed run
+/// and ends bit for bit where the uninterrupted run would have: the state
+/// and what the integrator carries between steps, the linear solver's
+/// factor, the tracks, the frame series and the statistics of the steps so
+/// far. A checkpoint names the scene and the mesh it belongs to by
+/// fingerprints; restoring it into another is refused.
+///
+/// Not yet covered: the adaptive model (laws, blends and counters per cell);
+/// a scene with `adaptivity` cannot write or resume checkpoints.
+#ifndef TENSORMASS_SIMULATION_CHECKPOINT_HPP
+#define TENSORMASS_SIMULATION_CHECKPOINT_HPP
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/mesh/mesh.hpp"
+#include "tensormass/scene/scene.hpp"
+#include "tensormass/simulation/track.hpp"
+#include "tensormass/solvers/integrators.hpp"
+
+namespace tensormass {
+
+/// The file name of a run's checkpoint inside its output directory.
+inline constexpr const char* kCheckpointFile = "checkpoint.bin";
+
+struct SavedTrack {
+  std::vector<TrackRow> rows;
+  std::array<double, 3> first_shift{};
+};
+
+struct Checkpoint {
+  std::uint64_t mesh_fingerprint = 0;
+  std::uint64_t scene_fingerprint = 0;
+  State state;
+  std::vector<double> linear_solver;  ///< LinearSolver::save_state()
+  SolveStatistics statistics;         ///< counts and per-step series so far (warnings not kept)
+  std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
+  std::vector<SavedTrack> tracks;       ///< in output.track order
+  std::vector<io::SeriesEntry> series;  ///< frames written so far
+};
+
+/// A fingerprint of what the mesh holds: dimension, rest positions, every
+/// block's element and connectivity, the groups' names and nodes.
+std::uint64_t mesh_fingerprint(const Mesh& mesh);
+/// A fingerprint of everything in the scene that changes the computed
+/// states or the outputs a resumed run appends to: materials, constraints,
+/// loads, the solver (but its thread count, which changes no result, and a
+/// dynamic run's `steps`, so that a finished run may be continued further),
+/// the adaptivity and output.every and output.track.
+std::uint64_t scene_fingerprint(const Scene& scene);
+
+/// Writes `checkpoint` to `path` atomically (a killed write leaves the
+/// previous checkpoint whole).
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+/// Reads a checkpoint; InputError naming the file when it is not one, is
+/// of another version, or is truncated.
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace tensormass
+
+#endif

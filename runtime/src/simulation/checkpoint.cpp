@@ -1,0 +1,281 @@
+// Checkpoints: a little-endian binary file, "tensormass checkpoint" and a
+// version, then the fields in a fixed order, each array preceded by its
+// length. Fingerprints are FNV-1a over the bytes of what they cover.
+#include "tensormass/simulation/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <type_traits>
+
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/atomic_file.hpp"
+
+namespace tensormass {
+
+namespace {
+
+constexpr char kMagic[] = "tensormass checkpoint";
+constexpr std::uint64_t kVersion = 1;
+
+/// FNV-1a, 64 bits.
+class Fingerprint {
+ public:
+  void bytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ p[i]) * 1099511628211ull;
+  }
+  template <class T>
+  void add(const T& value) {
+    static_assert(std::is_arithmetic_v<T>);
+    bytes(&value, sizeof value);
+  }
+  void add(const std::string& text) {
+    add(text.size());
+    bytes(text.data(), text.size());
+  }
+  template <class T>
+  void add(const std::vector<T>& values) {
+    add(values.size());
+    for (const T& v : values) add(v);
+  }
+  template <class T, std::size_t N>
+  void add(const std::array<T, N>& values) {
+    for (const T& v : values) add(v);
+  }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+void add_profile(Fingerprint& f, const TimeProfile& p) {
+  f.add(static_cast<int>(p.kind));
+  f.add(p.duration);
+  f.add(p.period);
+  f.add(p.phase);
+}
+
+void add_model(Fingerprint& f, const ModelSpec& model) {
+  for (const MaterialSpec& m : model.materials) {
+    f.add(m.region), f.add(m.law), f.add(m.split);
+    f.add(m.young), f.add(m.poisson), f.add(m.density);
+  }
+  f.add(model.fixed);
+  for (const PrescribedSpec& p : model.prescribed) {
+    f.add(p.region), f.add(p.displacement);
+    for (bool c : p.components) f.add(c);
+    add_profile(f, p.profile);
+    f.add(p.rotates), f.add(p.rotation.axis), f.add(p.rotation.centre), f.add(p.rotation.angle);
+  }
+  f.add(model.loads.gravity);
+  for (const NodalForceSpec& l : model.loads.nodal_forces) f.add(l.region), f.add(l.force);
+  for (const PressureSpec& l : model.loads.pressures) f.add(l.region), f.add(l.pressure);
+  add_profile(f, model.loads.profile);
+}
+
+void add_solver(Fingerprint& f, const SolverSettings& s) {
+  f.add(static_cast<int>(s.type));
+  f.add(s.load_steps), f.add(s.tolerance), f.add(s.max_iterations), f.add(s.dt);
+  if (s.is_static()) f.add(s.steps);
+  f.add(s.newton_iterations), f.add(s.damping_mass), f.add(s.damping_stiffness);
+  f.add(static_cast<int>(s.predictor)), f.add(s.project_hessian);
+  f.add(static_cast<int>(s.linear.type)), f.add(s.linear.tolerance), f.add(s.linear.max_iterations);
+  f.add(s.linear.reuse_iterations);
+}
+
+// --- Binary writing and reading ----------------------------------------------------
+
+class Writer {
+ public:
+  explicit Writer(std::ostream& out) : out_(out) {}
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_arithmetic_v<T>);
+    out_.write(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  template <class T>
+  void put(const std::vector<T>& values) {
+    put(static_cast<std::uint64_t>(values.size()));
+    if (!values.empty()) out_.write(reinterpret_cast<const char*>(values.data()), sizeof(T) * values.size());
+  }
+  void put(const std::string& text) {
+    put(static_cast<std::uint64_t>(text.size()));
+    out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+  }
+
+ private:
+  std::ostream& out_;
+};
+
+class Reader {
+ public:
+  Reader(std::string bytes, std::string path) : bytes_(std::move(bytes)), path_(std::move(path)) {}
+  template <class T>
+  T get() {
+    static_assert(std::is_arithmetic_v<T>);
+    T value;
+    std::memcpy(&value, take(sizeof value), sizeof value);
+    return value;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const std::uint64_t count = get<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(T)) fail("an array runs past the end of the file");
+    std::vector<T> values(count);
+    if (count) std::memcpy(values.data(), take(sizeof(T) * count), sizeof(T) * count);
+    return values;
+  }
+  std::string get_string() {
+    const std::uint64_t count = get<std::uint64_t>();
+    if (count > bytes_.size() - at_) fail("a string runs past the end of the file");
+    return std::string(take(count), count);
+  }
+  bool at_end() const { return at_ == bytes_.size(); }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError("checkpoint " + path_ + ": " + what + " (truncated or not a tensormass checkpoint)");
+  }
+
+ private:
+  const char* take(std::size_t size) {
+    if (size > bytes_.size() - at_) fail("it ends early");
+    const char* p = bytes_.data() + at_;
+    at_ += size;
+    return p;
+  }
+  std::string bytes_;
+  std::string path_;
+  std::size_t at_ = 0;
+};
+
+void put_state(Writer& w, const State& s) {
+  w.put(s.time), w.put(static_cast<std::int64_t>(s.step));
+  w.put(s.displacement), w.put(s.velocity), w.put(s.warm_start);
+  w.put(s.previous_displacement), w.put(s.earlier_displacement);
+}
+
+State get_state(Reader& r) {
+  State s;
+  s.time = r.get<double>();
+  s.step = static_cast<int>(r.get<std::int64_t>());
+  s.displacement = r.get_vector<double>();
+  s.velocity = r.get_vector<double>();
+  s.warm_start = r.get_vector<double>();
+  s.previous_displacement = r.get_vector<double>();
+  s.earlier_displacement = r.get_vector<double>();
+  return s;
+}
+
+void put_statistics(Writer& w, const SolveStatistics& s) {
+  w.put(s.assembly_seconds), w.put(s.solve_seconds), w.put(s.stable_dt);
+  w.put(static_cast<std::int64_t>(s.newton_iterations)), w.put(static_cast<std::int64_t>(s.shortened_steps));
+  w.put(static_cast<std::int64_t>(s.linear_iterations)), w.put(static_cast<std::int64_t>(s.factorizations));
+  w.put(s.newton_per_step), w.put(s.step_ms);
+}
+
+SolveStatistics get_statistics(Reader& r) {
+  SolveStatistics s;
+  s.assembly_seconds = r.get<double>();
+  s.solve_seconds = r.get<double>();
+  s.stable_dt = r.get<double>();
+  s.newton_iterations = static_cast<int>(r.get<std::int64_t>());
+  s.shortened_steps = static_cast<int>(r.get<std::int64_t>());
+  s.linear_iterations = r.get<std::int64_t>();
+  s.factorizations = static_cast<int>(r.get<std::int64_t>());
+  s.newton_per_step = r.get_vector<int>();
+  s.step_ms = r.get_vector<double>();
+  return s;
+}
+
+}  // namespace
+
+std::uint64_t mesh_fingerprint(const Mesh& mesh) {
+  Fingerprint f;
+  f.add(mesh.dim);
+  f.add(mesh.rest_positions);
+  for (const ElementBlock& block : mesh.blocks) f.add(std::string(block.element->name)), f.add(block.connectivity);
+  for (const Group& group : mesh.groups) f.add(group.name), f.add(group.nodes), f.add(group.cells);
+  return f.value();
+}
+
+std::uint64_t scene_fingerprint(const Scene& scene) {
+  Fingerprint f;
+  add_model(f, scene.model);
+  add_solver(f, scene.solver);
+  const AdaptivitySettings& a = scene.adaptivity;
+  f.add(a.enabled);
+  if (a.enabled) {
+    for (const CriterionSpec& c : a.criteria) f.add(c.name), f.add(c.threshold), f.add(c.rung);
+    f.add(a.ladder), f.add(static_cast<int>(a.action)), f.add(a.every), f.add(a.blend_steps);
+    f.add(a.downgrade), f.add(a.hysteresis), f.add(a.calm_steps);
+  }
+  f.add(scene.output.every), f.add(scene.output.track);
+  return f.value();
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  io::write_atomically(path, [&](std::ostream& out) {
+    Writer w(out);
+    w.put(std::string(kMagic)), w.put(kVersion);
+    w.put(c.mesh_fingerprint), w.put(c.scene_fingerprint);
+    put_state(w, c.state);
+    w.put(c.linear_solver);
+    put_statistics(w, c.statistics);
+    w.put(c.step_assembly_ms), w.put(c.step_solve_ms), w.put(c.step_criteria_ms);
+    w.put(static_cast<std::uint64_t>(c.tracks.size()));
+    for (const SavedTrack& t : c.tracks) {
+      w.put(static_cast<std::uint64_t>(t.rows.size()));
+      for (const TrackRow& row : t.rows) {
+        w.put(row.time);
+        for (double x : row.position) w.put(x);
+        for (double x : row.displacement) w.put(x);
+      }
+      for (double x : t.first_shift) w.put(x);
+    }
+    w.put(static_cast<std::uint64_t>(c.series.size()));
+    for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
+  });
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open checkpoint " + path);
+  Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  if (r.get_string() != kMagic) r.fail("no checkpoint header");
+  const auto version = r.get<std::uint64_t>();
+  if (version != kVersion)
+    throw InputError("checkpoint " + path + " has version " + std::to_string(version) + "; this tensormass reads " +
+                     std::to_string(kVersion));
+  Checkpoint c;
+  c.mesh_fingerprint = r.get<std::uint64_t>();
+  c.scene_fingerprint = r.get<std::uint64_t>();
+  c.state = get_state(r);
+  c.linear_solver = r.get_vector<double>();
+  c.statistics = get_statistics(r);
+  c.step_assembly_ms = r.get_vector<double>();
+  c.step_solve_ms = r.get_vector<double>();
+  c.step_criteria_ms = r.get_vector<double>();
+  const auto tracks = r.get<std::uint64_t>();
+  for (std::uint64_t t = 0; t < tracks; ++t) {
+    SavedTrack track;
+    const auto rows = r.get<std::uint64_t>();
+    for (std::uint64_t i = 0; i < rows; ++i) {
+      TrackRow row;
+      row.time = r.get<double>();
+      for (double& x : row.position) x = r.get<double>();
+      for (double& x : row.displacement) x = r.get<double>();
+      track.rows.push_back(row);
+    }
+    for (double& x : track.first_shift) x = r.get<double>();
+    c.tracks.push_back(std::move(track));
+  }
+  const auto frames = r.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < frames; ++i) {
+    const double time = r.get<double>();
+    c.series.push_back({time, r.get_string()});
+  }
+  if (!r.at_end()) r.fail("bytes after the last field");
+  return c;
+}
+
+}  // namespace tensormass

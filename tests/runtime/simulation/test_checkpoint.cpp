@@ -1,0 +1,185 @@
+// Checkpoints (checkpoint.cpp): the file round-trips, a damaged one is a
+// clear input error, fingerprints follow what changes a run and nothing
+// else, and `tensormass run --resume` refuses another run's checkpoint and
+// the adaptive model. (The SIGKILL-and-resume runs, bitwise equal to
+// uninterrupted ones, are tests/examples/run_kill_resume.sh.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/cantilever.hpp"
+#include "support/test_support.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/simulation/checkpoint.hpp"
+
+namespace tensormass {
+namespace {
+
+namespace fs = std::filesystem;
+using test_support::expect_contains;
+using test_support::TempDir;
+
+Checkpoint sample() {
+  Checkpoint c;
+  c.mesh_fingerprint = 11;
+  c.scene_fingerprint = 22;
+  c.state = {{0.1, -0.2, 1e-300}, {3.0, 4.0, 5.0}, 0.75, 9, {1.5}, {0.25, 0.5, 0.125}, {}};
+  c.linear_solver = {1.0, 2.0, 3.0};
+  c.statistics.newton_iterations = 18;
+  c.statistics.shortened_steps = 2;
+  c.statistics.linear_iterations = 123456789012;
+  c.statistics.newton_per_step = {2, 2, 3};
+  c.statistics.step_ms = {1.5, 2.5, 3.5};
+  c.step_solve_ms = {0.5};
+  c.tracks = {{{{0.0, {1, 2, 3}, {0, 0, 0}}, {0.1, {1, 2, 2.5}, {0, 0, -0.5}}}, {0.0, 0.0, 1e-9}}};
+  c.series = {{0.05, "frame_000005.vtu"}, {0.1, "frame_000010.vtu"}};
+  return c;
+}
+
+TEST(Checkpoint, RoundTripsEveryField) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  const Checkpoint c = sample();
+  write_checkpoint(path, c);
+  const Checkpoint r = read_checkpoint(path);
+  EXPECT_EQ(r.mesh_fingerprint, 11u);
+  EXPECT_EQ(r.scene_fingerprint, 22u);
+  EXPECT_EQ(r.state.displacement, c.state.displacement);
+  EXPECT_EQ(r.state.velocity, c.state.velocity);
+  EXPECT_EQ(r.state.time, 0.75);
+  EXPECT_EQ(r.state.step, 9);
+  EXPECT_EQ(r.state.warm_start, c.state.warm_start);
+  EXPECT_EQ(r.state.previous_displacement, c.state.previous_displacement);
+  EXPECT_TRUE(r.state.earlier_displacement.empty());
+  EXPECT_EQ(r.linear_solver, c.linear_solver);
+  EXPECT_EQ(r.statistics.newton_iterations, 18);
+  EXPECT_EQ(r.statistics.shortened_steps, 2);
+  EXPECT_EQ(r.statistics.linear_iterations, 123456789012);
+  EXPECT_EQ(r.statistics.newton_per_step, c.statistics.newton_per_step);
+  EXPECT_EQ(r.statistics.step_ms, c.statistics.step_ms);
+  EXPECT_EQ(r.step_solve_ms, c.step_solve_ms);
+  ASSERT_EQ(r.tracks.size(), 1u);
+  ASSERT_EQ(r.tracks[0].rows.size(), 2u);
+  EXPECT_EQ(r.tracks[0].rows[1].position, c.tracks[0].rows[1].position);
+  EXPECT_EQ(r.tracks[0].rows[1].displacement, c.tracks[0].rows[1].displacement);
+  EXPECT_EQ(r.tracks[0].first_shift, c.tracks[0].first_shift);
+  ASSERT_EQ(r.series.size(), 2u);
+  EXPECT_EQ(r.series[1].file, "frame_000010.vtu");
+  EXPECT_EQ(r.series[1].time, 0.1);
+}
+
+TEST(Checkpoint, EveryTruncationIsAnInputErrorNamingTheFile) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  write_checkpoint(path, sample());
+  const std::string bytes = test_support::read_file(path);
+  for (std::size_t length = 0; length < bytes.size(); length += 7) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(length));
+    try {
+      read_checkpoint(path);
+      ADD_FAILURE() << "a checkpoint cut at " << length << " bytes was read";
+    } catch (const InputError& e) {
+      expect_contains(e.what(), {"checkpoint " + path});
+    }
+  }
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << "mesh: beam.msh\n";
+  EXPECT_THROW(read_checkpoint(path), InputError);
+  EXPECT_THROW(read_checkpoint(dir.file("missing.bin")), InputError);
+}
+
+TEST(Checkpoint, SceneFingerprintFollowsWhatChangesTheRun) {
+  const Scene base = test::cantilever("stvk", SolverType::implicit_euler);
+  const std::uint64_t reference = scene_fingerprint(base);
+  Scene same = base;
+  same.solver.threads = 2;  // results do not depend on the thread count
+  same.solver.steps = 500;  // a dynamic run may be continued further
+  same.output.directory = "elsewhere";
+  EXPECT_EQ(scene_fingerprint(same), reference);
+  auto differs = [&](auto change) {
+    Scene other = base;
+    change(other);
+    return scene_fingerprint(other) != reference;
+  };
+  EXPECT_TRUE(differs([](Scene& s) { s.model.materials[0].young *= 1.0000001; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.model.loads.gravity[1] = -9.8; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.solver.dt = 0.02; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.solver.predictor = StepPredictor::none; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.output.every = 3; }));
+  EXPECT_TRUE(differs([](Scene& s) {
+    PrescribedSpec turn;
+    turn.region = "tip";
+    turn.rotates = true;
+    turn.rotation.angle = 10;
+    s.model.prescribed.push_back(turn);
+  }));
+  Scene statics = test::cantilever("stvk");
+  const std::uint64_t static_reference = scene_fingerprint(statics);
+  statics.solver.load_steps = 20;  // a static solve's load steps change every load factor
+  EXPECT_NE(scene_fingerprint(statics), static_reference);
+}
+
+TEST(Checkpoint, MeshFingerprintFollowsNodesCellsAndGroups) {
+  const Mesh mesh = test::beam(2, "quad4", {4, 2, 1});
+  Mesh moved = mesh;
+  moved.rest_positions[4] += 1e-12;
+  Mesh regrouped = mesh;
+  regrouped.groups.pop_back();
+  EXPECT_EQ(mesh_fingerprint(mesh), mesh_fingerprint(test::beam(2, "quad4", {4, 2, 1})));
+  EXPECT_NE(mesh_fingerprint(moved), mesh_fingerprint(mesh));
+  EXPECT_NE(mesh_fingerprint(regrouped), mesh_fingerprint(mesh));
+}
+
+/// `tensormass run --resume` on a beam scene in a temporary directory.
+class Resume : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto beam = test_support::tensormass("beam --dim 2 --cells 20,4 --size 5,1 -o " + dir_.file("beam.msh"));
+    ASSERT_EQ(beam.exit_code, 0) << beam.output;
+    write("young: 1.0e7");
+    const auto first = test_support::tensormass("run --quiet " + dir_.file("scene.yaml"));
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    ASSERT_TRUE(fs::exists(dir_.path() / "out" / "checkpoint.bin"));
+  }
+  void write(const std::string& young, const std::string& extra = "") {
+    dir_.write("scene.yaml", "mesh: beam.msh\nmaterials:\n  - {region: all, law: stvk, " + young +
+                                 ", poisson: 0.3, density: 1000}\nfixed: [clamp]\nloads: {gravity: [0, -9.81]}\n"
+                                 "solver: {type: implicit, dt: 0.01, steps: 10}\n"
+                                 "output: {directory: out, checkpoint_every: 4}\n" +
+                                 extra);
+  }
+  TempDir dir_;
+};
+
+TEST_F(Resume, ContinuesAFinishedRunFurther) {
+  const auto more = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume --set solver.steps=14");
+  ASSERT_EQ(more.exit_code, 0) << more.output;
+  expect_contains(more.output, {"resuming from", "at step 8 (t = 0.08)"});
+  expect_contains(test_support::read_file(dir_.path() / "out" / "summary.json"), {"\"resumed_from_step\": 8"});
+}
+
+TEST_F(Resume, RefusesAnotherScenesCheckpointAndWritesNothing) {
+  write("young: 2.0e7");
+  const auto before = test_support::read_file(dir_.path() / "out" / "summary.json");
+  const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
+  EXPECT_EQ(refused.exit_code, 2);
+  expect_contains(refused.output, {"checkpoint.bin was written for another version of", "scene.yaml"});
+  EXPECT_EQ(test_support::read_file(dir_.path() / "out" / "summary.json"), before);
+}
+
+TEST_F(Resume, RefusesAnotherMeshesCheckpoint) {
+  ASSERT_EQ(test_support::tensormass("beam --dim 2 --cells 20,5 --size 5,1 -o " + dir_.file("beam.msh")).exit_code, 0);
+  const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
+  EXPECT_EQ(refused.exit_code, 2);
+  expect_contains(refused.output, {"was written for another mesh than"});
+}
+
+TEST_F(Resume, RefusesTheAdaptiveModelForNow) {
+  write("young: 1.0e7", "adaptivity: {criteria: [{name: R_NL, threshold: 0.01}], ladder: [hooke, stvk]}\n");
+  const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
+  EXPECT_EQ(refused.exit_code, 2);
+  expect_contains(refused.output, {"do not cover the adaptive model yet"});
+}
+
+}  // namespace
+}  // namespace tensormass
