@@ -214,27 +214,30 @@ std::uint64_t scene_fingerprint(const Scene& scene) {
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
-  io::write_atomically(path, [&](std::ostream& out) {
-    Writer w(out);
-    w.put(std::string(kMagic)), w.put(kVersion);
-    w.put(c.mesh_fingerprint), w.put(c.scene_fingerprint);
-    put_state(w, c.state);
-    w.put(c.linear_solver);
-    put_statistics(w, c.statistics);
-    w.put(c.step_assembly_ms), w.put(c.step_solve_ms), w.put(c.step_criteria_ms);
-    w.put(static_cast<std::uint64_t>(c.tracks.size()));
-    for (const SavedTrack& t : c.tracks) {
-      w.put(static_cast<std::uint64_t>(t.rows.size()));
-      for (const TrackRow& row : t.rows) {
-        w.put(row.time);
-        for (double x : row.position) w.put(x);
-        for (double x : row.displacement) w.put(x);
-      }
-      for (double x : t.first_shift) w.put(x);
-    }
-    w.put(static_cast<std::uint64_t>(c.series.size()));
-    for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
-  });
+  io::write_atomically(
+      path,
+      [&](std::ostream& out) {
+        Writer w(out);
+        w.put(std::string(kMagic)), w.put(kVersion);
+        w.put(c.mesh_fingerprint), w.put(c.scene_fingerprint);
+        put_state(w, c.state);
+        w.put(c.linear_solver);
+        put_statistics(w, c.statistics);
+        w.put(c.step_assembly_ms), w.put(c.step_solve_ms), w.put(c.step_criteria_ms);
+        w.put(static_cast<std::uint64_t>(c.tracks.size()));
+        for (const SavedTrack& t : c.tracks) {
+          w.put(static_cast<std::uint64_t>(t.rows.size()));
+          for (const TrackRow& row : t.rows) {
+            w.put(row.time);
+            for (double x : row.position) w.put(x);
+            for (double x : row.displacement) w.put(x);
+          }
+          for (double x : t.first_shift) w.put(x);
+        }
+        w.put(static_cast<std::uint64_t>(c.series.size()));
+        for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
+      },
+      /*durable=*/true);
 }
 
 Checkpoint read_checkpoint(const std::string& path) {

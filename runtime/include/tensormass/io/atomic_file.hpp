@@ -13,8 +13,10 @@ namespace tensormass::io {
 
 /// Calls `write` with a binary stream on "path.tmp-PID", checks the stream,
 /// then renames onto `path`. On any error the temporary file is removed and
-/// std::runtime_error names the path.
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+/// std::runtime_error names the path. `durable`: the data and the rename are
+/// forced to disk (fsync) so that a power cut leaves the old or the new
+/// file whole (checkpoints); frames skip it for speed.
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool durable = false);
 
 }  // namespace tensormass::io
 
