@@ -2,7 +2,9 @@
 # Issue 14: a run killed with SIGKILL part way and resumed with --resume
 # ends bit for bit where the uninterrupted run ends (final state, frames,
 # tracks, series), for each integrator: implicit (CHOLMOD, whose factor is
-# restored), static (load-step extrapolation history) and explicit.
+# restored), static (load-step extrapolation history) and explicit, and for
+# the adaptive model (laws switching up and down with blends, the folded
+# linear part's sums, the counters).
 set -euo pipefail
 binary=$1
 work=$(mktemp -d)
@@ -10,7 +12,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 "$binary" beam --dim 3 --cells 40,6,6 --type tet6 -o beam.msh > /dev/null
 
-write_scene() {  # name, solver block, frame every, checkpoint every
+write_scene() {  # name, solver block, frame every, checkpoint every[, adaptivity block]
   cat > "$1.yaml" <<YAML
 mesh: beam.msh
 materials:
@@ -21,11 +23,16 @@ loads:
 solver:
 $2
 output: {directory: out-$1, every: $3, track: [body], checkpoint_every: $4}
+${5:-}
 YAML
 }
 write_scene implicit "  {type: implicit, dt: 0.01, steps: 120, newton_iterations: 3, tolerance: 1.0e-8}" 10 7
 write_scene static "  {type: static, load_steps: 60, tolerance: 1.0e-10}" 10 7
 write_scene explicit "  {type: explicit, dt: 2.0e-5, steps: 3000, damping: {mass: 5}}" 500 300
+write_scene adaptive "  {type: implicit, dt: 0.01, steps: 120, newton_iterations: 2}" 10 7 \
+  "adaptivity: {criteria: [{name: R_NL, threshold: 0.002}], ladder: [hooke, stvk], blend_steps: 3,
+  downgrade: {hysteresis: 0.5, calm_steps: 2}}"
+sed -i 's/law: stvk/law: hooke/' adaptive.yaml  # the adaptive run starts under Hooke
 
 kill_and_resume() {  # name, frame to wait for
   local name=$1 frame=$2
@@ -51,3 +58,5 @@ kill_and_resume() {  # name, frame to wait for
 kill_and_resume implicit frame_000050.vtu
 kill_and_resume static frame_000020.vtu
 kill_and_resume explicit frame_001000.vtu
+kill_and_resume adaptive frame_000050.vtu
+grep -q '"switches": [1-9]' out-adaptive/summary.json || { echo "adaptive: no law switched"; exit 1; }

@@ -51,6 +51,25 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
   calm_evaluations_.assign(model.cell_count(), 0);
 }
 
+AdaptivityMemory Adaptivity::memory() const {
+  return {calm_evaluations_, values_, total_switches_, criteria_seconds_, criterion_seconds_, records_};
+}
+
+void Adaptivity::restore(AdaptivityMemory memory) {
+  if (memory.calm_evaluations.size() != calm_evaluations_.size() || memory.values.size() != values_.size() ||
+      memory.criterion_seconds.size() != criterion_seconds_.size())
+    throw std::invalid_argument("Adaptivity::restore: saved for another model or other criteria");
+  for (std::size_t c = 0; c < values_.size(); ++c)
+    if (memory.values[c].size() != values_[c].size())
+      throw std::invalid_argument("Adaptivity::restore: saved for another model");
+  calm_evaluations_ = std::move(memory.calm_evaluations);
+  values_ = std::move(memory.values);
+  total_switches_ = memory.total_switches;
+  criteria_seconds_ = memory.criteria_seconds;
+  criterion_seconds_ = std::move(memory.criterion_seconds);
+  records_ = std::move(memory.records);
+}
+
 void Adaptivity::advance_blends() {
   if (settings_.blend_steps <= 0) return;
   const double increment = 1.0 / settings_.blend_steps;

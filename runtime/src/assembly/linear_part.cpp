@@ -1,6 +1,7 @@
 #include "tensormass/assembly/linear_part.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace tensormass {
 
@@ -74,6 +75,21 @@ int LinearPart::update() {
   }
   changes_ += changed;
   return changed;
+}
+
+LinearPart::Saved LinearPart::saved() const {
+  return {blocks_, folded_kernel_, folded_count_, changes_, seen_consts_revision_ != model_->consts_revision()};
+}
+
+void LinearPart::restore(Saved saved) {
+  if (saved.blocks.size() != blocks_.size() || saved.folded.size() != folded_kernel_.size())
+    throw std::invalid_argument("LinearPart::restore: saved for another model");
+  blocks_ = std::move(saved.blocks);
+  folded_kernel_ = std::move(saved.folded);
+  folded_count_ = saved.folded_count;
+  changes_ = saved.changes;
+  seen_revision_ = -1;  // compare every cell at the next update()
+  seen_consts_revision_ = model_->consts_revision() - (saved.constants_changed ? 1 : 0);
 }
 
 void LinearPart::add_cell(int cell, const tm_kernel& kernel, double sign) {

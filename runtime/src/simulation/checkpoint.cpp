@@ -3,6 +3,7 @@
 // length. Fingerprints are FNV-1a over the bytes of what they cover.
 #include "tensormass/simulation/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 
@@ -187,7 +189,146 @@ SolveStatistics get_statistics(Reader& r) {
   return s;
 }
 
+std::string kernel_name(const tm_kernel& kernel) { return std::string(kernel.law) + "/" + kernel.split; }
+
+/// Index of `kernel` in the table, added when new; -1 for nullptr.
+int kernel_index(std::vector<std::string>& table, const tm_kernel* kernel) {
+  if (!kernel) return -1;
+  const std::string name = kernel_name(*kernel);
+  const auto found = std::find(table.begin(), table.end(), name);
+  if (found != table.end()) return static_cast<int>(found - table.begin());
+  table.push_back(name);
+  return static_cast<int>(table.size()) - 1;
+}
+
+/// The registry's kernel named table[index] for the cell's element (nullptr for -1).
+const tm_kernel* saved_kernel(const SavedLaws& saved, int index, const Model& model, int cell) {
+  if (index < 0) return nullptr;
+  if (index >= static_cast<int>(saved.kernels.size())) throw InputError("checkpoint: a kernel index is out of range");
+  const std::string& name = saved.kernels[index];
+  const std::size_t slash = name.find('/');
+  const tm_kernel* kernel = Registry::instance().find(name.substr(0, slash), model.kernel(cell).element,
+                                                      slash == std::string::npos ? "" : name.substr(slash + 1));
+  if (!kernel)
+    throw InputError("checkpoint: no kernel " + name + " for " + model.mesh().describe_cell(cell) +
+                     " in this build's registry");
+  return kernel;
+}
+
+void put_laws(Writer& w, const SavedLaws& l) {
+  w.put(static_cast<std::uint64_t>(l.kernels.size()));
+  for (const std::string& name : l.kernels) w.put(name);
+  w.put(l.current), w.put(l.blend_from), w.put(l.blend_weight);
+  w.put(static_cast<std::int64_t>(l.folding));
+  w.put(l.folded), w.put(l.folded_blocks);
+  w.put(static_cast<std::int64_t>(l.folded_count)), w.put(static_cast<std::int64_t>(l.folding_changes));
+  w.put(static_cast<std::int64_t>(l.constants_changed));
+  const AdaptivityMemory& a = l.adaptivity;
+  w.put(a.calm_evaluations);
+  w.put(static_cast<std::uint64_t>(a.values.size()));
+  for (const auto& v : a.values) w.put(v);
+  w.put(static_cast<std::int64_t>(a.total_switches)), w.put(a.criteria_seconds), w.put(a.criterion_seconds);
+  w.put(static_cast<std::uint64_t>(a.records.size()));
+  for (const AdaptivityRecord& r : a.records) {
+    w.put(static_cast<std::int64_t>(r.step)), w.put(static_cast<std::int64_t>(r.upgrades));
+    w.put(static_cast<std::int64_t>(r.downgrades)), w.put(static_cast<std::uint64_t>(r.cells_per_law.size()));
+    for (const auto& [law, count] : r.cells_per_law) w.put(law), w.put(static_cast<std::int64_t>(count));
+  }
+}
+
+SavedLaws get_laws(Reader& r) {
+  SavedLaws l;
+  const auto kernels = r.get<std::uint64_t>();
+  for (std::uint64_t k = 0; k < kernels; ++k) l.kernels.push_back(r.get_string());
+  l.current = r.get_vector<int>();
+  l.blend_from = r.get_vector<int>();
+  l.blend_weight = r.get_vector<double>();
+  l.folding = r.get<std::int64_t>() != 0;
+  l.folded = r.get_vector<int>();
+  l.folded_blocks = r.get_vector<double>();
+  l.folded_count = static_cast<int>(r.get<std::int64_t>());
+  l.folding_changes = r.get<std::int64_t>();
+  l.constants_changed = r.get<std::int64_t>() != 0;
+  AdaptivityMemory& a = l.adaptivity;
+  a.calm_evaluations = r.get_vector<int>();
+  const auto criteria = r.get<std::uint64_t>();
+  for (std::uint64_t c = 0; c < criteria; ++c) a.values.push_back(r.get_vector<double>());
+  a.total_switches = static_cast<int>(r.get<std::int64_t>());
+  a.criteria_seconds = r.get<double>();
+  a.criterion_seconds = r.get_vector<double>();
+  const auto records = r.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < records; ++i) {
+    AdaptivityRecord record;
+    record.step = static_cast<int>(r.get<std::int64_t>());
+    record.upgrades = static_cast<int>(r.get<std::int64_t>());
+    record.downgrades = static_cast<int>(r.get<std::int64_t>());
+    const auto laws = r.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < laws; ++k) {
+      std::string law = r.get_string();
+      record.cells_per_law.emplace_back(std::move(law), static_cast<int>(r.get<std::int64_t>()));
+    }
+    a.records.push_back(std::move(record));
+  }
+  return l;
+}
+
 }  // namespace
+
+SavedLaws save_laws(const Model& model, const Assembler& assembler, const Adaptivity& adaptivity) {
+  SavedLaws l;
+  const int cells = model.cell_count();
+  for (int cell = 0; cell < cells; ++cell) {
+    l.current.push_back(kernel_index(l.kernels, &model.kernel(cell)));
+    l.blend_from.push_back(kernel_index(l.kernels, model.blend_from(cell)));
+    l.blend_weight.push_back(model.blend_weight(cell));
+  }
+  if (const LinearPart* part = assembler.linear_part()) {
+    LinearPart::Saved folded = part->saved();
+    l.folding = true;
+    for (const tm_kernel* kernel : folded.folded) l.folded.push_back(kernel_index(l.kernels, kernel));
+    l.folded_blocks = std::move(folded.blocks);
+    l.folded_count = folded.folded_count;
+    l.folding_changes = folded.changes;
+    l.constants_changed = folded.constants_changed;
+  }
+  l.adaptivity = adaptivity.memory();
+  return l;
+}
+
+void restore_laws(const SavedLaws& l, Model& model, const Assembler& assembler, Adaptivity& adaptivity) {
+  const int cells = model.cell_count();
+  if (static_cast<int>(l.current.size()) != cells || l.blend_from.size() != l.current.size() ||
+      l.blend_weight.size() != l.current.size())
+    throw InputError("checkpoint: its laws are for " + std::to_string(l.current.size()) + " cells, the model has " +
+                     std::to_string(cells));
+  for (int cell = 0; cell < cells; ++cell) {
+    const tm_kernel* kernel = saved_kernel(l, l.current[cell], model, cell);
+    model.set_law(cell, kernel->law);
+    if (&model.kernel(cell) != kernel)
+      throw InputError("checkpoint: " + model.mesh().describe_cell(cell) + " cannot take kernel " +
+                       kernel_name(*kernel) + " back (another split)");
+    if (const tm_kernel* from = saved_kernel(l, l.blend_from[cell], model, cell)) {
+      model.start_blend(cell, from);
+      model.set_blend_weight(cell, l.blend_weight[cell]);
+    }
+  }
+  LinearPart* part = assembler.linear_part();
+  if (part && l.folding) {
+    LinearPart::Saved folded{l.folded_blocks, {}, l.folded_count, l.folding_changes, l.constants_changed};
+    if (static_cast<int>(l.folded.size()) != cells) throw InputError("checkpoint: its folded cells do not fit");
+    for (int cell = 0; cell < cells; ++cell) folded.folded.push_back(saved_kernel(l, l.folded[cell], model, cell));
+    try {
+      part->restore(std::move(folded));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("checkpoint: ") + e.what());
+    }
+  }
+  try {
+    adaptivity.restore(l.adaptivity);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("checkpoint: ") + e.what());
+  }
+}
 
 std::uint64_t mesh_fingerprint(const Mesh& mesh) {
   Fingerprint f;
@@ -236,6 +377,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
         }
         w.put(static_cast<std::uint64_t>(c.series.size()));
         for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
+        w.put(static_cast<std::int64_t>(c.adaptive));
+        if (c.adaptive) put_laws(w, c.laws);
       },
       /*durable=*/true);
 }
@@ -277,6 +420,8 @@ Checkpoint read_checkpoint(const std::string& path) {
     const double time = r.get<double>();
     c.series.push_back({time, r.get_string()});
   }
+  c.adaptive = r.get<std::int64_t>() != 0;
+  if (c.adaptive) c.laws = get_laws(r);
   if (!r.at_end()) r.fail("bytes after the last field");
   return c;
 }

@@ -108,14 +108,6 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
   }
 }
 
-/// Refuses what checkpoints do not cover yet (before any output).
-void check_checkpoint_options(const Scene& scene, const RunOptions& options) {
-  if (scene.adaptivity.enabled && (options.resume || scene.output.checkpoint_every > 0))
-    throw InputError(scene.path +
-                     ": checkpoints (output.checkpoint_every, --resume) do not cover the adaptive model yet: "
-                     "remove the adaptivity section or the checkpoints");
-}
-
 /// The output directory's checkpoint when there is one, checked against
 /// this scene, mesh and model; InputError when it belongs to another run.
 std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Mesh& mesh,
@@ -150,7 +142,6 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // Everything that can be wrong with the input is found before any output.
   const Mesh mesh = read_mesh(scene.mesh);
   validate_against_mesh(scene, mesh);
-  check_checkpoint_options(scene, options);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   Model model(mesh, scene.model);
   Assembler assembler(model);
@@ -194,7 +185,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;               // static: repeats of the current load step after switches
   constexpr int kMaxResolves = 20;
-  if (adaptivity) {
+  if (adaptivity && !checkpoint) {
     detail::PhaseTimer timer(adaptivity_seconds);
     adaptivity->start(last_good.displacement);
   }
@@ -240,18 +231,19 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     const int every = scene.output.checkpoint_every;
     if (every > 0 && state.step % every == 0) {
       detail::PhaseTimer timer(report.output_seconds);
-      Checkpoint saved{mesh_fingerprint(mesh),
-                       scene_fingerprint(scene),
-                       state,
-                       linear->save_state(),
-                       statistics,
-                       report.step_assembly_ms,
-                       report.step_solve_ms,
-                       report.step_criteria_ms,
-                       {},
-                       series};
+      Checkpoint saved;
+      saved.mesh_fingerprint = mesh_fingerprint(mesh);
+      saved.scene_fingerprint = scene_fingerprint(scene);
+      saved.state = state;
+      saved.linear_solver = linear->save_state();
+      saved.statistics = statistics;
+      saved.step_assembly_ms = report.step_assembly_ms;
+      saved.step_solve_ms = report.step_solve_ms;
+      saved.step_criteria_ms = report.step_criteria_ms;
+      saved.series = series;
       saved.statistics.warnings.clear();
       for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
+      if (adaptivity) saved.adaptive = true, saved.laws = save_laws(model, assembler, *adaptivity);
       write_checkpoint(checkpoint_path, saved);
     }
     progress.update(state.step, counted_steps ? stepping_ms / counted_steps : 0.0);
@@ -264,6 +256,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     // Everything the steps so far left behind, as the killed run had it.
     state = checkpoint->state;
     last_good = state;
+    if (adaptivity && !checkpoint->adaptive)
+      throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
+    if (adaptivity) restore_laws(checkpoint->laws, model, assembler, *adaptivity);
     linear->restore_state(checkpoint->linear_solver, assembler.pattern());
     statistics = checkpoint->statistics;
     report.step_assembly_ms = checkpoint->step_assembly_ms;

@@ -30,6 +30,17 @@ struct AdaptivityRecord {
   std::vector<std::pair<std::string, int>> cells_per_law;
 };
 
+/// What the adaptive model carries from one evaluation to the next besides
+/// the model's laws and blends, for checkpoints.
+struct AdaptivityMemory {
+  std::vector<int> calm_evaluations;        ///< per cell
+  std::vector<std::vector<double>> values;  ///< per criterion, per cell: the last evaluation
+  int total_switches = 0;
+  double criteria_seconds = 0;
+  std::vector<double> criterion_seconds;
+  std::vector<AdaptivityRecord> records;
+};
+
 class Adaptivity {
  public:
   /// The settings must name known criteria and a ladder of at least two
@@ -60,6 +71,9 @@ class Adaptivity {
   const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
   const std::vector<AdaptivityRecord>& records() const { return records_; }
   const std::vector<std::string>& criterion_names() const { return names_; }
+  AdaptivityMemory memory() const;
+  /// Takes a saved memory back (its sizes must fit: std::invalid_argument otherwise).
+  void restore(AdaptivityMemory memory);
 
  private:
   void evaluate(std::span<const double> u);

@@ -55,6 +55,8 @@ class Assembler {
   int folded_cell_count() const { return linear_ ? linear_->folded_count() : 0; }
   /// Cells folded or unfolded so far (law switches in or out of a linear law).
   long folding_changes() const { return linear_ ? linear_->changes() : 0; }
+  /// The folded linear part (nullptr when folding is off), for checkpoints.
+  LinearPart* linear_part() const { return linear_.get(); }
 
  private:
   /// Per-thread scratch space for one cell.

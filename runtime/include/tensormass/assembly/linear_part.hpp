@@ -40,6 +40,21 @@ class LinearPart {
   /// update folds every linear cell).
   long changes() const { return changes_; }
 
+  /// What the folded matrix is made of, for a checkpoint: its sums depend
+  /// on the order of the law switches (see above), so a resumed run takes
+  /// them back rather than folding afresh.
+  struct Saved {
+    std::vector<double> blocks;
+    std::vector<const tm_kernel*> folded;  ///< per cell
+    int folded_count = 0;
+    long changes = 0;
+    bool constants_changed = false;  ///< a cell's constants were recomputed since the last update()
+  };
+  Saved saved() const;
+  /// Takes `saved` back; the next update() brings it up to the model's laws
+  /// as the interrupted run's next update() would have.
+  void restore(Saved saved);
+
   /// g (dof_count) = K_L u (dof_count).
   void multiply(std::span<const double> u, std::span<double> g) const;
   /// values (free_pattern's non-zeros) = K_L restricted to the free dofs.

@@ -8,8 +8,9 @@
 /// far. A checkpoint names the scene and the mesh it belongs to by
 /// fingerprints; restoring it into another is refused.
 ///
-/// Not yet covered: the adaptive model (laws, blends and counters per cell);
-/// a scene with `adaptivity` cannot write or resume checkpoints.
+/// With adaptivity it also holds every cell's law and blend, the folded
+/// linear part's sums (which depend on the order of past switches) and the
+/// adaptive model's counters.
 #ifndef TENSORMASS_SIMULATION_CHECKPOINT_HPP
 #define TENSORMASS_SIMULATION_CHECKPOINT_HPP
 
@@ -18,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/assembly/assembler.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/scene/scene.hpp"
@@ -34,6 +37,27 @@ struct SavedTrack {
   std::array<double, 3> first_shift{};
 };
 
+/// The laws of an adaptive run: kernels named "law/split" in a table, each
+/// cell's current and blended-from kernel by index (-1: none).
+struct SavedLaws {
+  std::vector<std::string> kernels;
+  std::vector<int> current, blend_from;
+  std::vector<double> blend_weight;
+  bool folding = false;     ///< the assembler folds linear cells (then the next fields)
+  std::vector<int> folded;  ///< per cell: the folded kernel's index, or -1
+  std::vector<double> folded_blocks;
+  int folded_count = 0;
+  long folding_changes = 0;
+  bool constants_changed = false;
+  AdaptivityMemory adaptivity;
+};
+
+/// The laws, blends, folded sums and adaptive counters of a run, and back.
+/// restore_laws throws InputError when the saved kernels do not exist for
+/// the cells' elements or do not fit.
+SavedLaws save_laws(const Model& model, const Assembler& assembler, const Adaptivity& adaptivity);
+void restore_laws(const SavedLaws& saved, Model& model, const Assembler& assembler, Adaptivity& adaptivity);
+
 struct Checkpoint {
   std::uint64_t mesh_fingerprint = 0;
   std::uint64_t scene_fingerprint = 0;
@@ -43,6 +67,8 @@ struct Checkpoint {
   std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
   std::vector<SavedTrack> tracks;       ///< in output.track order
   std::vector<io::SeriesEntry> series;  ///< frames written so far
+  bool adaptive = false;                ///< the run has adaptivity: `laws` holds its state
+  SavedLaws laws;
 };
 
 /// A fingerprint of what the mesh holds: dimension, rest positions, every
