@@ -9,8 +9,12 @@ $SUDO apt-get update -qq
 # faster factorisations than the reference BLAS, docs/results/runtime.md).
 $SUDO apt-get install -y -qq --no-install-recommends \
   g++ cmake ninja-build git clang-format \
-  python3 python3-sympy python3-jinja2 python3-pytest python3-numpy \
+  python3 python3-sympy python3-jinja2 python3-pytest python3-numpy python3-dev pybind11-dev \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libopenblas0-openmp \
   python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx
+# The fuzzers (scripts/run-fuzzers.sh): clang with libFuzzer and the
+# sanitizer runtimes, LLVM's OpenMP for the runtime library built by clang,
+# llvm-symbolizer for readable stacks in clang's sanitizer reports.
+$SUDO apt-get install -y -qq --no-install-recommends clang libclang-rt-dev libomp-dev llvm

@@ -370,7 +370,7 @@ void read_obj(const std::string& path, std::string_view data, SurfaceBuilder& bu
         if (!parse_long(index_text, index)) fail("expected a vertex index, found " + quoted(item));
         if (index == 0) fail("vertex index 0 in " + quoted(item) + " (OBJ indices start at 1)");
         if (index < 0) {
-          if (-index > vertex_count)
+          if (index < -vertex_count)  // not -index > vertex_count: -LONG_MIN overflows
             fail("relative vertex index " + std::to_string(index) + " goes before the first vertex (" +
                  std::to_string(vertex_count) + " defined so far)");
           index = vertex_count + index;

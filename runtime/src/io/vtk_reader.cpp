@@ -642,14 +642,20 @@ std::size_t vtu_type_size(std::string_view type) {
   return 0;
 }
 
+/// The value of type T stored at `bytes` in byte order `order`.
 template <class T>
-double load(const unsigned char* bytes, std::endian order) {
+T load_raw(const unsigned char* bytes, std::endian order) {
   unsigned char buffer[sizeof(T)];
   std::copy_n(bytes, sizeof(T), buffer);
   if (order != std::endian::native) std::reverse(buffer, buffer + sizeof(T));
   T value;
   std::memcpy(&value, buffer, sizeof(T));
-  return static_cast<double>(value);
+  return value;
+}
+
+template <class T>
+double load(const unsigned char* bytes, std::endian order) {
+  return static_cast<double>(load_raw<T>(bytes, order));
 }
 
 double load_value(const unsigned char* bytes, std::string_view type, std::endian order) {
@@ -686,7 +692,7 @@ class VtuReader {
   std::vector<double> inline_values(const Array& array) const;
   std::vector<double> appended_values(const Array& array) const;
   std::vector<double> convert(const Array& array, std::span<const unsigned char> bytes) const;
-  std::size_t header_value(std::span<const unsigned char> bytes) const;
+  std::size_t header_value(const Array& array, std::span<const unsigned char> bytes, Location at) const;
   const XmlElement* data_array(const XmlElement* parent, std::string_view name) const;
 
   InputCursor& in_;
@@ -818,9 +824,16 @@ std::vector<double> VtuReader::ascii_values(const Array& array) const {
   return values;
 }
 
-std::size_t VtuReader::header_value(std::span<const unsigned char> bytes) const {
-  return header_size_ == 8 ? static_cast<std::size_t>(load<std::uint64_t>(bytes.data(), order_))
-                           : static_cast<std::size_t>(load<std::uint32_t>(bytes.data(), order_));
+/// Read as an integer, not through a double (2^64 - 1 would round to 2^64,
+/// which no size_t holds), and refused when larger than the whole file, so
+/// that the sizes computed from it cannot overflow. `at`: where it was read.
+std::size_t VtuReader::header_value(const Array& array, std::span<const unsigned char> bytes, Location at) const {
+  const std::uint64_t value =
+      header_size_ == 8 ? load_raw<std::uint64_t>(bytes.data(), order_) : load_raw<std::uint32_t>(bytes.data(), order_);
+  if (value > in_.data().size())
+    in_.fail_at(at, "DataArray '" + array.name + "' declares " + std::to_string(value) +
+                        " bytes, more than the whole file holds (" + std::to_string(in_.data().size()) + ")");
+  return static_cast<std::size_t>(value);
 }
 
 std::vector<double> VtuReader::convert(const Array& array, std::span<const unsigned char> bytes) const {
@@ -844,7 +857,7 @@ std::vector<double> VtuReader::inline_values(const Array& array) const {
   if (text.size() < header_chars || !base64_decode(std::string_view(text).substr(0, header_chars), header) ||
       header.size() < header_size_)
     fail(*array.element, bad);
-  const std::size_t bytes = header_value(header);
+  const std::size_t bytes = header_value(array, header, where(*array.element));
   if (text[header_chars - 1] == '=') {  // header and data encoded separately (VTK)
     if (base64_length(bytes) > text.size() - header_chars)
       fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
@@ -876,7 +889,7 @@ std::vector<double> VtuReader::appended_values(const Array& array) const {
   if (xml_.appended_encoding == "raw") {
     if (data.size() - start < header_size_) in_.fail_at(at, "truncated appended data of '" + array.name + "'");
     const auto* bytes = reinterpret_cast<const unsigned char*>(data.data()) + start;
-    const std::size_t size = header_value({bytes, header_size_});
+    const std::size_t size = header_value(array, {bytes, header_size_}, at);
     if (size > data.size() - start - header_size_)
       in_.fail_at(at, "appended array '" + array.name + "' declares " + std::to_string(size) + " bytes but only " +
                           std::to_string(data.size() - start - header_size_) + " are left");
@@ -892,7 +905,7 @@ std::vector<double> VtuReader::appended_values(const Array& array) const {
   if (text.size() < header_chars || !base64_decode(text.substr(0, header_chars), header) ||
       header.size() < header_size_)
     in_.fail_at(at, bad);
-  const std::size_t size = header_value(header);
+  const std::size_t size = header_value(array, header, at);
   const bool separate = text[header_chars - 1] == '=';
   const std::size_t first = separate ? header_chars : 0;
   const std::size_t length = separate ? base64_length(size) : base64_length(header_size_ + size);

@@ -38,6 +38,14 @@ std::atomic<long> allocation_count{0};
 }
 [[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
 [[gnu::noinline]] void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+// The nothrow pair too, so that every new these deletes may free comes from
+// malloc: AddressSanitizer's own nothrow new, freed here, is an
+// alloc-dealloc mismatch (libfreeimage, loaded by Gmsh, uses it).
+[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  ++allocation_count;
+  return std::malloc(size == 0 ? 1 : size);
+}
+[[gnu::noinline]] void operator delete(void* memory, const std::nothrow_t&) noexcept { std::free(memory); }
 
 namespace tensormass {
 namespace {

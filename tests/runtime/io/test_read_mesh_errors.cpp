@@ -279,6 +279,15 @@ TEST(BadVtu, BadBase64AndTruncatedAppendedData) {
                      {"appended.vtu: byte " + std::to_string(data), "declares 2147483647 bytes"});
 }
 
+// Found by fuzz/fuzz_vtu_reader (kept as tests/data/fuzz_regressions/): an
+// appended UInt64 header of 2^64 - 1 bytes went through a double, which
+// rounds to 2^64, out of size_t's range (undefined behaviour).
+TEST(BadVtu, FuzzRegressionAppendedHeaderOfUint64Max) {
+  expect_input_error(test_support::source_path("tests/data/fuzz_regressions/vtu_reader/appended_header_uint64_max.vtu"),
+                     {"appended_header_uint64_max.vtu: byte ", "declares 18446744073709551615 bytes",
+                      "more than the whole file holds (257)"});
+}
+
 TEST(BadVtu, OtherDatasetType) {
   TempDir dir;
   expect_input_error(dir.write("poly.vtu", "<VTKFile type=\"PolyData\"><PolyData/></VTKFile>"),

@@ -95,6 +95,15 @@ TEST(SurfaceBadInput, ObjErrors) {
   expect_read_error(dir.write("points.obj", "v 0 0 0\nv 1 0 0\n"), {"points.obj", "no triangles"});
 }
 
+// Found by fuzz/fuzz_obj_reader (kept as tests/data/fuzz_regressions/): the
+// relative index -9223372036854775808 was negated to check its range, a
+// signed overflow (undefined behaviour).
+TEST(SurfaceBadInput, FuzzRegressionFaceIndexLongMin) {
+  expect_read_error(test_support::source_path("tests/data/fuzz_regressions/obj_reader/face_index_long_min.obj"),
+                    {"face_index_long_min.obj:1:", "relative vertex index -9223372036854775808",
+                     "before the first vertex (0 defined so far)"});
+}
+
 TEST(SurfaceBadInput, GmshErrors) {
   TempDir dir;
   expect_read_error(dir.write("bad.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 x\n"),

@@ -1,0 +1,6 @@
+// Fuzz target: the OBJ surface reader and the surface check.
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return tensormass::fuzz::read_surface("fuzz.obj", data, size);
+}
