@@ -109,15 +109,15 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
 }
 
 /// The output directory's checkpoint when there is one, checked against
-/// this scene, mesh and model; InputError when it belongs to another run.
-std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Mesh& mesh,
+/// this run's fingerprints (`run`) and model; InputError when it belongs to another run.
+std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Checkpoint& run,
                                               const Model& model) {
   if (!fs::exists(path)) return std::nullopt;
   Checkpoint checkpoint = read_checkpoint(path);
-  if (checkpoint.mesh_fingerprint != mesh_fingerprint(mesh))
+  if (checkpoint.mesh_fingerprint != run.mesh_fingerprint)
     throw InputError("checkpoint " + path + " was written for another mesh than " + scene.mesh +
                      " (remove it, or give another output.directory, to start afresh)");
-  if (checkpoint.scene_fingerprint != scene_fingerprint(scene))
+  if (checkpoint.scene_fingerprint != run.scene_fingerprint)
     throw InputError("checkpoint " + path + " was written for another version of " + scene.path +
                      " (materials, constraints, loads, solver, adaptivity or output.every/track differ; remove it, "
                      "or give another output.directory, to start afresh)");
@@ -156,8 +156,11 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
   std::vector<GroupTrack> tracks = make_tracks(scene, mesh);
   const std::string checkpoint_path = (fs::path(scene.output.directory) / kCheckpointFile).string();
+  Checkpoint fingerprints;  // this run's; a checkpoint written starts from them
+  fingerprints.mesh_fingerprint = mesh_fingerprint(mesh);
+  fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
-  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, mesh, model);
+  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, model);
 
   RunReport report;
   report.output_directory = scene.output.directory;
@@ -231,9 +234,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     const int every = scene.output.checkpoint_every;
     if (every > 0 && state.step % every == 0) {
       detail::PhaseTimer timer(report.output_seconds);
-      Checkpoint saved;
-      saved.mesh_fingerprint = mesh_fingerprint(mesh);
-      saved.scene_fingerprint = scene_fingerprint(scene);
+      Checkpoint saved = fingerprints;
       saved.state = state;
       saved.linear_solver = linear->save_state();
       saved.statistics = statistics;

@@ -28,6 +28,8 @@ struct EulerStep {
   const std::vector<double>& f;  ///< external force at t1 (dof_count)
 
   int free_count() const { return run.model.free_dof_count(); }
+  /// Scratch vectors over the free dofs, sized once (the Newton loop allocates nothing).
+  mutable std::vector<double> scratch_a, scratch_b;
 
   /// r (free dofs) = M ((v - v0) / dt + alpha v) + beta K v + g - f, v = (u - u0) / dt.
   void residual(const std::vector<double>& u, const std::vector<double>& g, const SparseMatrix& K,
@@ -36,7 +38,9 @@ struct EulerStep {
     const auto& free = run.model.free_dofs();
     const auto& mass = run.model.lumped_mass();
     const int n = free_count();
-    std::vector<double> v_free(n), kv(n, 0.0);
+    std::vector<double>& v_free = scratch_a;
+    std::vector<double>& kv = scratch_b;
+    v_free.resize(n), kv.assign(n, 0.0);
     for (int i = 0; i < n; ++i) v_free[i] = (u[free[i]] - u0[free[i]]) / s.dt;
     if (s.damping_stiffness != 0.0) K.multiply(v_free, kv);
     for (int i = 0; i < n; ++i) {
@@ -53,7 +57,9 @@ struct EulerStep {
     const auto& mass = run.model.lumped_mass();
     const int n = free_count();
     double inertia = 0.0, external = 0.0;
-    std::vector<double> du(n), kdu(n, 0.0);
+    std::vector<double>& du = scratch_a;
+    std::vector<double>& kdu = scratch_b;
+    du.resize(n), kdu.assign(n, 0.0);
     for (int i = 0; i < n; ++i) {
       const int d = free[i];
       du[i] = u[d] - u0[d];
@@ -150,7 +156,7 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
     const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
     const std::vector<double> u0 = state.displacement, v0 = state.velocity;
     const std::vector<double> f = external_force(model, model.load_factor(t1));
-    const EulerStep step{run, u0, v0, f};
+    const EulerStep step{run, u0, v0, f, {}, {}};
     std::vector<double> u = predict(step, t1);
     double reference = 0.0;
     int iterations = 0;
