@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "kernel_bindings.hpp"
+#include "simulation_bindings.hpp"
 #include "tensormass/common/errors.hpp"
 
 PYBIND11_MODULE(_tensormass, m) {
@@ -18,4 +19,5 @@ PYBIND11_MODULE(_tensormass, m) {
     }
   });
   tensormass::python::bind_kernels(m);
+  tensormass::python::bind_simulation(m);
 }

@@ -9,8 +9,27 @@ The generated kernels on NumPy batches of elements::
     k.gradient(rest, u, young=1e6, poisson=0.3)  # -> (n, nodes * dim)
     k.hessian(rest, u, young=1e6, poisson=0.3)   # -> (n, dofs, dofs)
 
-Bad input raises ValueError; a numerical failure raises tensormass.NumericalError.
-"""
-from ._tensormass import Kernel, NumericalError, kernel, kernels
+A scene run step by step, its state as NumPy arrays::
 
-__all__ = ["Kernel", "NumericalError", "kernel", "kernels"]
+    sim = tm.Simulation("scene.yaml", overrides={"solver.steps": 10})
+    while sim.step():                          # one step (static: one load step)
+        print(sim.time, abs(sim.displacement).max())
+    sim.set_law(cells, "neohookean")           # between steps
+    sim.set_prescribed("probe", displacement=(0, -0.01, 0))
+    sim = tm.Simulation.from_arrays(points, {"tetra": tets}, groups={"base": nodes},
+                                    materials=[...], fixed=["base"], solver={...})
+
+Bad input raises ValueError; a numerical failure raises tensormass.NumericalError.
+See docs/python.md.
+"""
+import os as _os
+
+# The OpenMP wait policy of the CLI (runtime/include/tensormass/common/
+# thread_defaults.hpp): idle threads sleep instead of spinning, which took a
+# core from the serial phases. libgomp reads it once, when it is loaded by
+# the import below; a value set by the user stays.
+_os.environ.setdefault("OMP_WAIT_POLICY", "passive")
+
+from ._tensormass import Kernel, NumericalError, Simulation, kernel, kernels  # noqa: E402
+
+__all__ = ["Kernel", "NumericalError", "Simulation", "kernel", "kernels"]

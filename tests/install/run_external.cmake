@@ -85,3 +85,7 @@ endforeach()
 # (d) Run it: exit 0 means a finite final state with the tip moved down.
 run_step(run ${EXTERNAL_BUILD_DIR}/external_solver)
 message("${step_output}")
+
+# (e) The runtime's package: a scene stepped by tensormass::Simulation.
+run_step(run_scene ${CMAKE_COMMAND} -E chdir ${EXTERNAL_BUILD_DIR} ${EXTERNAL_BUILD_DIR}/scene_runner)
+message("${step_output}")

@@ -231,8 +231,9 @@ void Model::apply_constraints(double t, std::span<double> u, bool static_load_fa
     const TimeProfile& profile = profiles_[p.profile];
     // A static solve reaches the full value at the last load step whatever the
     // time profile: the load factor scales it linearly.
-    const double factor = static_load_factor ? t : profile.factor(t);
+    const double factor = p.held ? 1.0 : static_load_factor ? t : profile.factor(t);
     u[p.dof] = p.amplitude * factor;
+    if (p.held) continue;
     if (p.rotation >= 0) {
       const double* x = &mesh_->rest_positions[3 * static_cast<std::size_t>(p.dof / dim_)];
       u[p.dof] += rotations_[p.rotation].displacement(x, factor)[p.dof % dim_];

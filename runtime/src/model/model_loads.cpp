@@ -265,4 +265,25 @@ void Model::collect_constraints(const ModelSpec& spec) {
     }
 }
 
+void Model::hold(const std::string& group, const std::array<double, 3>& displacement,
+                 const std::array<bool, 3>& components) {
+  const Group* found = mesh_->group(group);
+  if (!found) throw InputError("hold: the mesh has no group '" + group + "'");
+  std::vector<PrescribedDof*> held;  // all found before any changes: an error changes nothing
+  for (int node : found->nodes)
+    for (int a = 0; a < dim_; ++a) {
+      if (!components[a]) continue;
+      const int dof = node * dim_ + a;
+      // prescribed_ is sorted by dof (collect_constraints builds it from a map).
+      auto p = std::lower_bound(prescribed_.begin(), prescribed_.end(), dof,
+                                [](const PrescribedDof& q, int d) { return q.dof < d; });
+      if (p == prescribed_.end() || p->dof != dof)
+        throw InputError("hold: node " + std::to_string(mesh_->node_source_ids[node]) + " of group '" + group +
+                         "' has a free component " + std::to_string(a) +
+                         " in the scene; only dofs that are fixed or prescribed there can be moved");
+      held.push_back(&*p);
+    }
+  for (PrescribedDof* p : held) *p = PrescribedDof{p->dof, displacement[p->dof % dim_], p->profile, -1, true};
+}
+
 }  // namespace tensormass

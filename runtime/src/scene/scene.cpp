@@ -430,10 +430,14 @@ Scene read_scene(const Value& root, const std::string& path) {
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+namespace {
+
+/// Overrides, key checks and the read, for a scene parsed by `parse` (the file or the text).
+template <class Parse>
+Scene scene_from(const std::string& path, const std::vector<std::string>& overrides, Parse parse) {
   scene_yaml::Source source(path);
   try {
-    YAML::Node root = scene_yaml::read_yaml_file(path);
+    YAML::Node root = parse();
     if (!root.IsMap())
       Value(source, root, {})
           .fail_here("a scene is a map of keys (mesh, materials, solver, ...), got " +
@@ -445,6 +449,16 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   } catch (const YAML::Exception& e) {  // defensive: yaml-cpp errors not caught above
     throw InputError(path + ": " + e.what());
   }
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return scene_from(path, overrides, [&] { return scene_yaml::read_yaml_file(path); });
+}
+
+Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  return scene_from(name, overrides, [&] { return scene_yaml::read_yaml_text(text, name); });
 }
 
 }  // namespace tensormass

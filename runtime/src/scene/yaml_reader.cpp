@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "tensormass/common/errors.hpp"
 
@@ -96,22 +97,36 @@ std::string Source::where(const Path& path, const YAML::Node& node) const {
 
 // --- Reading a file --------------------------------------------------------
 
+namespace {
+
+/// Parses `in`; `name` labels messages.
+YAML::Node parse_yaml(std::istream& in, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(in);
+  } catch (const YAML::Exception& e) {
+    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
+    throw InputError(name + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull())
+    throw InputError(name + ":1: the scene is empty (expected keys mesh, materials, solver, ...)");
+  return root;
+}
+
+}  // namespace
+
 YAML::Node read_yaml_file(const std::string& file) {
   namespace fs = std::filesystem;
   std::error_code error;
   if (fs::is_directory(file, error)) throw InputError(file + ": is a directory, not a scene file");
   std::ifstream in(file);
   if (!in) throw InputError(file + ": cannot open the scene file (missing or unreadable)");
-  YAML::Node root;
-  try {
-    root = YAML::Load(in);
-  } catch (const YAML::Exception& e) {
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": YAML syntax error: " + e.msg);
-  }
-  if (!root.IsDefined() || root.IsNull())
-    throw InputError(file + ":1: the scene file is empty (expected keys mesh, materials, solver, ...)");
-  return root;
+  return parse_yaml(in, file);
+}
+
+YAML::Node read_yaml_text(const std::string& text, const std::string& name) {
+  std::istringstream in(text);
+  return parse_yaml(in, name);
 }
 
 // --- Value -----------------------------------------------------------------

@@ -60,6 +60,8 @@ class Source {
 
 /// Reads a YAML file; throws InputError (missing file, syntax error with its line, empty file).
 YAML::Node read_yaml_file(const std::string& file);
+/// The same for a scene given as text; `name` stands for the file in messages.
+YAML::Node read_yaml_text(const std::string& text, const std::string& name);
 
 /// A node of the tree with its path and source, and typed reads that throw
 /// InputError "where: path: message".

@@ -137,32 +137,66 @@ void time_loop(const Scene& scene, const State& state, double adaptivity_seconds
 
 }  // namespace
 
-RunReport run_scene(const Scene& scene, const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  // Everything that can be wrong with the input is found before any output.
-  const Mesh mesh = read_mesh(scene.mesh);
-  validate_against_mesh(scene, mesh);
-  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  Model model(mesh, scene.model);
-  Assembler assembler(model);
-  assembler.set_hessian_projection(scene.solver.project_hessian);
-  const bool dynamic = scene.solver.is_dynamic();
+struct Simulation::Impl {
+  Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options);
+  bool observe(const State& state);
+  void restore(const Checkpoint& checkpoint);
+  void write_checkpoint_now(const State& state);
+  std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
+  bool step();
+  [[noreturn]] void fail(const NumericalError& failure);
+  void finish_run();
+
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  Scene scene;
+  Mesh mesh;
+  Model model;
+  Assembler assembler;
+  bool dynamic;
   std::unique_ptr<Adaptivity> adaptivity;
+  std::unique_ptr<LinearSolver> linear;
+  std::vector<GroupTrack> tracks;
+  std::string checkpoint_path;
+  Checkpoint fingerprints;  // this run's; a checkpoint written starts from them
+  RunReport report;
+  Integration integration;
+  std::unique_ptr<Integrator> integrator;  // made at the first step (the explicit one estimates dt from the laws then)
+  State state, last_good;
+  std::vector<io::SeriesEntry> series;
+  detail::Progress progress;
+  std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
+  std::size_t counted_steps = 0;
+  double stepping_ms = 0;
+  double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
+  int resolves = 0;               // static: repeats of the current load step after switches
+  static constexpr int kMaxResolves = 20;
+  bool done = false;
+};
+
+/// Mesh, model and solver, the resumed checkpoint or the first evaluation
+/// of the adaptive model, the output directory.
+Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options)
+    : scene(scene_in),
+      mesh(std::move(mesh_in)),
+      model((validate_against_mesh(scene, mesh), mesh), scene.model),
+      assembler(model),
+      dynamic(scene.solver.is_dynamic()),
+      linear(make_linear_solver(scene.solver.linear)),
+      tracks(make_tracks(scene, mesh)),
+      checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
+      integration{model, assembler, *linear, scene.solver, report.statistics},
+      progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)), options.progress) {
+  assembler.set_hessian_projection(scene.solver.project_hessian);
   if (scene.adaptivity.enabled) {
     AdaptivitySettings settings = scene.adaptivity;
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
     adaptivity = std::make_unique<Adaptivity>(settings, model, assembler);
   }
-  std::unique_ptr<LinearSolver> linear = make_linear_solver(scene.solver.linear);
-  std::vector<GroupTrack> tracks = make_tracks(scene, mesh);
-  const std::string checkpoint_path = (fs::path(scene.output.directory) / kCheckpointFile).string();
-  Checkpoint fingerprints;  // this run's; a checkpoint written starts from them
   fingerprints.mesh_fingerprint = mesh_fingerprint(mesh);
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
   if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, model);
 
-  RunReport report;
   report.output_directory = scene.output.directory;
   report.nodes = mesh.node_count();
   report.cells = mesh.cell_count();
@@ -173,131 +207,149 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   fs::create_directories(scene.output.directory, error);
   if (error) throw InputError("cannot create output directory " + scene.output.directory + ": " + error.message());
 
-  SolveStatistics& statistics = report.statistics;
-  Integration run{model, assembler, *linear, scene.solver, statistics};
-  State last_good;
-  last_good.displacement.assign(model.dof_count(), 0.0);
-  last_good.velocity.assign(model.dof_count(), 0.0);
-  std::vector<io::SeriesEntry> series;
-  detail::Progress progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
-                            options.progress);
-  auto output_path = [&](const std::string& name) { return (fs::path(scene.output.directory) / name).string(); };
-  std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
-  std::size_t counted_steps = 0;
-  double stepping_ms = 0;
-  double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
-  int resolves = 0;               // static: repeats of the current load step after switches
-  constexpr int kMaxResolves = 20;
-  if (adaptivity && !checkpoint) {
+  state.displacement.assign(model.dof_count(), 0.0);
+  state.velocity.assign(model.dof_count(), 0.0);
+  last_good = state;
+  if (checkpoint) {
+    restore(*checkpoint);
+    return;
+  }
+  if (adaptivity) {
     detail::PhaseTimer timer(adaptivity_seconds);
     adaptivity->start(last_good.displacement);
   }
-  const StepObserver observer = [&](const State& state) {
-    if (adaptivity) {
-      int switches = 0;
-      {
-        detail::PhaseTimer timer(adaptivity_seconds);
-        if (dynamic) adaptivity->advance_blends();
-        switches = adaptivity->update(state.displacement, state.step);
-      }
-      if (!dynamic && switches > 0 && resolves < kMaxResolves) {
-        ++resolves;
-        return true;  // solve this load step again with the new laws
-      }
-      if (!dynamic && switches > 0)
-        statistics.warnings.push_back("load step " + std::to_string(state.step) + ": laws still switching after " +
-                                      std::to_string(kMaxResolves) + " re-solves");
+  for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+}
+
+/// Everything the steps so far left behind, as the killed run had it.
+void Simulation::Impl::restore(const Checkpoint& checkpoint) {
+  SolveStatistics& statistics = report.statistics;
+  state = checkpoint.state;
+  last_good = state;
+  if (adaptivity && !checkpoint.adaptive)
+    throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
+  if (adaptivity) restore_laws(checkpoint.laws, model, assembler, *adaptivity);
+  linear->restore_state(checkpoint.linear_solver, assembler.pattern());
+  statistics = checkpoint.statistics;
+  report.step_assembly_ms = checkpoint.step_assembly_ms;
+  report.step_solve_ms = checkpoint.step_solve_ms;
+  report.step_criteria_ms = checkpoint.step_criteria_ms;
+  for (std::size_t t = 0; t < tracks.size() && t < checkpoint.tracks.size(); ++t)
+    tracks[t].restore(checkpoint.tracks[t].rows, checkpoint.tracks[t].first_shift);
+  series = checkpoint.series;
+  counted_steps = statistics.step_ms.size();
+  stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
+  phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
+  report.resumed_from_step = state.step;
+  std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
+               state.time);
+}
+
+void Simulation::Impl::write_checkpoint_now(const State& state_now) {
+  detail::PhaseTimer timer(report.output_seconds);
+  Checkpoint saved = fingerprints;
+  saved.state = state_now;
+  saved.linear_solver = linear->save_state();
+  saved.statistics = report.statistics;
+  saved.step_assembly_ms = report.step_assembly_ms;
+  saved.step_solve_ms = report.step_solve_ms;
+  saved.step_criteria_ms = report.step_criteria_ms;
+  saved.series = series;
+  saved.statistics.warnings.clear();
+  for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
+  if (adaptivity) saved.adaptive = true, saved.laws = save_laws(model, assembler, *adaptivity);
+  write_checkpoint(checkpoint_path, saved);
+}
+
+/// After each finished step: the adaptive model (a static load step is
+/// solved again when it switched laws: returns true), tracks, per-step
+/// phase times, frames, checkpoints and progress.
+bool Simulation::Impl::observe(const State& now) {
+  SolveStatistics& statistics = report.statistics;
+  if (adaptivity) {
+    int switches = 0;
+    {
+      detail::PhaseTimer timer(adaptivity_seconds);
+      if (dynamic) adaptivity->advance_blends();
+      switches = adaptivity->update(now.displacement, now.step);
     }
-    resolves = 0;
-    last_good = state;
-    if (!tracks.empty()) {
-      detail::PhaseTimer timer(report.output_seconds);
-      for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+    if (!dynamic && switches > 0 && resolves < kMaxResolves) {
+      ++resolves;
+      return true;  // solve this load step again with the new laws
     }
-    // Per-step phase times, from the running totals.
-    const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
-    report.step_assembly_ms.push_back(1e3 * (statistics.assembly_seconds - phase_marks[0]));
-    report.step_solve_ms.push_back(1e3 * (statistics.solve_seconds - phase_marks[1]));
-    report.step_criteria_ms.push_back(1e3 * (criteria_now - phase_marks[2]));
-    phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, criteria_now};
-    if (scene.output.every > 0 && state.step % scene.output.every == 0) {
-      detail::PhaseTimer timer(report.output_seconds);
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%06d.vtu", state.step);
-      write_state(output_path(name), model, state, adaptivity.get());
-      series.push_back({state.time, name});
-      io::write_pvd(output_path("series.pvd"), series);
-    }
-    // Running sum of the finished steps (a repeated static step is popped
-    // before it is ever counted here).
-    for (; counted_steps < statistics.step_ms.size(); ++counted_steps) stepping_ms += statistics.step_ms[counted_steps];
-    const int every = scene.output.checkpoint_every;
-    if (every > 0 && state.step % every == 0) {
-      detail::PhaseTimer timer(report.output_seconds);
-      Checkpoint saved = fingerprints;
-      saved.state = state;
-      saved.linear_solver = linear->save_state();
-      saved.statistics = statistics;
-      saved.step_assembly_ms = report.step_assembly_ms;
-      saved.step_solve_ms = report.step_solve_ms;
-      saved.step_criteria_ms = report.step_criteria_ms;
-      saved.series = series;
-      saved.statistics.warnings.clear();
-      for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
-      if (adaptivity) saved.adaptive = true, saved.laws = save_laws(model, assembler, *adaptivity);
-      write_checkpoint(checkpoint_path, saved);
-    }
-    progress.update(state.step, counted_steps ? stepping_ms / counted_steps : 0.0);
-    return false;
-  };
-  State state;
-  state.displacement.assign(model.dof_count(), 0.0);
-  state.velocity.assign(model.dof_count(), 0.0);
-  if (checkpoint) {
-    // Everything the steps so far left behind, as the killed run had it.
-    state = checkpoint->state;
-    last_good = state;
-    if (adaptivity && !checkpoint->adaptive)
-      throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
-    if (adaptivity) restore_laws(checkpoint->laws, model, assembler, *adaptivity);
-    linear->restore_state(checkpoint->linear_solver, assembler.pattern());
-    statistics = checkpoint->statistics;
-    report.step_assembly_ms = checkpoint->step_assembly_ms;
-    report.step_solve_ms = checkpoint->step_solve_ms;
-    report.step_criteria_ms = checkpoint->step_criteria_ms;
-    for (std::size_t t = 0; t < tracks.size() && t < checkpoint->tracks.size(); ++t)
-      tracks[t].restore(checkpoint->tracks[t].rows, checkpoint->tracks[t].first_shift);
-    series = checkpoint->series;
-    counted_steps = statistics.step_ms.size();
-    stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
-    phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
-    report.resumed_from_step = state.step;
-    std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
-                 state.time);
-  } else {
-    for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+    if (!dynamic && switches > 0)
+      statistics.warnings.push_back("load step " + std::to_string(now.step) + ": laws still switching after " +
+                                    std::to_string(kMaxResolves) + " re-solves");
   }
+  resolves = 0;
+  last_good = now;
+  if (!tracks.empty()) {
+    detail::PhaseTimer timer(report.output_seconds);
+    for (GroupTrack& track : tracks) track.record(now.time, now.displacement);
+  }
+  // Per-step phase times, from the running totals.
+  const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
+  report.step_assembly_ms.push_back(1e3 * (statistics.assembly_seconds - phase_marks[0]));
+  report.step_solve_ms.push_back(1e3 * (statistics.solve_seconds - phase_marks[1]));
+  report.step_criteria_ms.push_back(1e3 * (criteria_now - phase_marks[2]));
+  phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, criteria_now};
+  if (scene.output.every > 0 && now.step % scene.output.every == 0) {
+    detail::PhaseTimer timer(report.output_seconds);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.vtu", now.step);
+    write_state(output_path(name), model, now, adaptivity.get());
+    series.push_back({now.time, name});
+    io::write_pvd(output_path("series.pvd"), series);
+  }
+  // Running sum of the finished steps (a repeated static step is popped
+  // before it is ever counted here).
+  for (; counted_steps < statistics.step_ms.size(); ++counted_steps) stepping_ms += statistics.step_ms[counted_steps];
+  const int every = scene.output.checkpoint_every;
+  if (every > 0 && now.step % every == 0) write_checkpoint_now(now);
+  progress.update(now.step, counted_steps ? stepping_ms / counted_steps : 0.0);
+  return false;
+}
+
+/// One step, and the end of the run when it was the last (or when a
+/// resumed run had none left). Returns whether a step was taken.
+bool Simulation::Impl::step() {
+  if (done) return false;
+  bool stepped = false;
   try {
-    switch (scene.solver.type) {
-      case SolverType::static_newton: solve_static(run, state, observer); break;
-      case SolverType::implicit_euler: solve_implicit(run, state, observer); break;
-      case SolverType::explicit_euler: solve_explicit(run, state, observer); break;
+    if (!integrator) integrator = make_integrator(integration);
+    if (!integrator->finished(state)) {
+      integrator->step(state, [this](const State& now) { return observe(now); });
+      stepped = true;
     }
+    if (!integrator->finished(state)) return true;
+    integrator->finish(state);
   } catch (const NumericalError& failure) {
-    progress.finish();
-    write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());
-    report.files.push_back("last_good.vtu");
-    write_tracks(tracks, scene.output.directory, report);
-    report.state = last_good;
-    time_loop(scene, last_good, adaptivity_seconds, report);
-    report.wall_seconds = detail::seconds_since(start);
-    count_cells(model, report);
-    collect_adaptivity(adaptivity.get(), report);
-    locate_max_displacement(model, last_good, report);
-    detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
-    throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
-                         ") written to " + output_path("last_good.vtu"));
+    fail(failure);
   }
+  finish_run();
+  return stepped;
+}
+
+void Simulation::Impl::fail(const NumericalError& failure) {
+  done = true;
+  progress.finish();
+  write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());
+  report.files.push_back("last_good.vtu");
+  write_tracks(tracks, scene.output.directory, report);
+  report.state = last_good;
+  time_loop(scene, last_good, adaptivity_seconds, report);
+  report.wall_seconds = detail::seconds_since(start);
+  count_cells(model, report);
+  collect_adaptivity(adaptivity.get(), report);
+  locate_max_displacement(model, last_good, report);
+  detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
+  throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
+                       ") written to " + output_path("last_good.vtu"));
+}
+
+/// final.vtu, series.pvd, the tracks and summary.json.
+void Simulation::Impl::finish_run() {
+  done = true;
   progress.finish();
   {
     detail::PhaseTimer timer(report.output_seconds);
@@ -307,14 +359,84 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   if (!series.empty()) report.files.push_back("series.pvd");
   write_tracks(tracks, scene.output.directory, report);
   time_loop(scene, state, adaptivity_seconds, report);
-  report.state = std::move(state);
+  report.state = state;
   count_cells(model, report);
   collect_adaptivity(adaptivity.get(), report);
   locate_max_displacement(model, report.state, report);
   report.wall_seconds = detail::seconds_since(start);
   report.files.push_back("summary.json");
   detail::write_summary(output_path("summary.json"), scene, model, report, "");
-  return report;
+}
+
+namespace {
+
+/// The scene's mesh, read and checked, with the thread count set before
+/// anything runs in parallel.
+Mesh read_scene_mesh(const Scene& scene) {
+  Mesh mesh = read_mesh(scene.mesh);
+  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
+  return mesh;
+}
+
+}  // namespace
+
+Simulation::Simulation(const Scene& scene, const RunOptions& options)
+    : impl_(std::make_unique<Impl>(scene, read_scene_mesh(scene), options)) {}
+
+Simulation::Simulation(const Scene& scene, Mesh mesh, const RunOptions& options) {
+  mesh.validate();
+  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
+  impl_ = std::make_unique<Impl>(scene, std::move(mesh), options);
+}
+
+Simulation::~Simulation() = default;
+
+bool Simulation::step() { return impl_->step(); }
+
+const RunReport& Simulation::run() {
+  while (impl_->step()) {
+  }
+  return impl_->report;
+}
+
+bool Simulation::finished() const { return impl_->done; }
+const RunReport& Simulation::report() const { return impl_->report; }
+const Scene& Simulation::scene() const { return impl_->scene; }
+const State& Simulation::state() const { return impl_->state; }
+const Mesh& Simulation::mesh() const { return impl_->mesh; }
+const Model& Simulation::model() const { return impl_->model; }
+
+void Simulation::set_law(const std::vector<int>& cells, const std::string& law) {
+  Model& model = impl_->model;
+  const Registry& registry = Registry::instance();
+  for (int cell : cells) {  // all checked before any changes
+    if (cell < 0 || cell >= model.cell_count())
+      throw InputError("set_law: cell " + std::to_string(cell) + " is not in 0.." +
+                       std::to_string(model.cell_count() - 1));
+    const tm_kernel& current = model.kernel(cell);
+    if (!registry.find(law, current.element, current.split) && !registry.find(law, current.element, "whole"))
+      throw InputError("set_law: no kernel for law '" + law + "' on " + model.mesh().describe_cell(cell));
+  }
+  for (int cell : cells) model.set_law(cell, law);
+}
+
+void Simulation::set_prescribed(const std::string& group, const std::array<double, 3>& displacement,
+                                const std::array<bool, 3>& components) {
+  impl_->model.hold(group, displacement, components);
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> Simulation::criteria() const {
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  if (!impl_->adaptivity) return out;
+  const auto& names = impl_->adaptivity->criterion_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out.emplace_back(names[i], impl_->adaptivity->criterion_values(static_cast<int>(i)));
+  return out;
+}
+
+RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  Simulation simulation(scene, options);
+  return simulation.run();
 }
 
 }  // namespace tensormass

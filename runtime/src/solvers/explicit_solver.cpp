@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solvers/integration_support.hpp"
+#include "solvers/integrator_kinds.hpp"
 
 namespace tensormass {
 
@@ -32,7 +33,20 @@ double estimate_stable_time_step(const Model& model, const Assembler& assembler,
   return lambda > 0.0 ? 2.0 / std::sqrt(lambda) : INFINITY;
 }
 
-void solve_explicit(Integration& run, State& state, const StepObserver& observer) {
+ExplicitIntegrator::ExplicitIntegrator(Integration& run) : Integrator(run) {
+  run.statistics.stable_dt = estimate_stable_time_step(run.model, run.assembler);
+  const double dt = run.settings.dt;
+  if (dt > run.statistics.stable_dt) {
+    std::ostringstream text;
+    text << "dt = " << dt << " s exceeds the estimated stable time step " << run.statistics.stable_dt
+         << " s: the explicit solve will likely blow up";
+    run.statistics.warnings.push_back(text.str());
+    std::fprintf(stderr, "tensormass: warning: %s\n", text.str().c_str());  // now, not after a long run
+  }
+}
+
+void ExplicitIntegrator::step(State& state, const StepObserver& observer) {
+  Integration& run = run_;
   const Model& model = run.model;
   const SolverSettings& settings = run.settings;
   const double dt = settings.dt, alpha = settings.damping_mass;
@@ -41,38 +55,37 @@ void solve_explicit(Integration& run, State& state, const StepObserver& observer
   const auto& mass = model.lumped_mass();
   state.displacement.resize(dofs, 0.0);
   state.velocity.resize(dofs, 0.0);
-  run.statistics.stable_dt = estimate_stable_time_step(model, run.assembler);
-  if (dt > run.statistics.stable_dt) {
-    std::ostringstream text;
-    text << "dt = " << dt << " s exceeds the estimated stable time step " << run.statistics.stable_dt
-         << " s: the explicit solve will likely blow up";
-    run.statistics.warnings.push_back(text.str());
-    std::fprintf(stderr, "tensormass: warning: %s\n", text.str().c_str());  // now, not after a long run
-  }
-  std::vector<double> g(dofs), next(dofs);
-  for (int s = state.step + 1; s <= settings.steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    const double t = state.time, t1 = t + dt;
-    const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
-    auto& u = state.displacement;
-    auto& v = state.velocity;
-    detail::assemble(run, u, g, nullptr);
-    const std::vector<double> f = external_force(model, model.load_factor(t));
-    for (int d : free) v[d] += dt * ((f[d] - g[d]) / mass[d] - alpha * v[d]);
-    // Constrained dofs follow their prescribed path.
-    next = u;
-    model.apply_constraints(t1, next);
-    for (const PrescribedDof& p : model.prescribed()) v[p.dof] = (next[p.dof] - u[p.dof]) / dt;
-    for (int d : free) u[d] += dt * v[d];
-    for (const PrescribedDof& p : model.prescribed()) u[p.dof] = next[p.dof];
-    detail::require_finite(u, "the displacement " + where);
-    state.time = t1;
-    state.step = s;
-    run.statistics.newton_per_step.push_back(0);
-    run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
-    if (observer) observer(state);
-  }
-  detail::require_no_inversion(model, state.displacement, "at the end of the explicit run");
+  g_.resize(dofs);
+  const int s = state.step + 1;
+  const auto start = std::chrono::steady_clock::now();
+  const double t = state.time, t1 = t + dt;
+  const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
+  auto& u = state.displacement;
+  auto& v = state.velocity;
+  detail::assemble(run, u, g_, nullptr);
+  const std::vector<double> f = external_force(model, model.load_factor(t));
+  for (int d : free) v[d] += dt * ((f[d] - g_[d]) / mass[d] - alpha * v[d]);
+  // Constrained dofs follow their prescribed path.
+  next_ = u;
+  model.apply_constraints(t1, next_);
+  for (const PrescribedDof& p : model.prescribed()) v[p.dof] = (next_[p.dof] - u[p.dof]) / dt;
+  for (int d : free) u[d] += dt * v[d];
+  for (const PrescribedDof& p : model.prescribed()) u[p.dof] = next_[p.dof];
+  detail::require_finite(u, "the displacement " + where);
+  state.time = t1;
+  state.step = s;
+  run.statistics.newton_per_step.push_back(0);
+  run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
+  if (observer) observer(state);
+}
+
+void ExplicitIntegrator::finish(const State& state) {
+  detail::require_no_inversion(run_.model, state.displacement, "at the end of the explicit run");
+}
+
+void solve_explicit(Integration& run, State& state, const StepObserver& observer) {
+  ExplicitIntegrator integrator(run);
+  integrator.run(state, observer);
 }
 
 }  // namespace tensormass

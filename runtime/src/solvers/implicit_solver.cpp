@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "solvers/integration_support.hpp"
+#include "solvers/integrator_kinds.hpp"
 
 namespace tensormass {
 
@@ -136,7 +137,10 @@ SearchResult line_search(const EulerStep& step, const SparseMatrix& K, double sl
 
 }  // namespace
 
-void solve_implicit(Integration& run, State& state, const StepObserver& observer) {
+ImplicitIntegrator::ImplicitIntegrator(Integration& run) : Integrator(run), K_(run.assembler.pattern()), J_(K_) {}
+
+void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
+  Integration& run = run_;
   const Model& model = run.model;
   const SolverSettings& settings = run.settings;
   const double dt = settings.dt, alpha = settings.damping_mass, beta = settings.damping_stiffness;
@@ -145,52 +149,55 @@ void solve_implicit(Integration& run, State& state, const StepObserver& observer
   const auto& mass = model.lumped_mass();
   state.displacement.resize(dofs, 0.0);
   state.velocity.resize(dofs, 0.0);
-  std::vector<double> g(dofs), v(dofs), r(n);
+  g_.resize(dofs), v_.resize(dofs), r_.resize(n);
   std::vector<double>& direction = state.warm_start;
   direction.resize(n, 0.0);
-  SparseMatrix K = run.assembler.pattern(), J = run.assembler.pattern();
   const double mass_factor = 1.0 / (dt * dt) + alpha / dt, stiffness_factor = 1.0 + beta / dt;
-  for (int s = state.step + 1; s <= settings.steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    const double t1 = state.time + dt;
-    const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
-    const std::vector<double> u0 = state.displacement, v0 = state.velocity;
-    const std::vector<double> f = external_force(model, model.load_factor(t1));
-    const EulerStep step{run, u0, v0, f, {}, {}};
-    std::vector<double> u = predict(step, t1);
-    double reference = 0.0;
-    int iterations = 0;
-    bool uninverted = false;  // u checked by the last line search
-    for (int iteration = 1; iteration <= settings.newton_iterations; ++iteration) {
-      detail::assemble(run, u, g, &K);
-      step.residual(u, g, K, r);
-      detail::require_finite(r, "the residual " + where);
-      const double residual = norm(r);
-      if (iteration == 1) reference = std::max(residual, 1e-300);
-      else if (residual <= settings.tolerance * reference) break;
-      // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
-      for (int k = 0; k < K.nonzeros(); ++k) J.values[k] = stiffness_factor * K.values[k];
-      for (int i = 0; i < n; ++i) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];
-      for (double& x : r) x = -x;
-      detail::linear_solve(run, J, r, direction);  // warm start: the previous correction
-      const double slope = -dot(r, direction);     // r holds -residual here
-      const SearchResult search = line_search(step, K, slope, direction, u);
-      if (search.length < 1.0) ++run.statistics.shortened_steps;
-      uninverted = search.uninverted;
-      iterations = iteration;
-    }
-    detail::require_finite(u, "the displacement " + where);
-    if (!uninverted) detail::require_no_inversion(model, u, where);
-    for (int d = 0; d < dofs; ++d) v[d] = (u[d] - u0[d]) / dt;
-    state.displacement = std::move(u);
-    state.velocity = v;
-    state.time = t1;
-    state.step = s;
-    run.statistics.newton_iterations += iterations;
-    run.statistics.newton_per_step.push_back(iterations);
-    run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
-    if (observer) observer(state);
+  const int s = state.step + 1;
+  const auto start = std::chrono::steady_clock::now();
+  const double t1 = state.time + dt;
+  const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
+  const std::vector<double> u0 = state.displacement, v0 = state.velocity;
+  const std::vector<double> f = external_force(model, model.load_factor(t1));
+  const EulerStep step{run, u0, v0, f, {}, {}};
+  std::vector<double> u = predict(step, t1);
+  double reference = 0.0;
+  int iterations = 0;
+  bool uninverted = false;  // u checked by the last line search
+  for (int iteration = 1; iteration <= settings.newton_iterations; ++iteration) {
+    detail::assemble(run, u, g_, &K_);
+    step.residual(u, g_, K_, r_);
+    detail::require_finite(r_, "the residual " + where);
+    const double residual = norm(r_);
+    if (iteration == 1) reference = std::max(residual, 1e-300);
+    else if (residual <= settings.tolerance * reference) break;
+    // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
+    for (int k = 0; k < K_.nonzeros(); ++k) J_.values[k] = stiffness_factor * K_.values[k];
+    for (int i = 0; i < n; ++i) J_.values[J_.diagonal[i]] += mass_factor * mass[free[i]];
+    for (double& x : r_) x = -x;
+    detail::linear_solve(run, J_, r_, direction);  // warm start: the previous correction
+    const double slope = -dot(r_, direction);      // r holds -residual here
+    const SearchResult search = line_search(step, K_, slope, direction, u);
+    if (search.length < 1.0) ++run.statistics.shortened_steps;
+    uninverted = search.uninverted;
+    iterations = iteration;
   }
+  detail::require_finite(u, "the displacement " + where);
+  if (!uninverted) detail::require_no_inversion(model, u, where);
+  for (int d = 0; d < dofs; ++d) v_[d] = (u[d] - u0[d]) / dt;
+  state.displacement = std::move(u);
+  state.velocity = v_;
+  state.time = t1;
+  state.step = s;
+  run.statistics.newton_iterations += iterations;
+  run.statistics.newton_per_step.push_back(iterations);
+  run.statistics.step_ms.push_back(1e3 * detail::seconds_since(start));
+  if (observer) observer(state);
+}
+
+void solve_implicit(Integration& run, State& state, const StepObserver& observer) {
+  ImplicitIntegrator integrator(run);
+  integrator.run(state, observer);
 }
 
 }  // namespace tensormass

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "solvers/integration_support.hpp"
+#include "solvers/integrator_kinds.hpp"
 
 namespace tensormass {
 
@@ -115,7 +116,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
 
 }  // namespace
 
-void solve_static(Integration& run, State& state, const StepObserver& observer) {
+void StaticIntegrator::step(State& state, const StepObserver& observer) {
+  Integration& run = run_;
   const Model& model = run.model;
   const int steps = run.settings.load_steps;
   state.displacement.resize(model.dof_count(), 0.0);  // from rest, or from a restored load step
@@ -124,8 +126,8 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
   // the time and iterations of all its solves.
   double carried_ms = 0;
   int carried_iterations = 0;
-  bool repeating = false;
-  for (int step = state.step + 1; step <= steps;) {
+  const int step = state.step + 1;
+  for (bool repeating = false;; repeating = true) {
     const auto start = std::chrono::steady_clock::now();
     const double factor = static_cast<double>(step) / steps;
     const std::string where = "in load step " + std::to_string(step) + "/" + std::to_string(steps);
@@ -134,8 +136,8 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
     // cantilever of bench runtime, against 3.15 with the linear one. A
     // repeated step starts where it ended.
     std::vector<double> u = state.displacement;
-    const std::vector<double>& previous = state.previous_displacement;
-    const std::vector<double>& before_previous = state.earlier_displacement;
+    const std::vector<double> previous = state.previous_displacement;
+    const std::vector<double> before_previous = state.earlier_displacement;
     const bool extrapolate = !repeating && previous.size() == u.size();
     const bool quadratic = extrapolate && before_previous.size() == u.size();
     if (quadratic)
@@ -153,19 +155,19 @@ void solve_static(Integration& run, State& state, const StepObserver& observer) 
     State next{u, state.velocity, factor, step, {}, state.displacement, previous};
     const bool repeat = observer && observer(next);
     if (repeat) next.previous_displacement = previous, next.earlier_displacement = before_previous;
-    repeating = repeat;
     state = std::move(next);
-    if (repeat) {
-      carried_ms = run.statistics.step_ms.back();
-      carried_iterations = run.statistics.newton_per_step.back();
-      run.statistics.step_ms.pop_back();
-      run.statistics.newton_per_step.pop_back();
-      continue;  // solve this load step again, from here, with the new laws
-    }
-    carried_ms = 0;
-    carried_iterations = 0;
-    ++step;
+    if (!repeat) return;
+    carried_ms = run.statistics.step_ms.back();
+    carried_iterations = run.statistics.newton_per_step.back();
+    run.statistics.step_ms.pop_back();
+    run.statistics.newton_per_step.pop_back();
+    // and solve this load step again, from here, with the new laws
   }
+}
+
+void solve_static(Integration& run, State& state, const StepObserver& observer) {
+  StaticIntegrator integrator(run);
+  integrator.run(state, observer);
 }
 
 }  // namespace tensormass

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene_test_support.hpp"
+#include "tensormass/simulation/checkpoint.hpp"
 
 namespace {
 
@@ -244,3 +245,29 @@ TEST(SceneLoad, ProfileReadFromTheScene) {
 }
 
 }  // namespace
+
+TEST(SceneLoad, SceneFromTextEqualsTheSameFile) {
+  TempDir dir;
+  const std::string path = dir.write("scene.yaml", kFullScene);
+  const Scene file = tensormass::load_scene(path, {"solver.steps=7"});
+  const Scene text = tensormass::parse_scene(kFullScene, path, {"solver.steps=7"});
+  EXPECT_EQ(text.path, file.path);
+  EXPECT_EQ(text.mesh, file.mesh);
+  EXPECT_EQ(text.solver.steps, 7);
+  EXPECT_EQ(tensormass::scene_fingerprint(text), tensormass::scene_fingerprint(file));
+}
+
+TEST(SceneLoad, SceneFromTextErrorsNameItsLabelAndLine) {
+  try {
+    tensormass::parse_scene("mesh: m.msh\nmaterials: [\n", "from_arrays");
+    FAIL() << "a syntax error was accepted";
+  } catch (const tensormass::InputError& e) {
+    test_support::expect_contains(e.what(), {"from_arrays:", "YAML syntax error"});
+  }
+  try {
+    tensormass::parse_scene(scene_test::kBaseScene + "  stepz: 3\n", "from_arrays");
+    FAIL() << "an unknown key was accepted";
+  } catch (const tensormass::InputError& e) {
+    test_support::expect_contains(e.what(), {"from_arrays:", "stepz"});
+  }
+}

@@ -71,6 +71,8 @@ class Adaptivity {
   const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
   const std::vector<AdaptivityRecord>& records() const { return records_; }
   const std::vector<std::string>& criterion_names() const { return names_; }
+  /// The last evaluation of criterion `index` (criterion_names() order), per cell.
+  const std::vector<double>& criterion_values(int index) const { return values_.at(index); }
   AdaptivityMemory memory() const;
   /// Takes a saved memory back (its sizes must fit: std::invalid_argument otherwise).
   void restore(AdaptivityMemory memory);

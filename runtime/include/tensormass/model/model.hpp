@@ -43,6 +43,9 @@ struct PrescribedDof {
   double amplitude;
   int profile;        ///< index into Model::profiles
   int rotation = -1;  ///< index into Model::rotations, or -1
+  /// Set by Model::hold: the value is `amplitude` from now on, whatever
+  /// the time, load factor or profile.
+  bool held = false;
 };
 
 /// A prescribed rotation, ready to apply: unit axis, centre, full angle in radians.
@@ -118,6 +121,14 @@ class Model {
   const std::vector<PrescribedDof>& prescribed() const { return prescribed_; }
   const std::vector<TimeProfile>& profiles() const { return profiles_; }
   const std::vector<PrescribedRotation>& rotations() const { return rotations_; }
+  /// Holds the constrained dofs of `group`'s nodes at `displacement` (per
+  /// component) from now on, replacing their profile or rotation: a
+  /// boundary condition changed between steps (Python's set_prescribed).
+  /// Only the components flagged in `components` change. Throws InputError
+  /// when the group is unknown or one of its dofs is free in the scene
+  /// (making a free dof constrained would change the linear system's size).
+  void hold(const std::string& group, const std::array<double, 3>& displacement,
+            const std::array<bool, 3>& components = {true, true, true});
   /// Dynamic solvers: the factor of every load at time t (LoadsSpec::profile).
   double load_factor(double t) const { return load_profile_.factor(t); }
 

@@ -35,6 +35,11 @@ struct Scene {
 /// before validation; an override of an unknown key is an error too.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
+/// The same for a scene given as YAML text (Python's Simulation.from_arrays):
+/// `name` stands for the file in messages, and relative paths (mesh,
+/// output.directory) are taken relative to its folder.
+Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {});
+
 /// Checks the scene against its mesh; throws InputError naming the key, line
 /// and what exists (the groups of the mesh, the kernels of the registry):
 /// every region named is a group of the mesh ("all" for materials), every

@@ -1,12 +1,14 @@
 /// \file simulation.hpp
-/// Runs a scene end to end: reads and checks everything first (a bad input
-/// writes nothing), then integrates while reporting progress and writing
-/// frames, and finally writes final.vtu, series.pvd and summary.json.
+/// Runs a scene, whole or step by step: reads and checks everything first
+/// (a bad input writes nothing), then integrates while reporting progress
+/// and writing frames, and finally writes final.vtu, series.pvd and summary.json.
 /// A numerical failure writes last_good.vtu and a summary with status
 /// "failed" before the NumericalError propagates.
 #ifndef TENSORMASS_SIMULATION_HPP
 #define TENSORMASS_SIMULATION_HPP
 
+#include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,56 @@ struct RunReport {
   std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
 };
 
+class Model;
+class Assembler;
+
+/// A scene's run, one step at a time: the CLI's `run` and Python's
+/// tensormass.Simulation. The constructor reads and checks everything and
+/// creates the output directory (a bad input writes nothing); step()
+/// advances one step (static: one load step), writing frames, tracks and
+/// checkpoints as the scene asks; the step that finishes the run writes
+/// final.vtu, the tracks and summary.json. Stepping to the end gives the
+/// same bits as run_scene.
+class Simulation {
+ public:
+  /// Reads the scene's mesh (scene.mesh).
+  explicit Simulation(const Scene& scene, const RunOptions& options = {});
+  /// A mesh given in memory (Python's from_arrays); scene.mesh names it in messages.
+  Simulation(const Scene& scene, Mesh mesh, const RunOptions& options = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// One step; false, doing nothing, once the run is finished. A numerical
+  /// failure writes last_good.vtu, the tracks and a "failed" summary, then
+  /// throws NumericalError; the simulation is finished after it.
+  bool step();
+  /// Steps to the end; returns the report.
+  const RunReport& run();
+  bool finished() const;
+  /// The report so far (complete once finished).
+  const RunReport& report() const;
+
+  const Scene& scene() const;
+  const State& state() const;
+  const Mesh& mesh() const;
+  const Model& model() const;
+  /// Sets cells' laws between steps (each cell keeps its element and split);
+  /// InputError naming the cell when the registry has no such kernel. The
+  /// adaptive model, when on, goes on switching from the new laws.
+  void set_law(const std::vector<int>& cells, const std::string& law);
+  /// Model::hold between steps.
+  void set_prescribed(const std::string& group, const std::array<double, 3>& displacement,
+                      const std::array<bool, 3>& components = {true, true, true});
+  /// The adaptive criteria's last values, by name, per cell (empty without `adaptivity`).
+  std::vector<std::pair<std::string, std::vector<double>>> criteria() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// A whole run: Simulation(scene, options).run().
 RunReport run_scene(const Scene& scene, const RunOptions& options = {});
 
 /// The one-screen text summary printed at the end of `tensormass run`.

@@ -9,6 +9,7 @@
 #define TENSORMASS_INTEGRATORS_HPP
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,35 @@ struct Integration {
   SolveStatistics& statistics;
 };
 
+/// Steps a run one step (static: one load step) at a time and keeps its
+/// workspace between steps; everything carried from step to step is in
+/// State, so stepping one call at a time gives the whole run bit for bit.
+class Integrator {
+ public:
+  explicit Integrator(Integration& run) : run_(run) {}
+  virtual ~Integrator() = default;
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
+
+  /// True once `state` holds the settings' last step (load step).
+  bool finished(const State& state) const { return state.step >= run_.settings.total_steps(); }
+  /// Advances `state` by one step and reports it to `observer` (a static
+  /// load step is solved again while the observer asks). Requires !finished(state).
+  virtual void step(State& state, const StepObserver& observer) = 0;
+  /// The checks at the end of a run (explicit: no inverted cell).
+  virtual void finish(const State&) {}
+  /// Steps until finished, then finish().
+  void run(State& state, const StepObserver& observer);
+
+ protected:
+  Integration& run_;
+};
+
+/// The integrator of run.settings.type. The explicit one estimates the
+/// stable time step here (with the model's laws as they are now).
+std::unique_ptr<Integrator> make_integrator(Integration& run);
+
+/// Whole runs from `state` (state.step steps done), by the integrators above.
 void solve_static(Integration& run, State& state, const StepObserver& observer);
 void solve_implicit(Integration& run, State& state, const StepObserver& observer);
 void solve_explicit(Integration& run, State& state, const StepObserver& observer);

@@ -1,0 +1,44 @@
+// The three integrators behind make_integrator (internal header): each
+// keeps the vectors and matrices its steps reuse.
+#ifndef TENSORMASS_SOLVERS_INTEGRATOR_KINDS_HPP
+#define TENSORMASS_SOLVERS_INTEGRATOR_KINDS_HPP
+
+#include <vector>
+
+#include "tensormass/solvers/integrators.hpp"
+
+namespace tensormass {
+
+/// Static Newton, one load step per step (static_solver.cpp).
+class StaticIntegrator final : public Integrator {
+ public:
+  using Integrator::Integrator;
+  void step(State& state, const StepObserver& observer) override;
+};
+
+/// Backward Euler with Newton iterations and a line search (implicit_solver.cpp).
+class ImplicitIntegrator final : public Integrator {
+ public:
+  explicit ImplicitIntegrator(Integration& run);
+  void step(State& state, const StepObserver& observer) override;
+
+ private:
+  SparseMatrix K_, J_;           ///< tangent and step matrix, on the assembler's pattern
+  std::vector<double> g_, v_, r_;  ///< internal force, velocity (dof_count), residual (free)
+};
+
+/// Symplectic Euler on the lumped mass (explicit_solver.cpp).
+class ExplicitIntegrator final : public Integrator {
+ public:
+  /// Estimates the stable time step and warns when dt exceeds it.
+  explicit ExplicitIntegrator(Integration& run);
+  void step(State& state, const StepObserver& observer) override;
+  void finish(const State& state) override;
+
+ private:
+  std::vector<double> g_, next_;  ///< internal force, constrained displacement (dof_count)
+};
+
+}  // namespace tensormass
+
+#endif
