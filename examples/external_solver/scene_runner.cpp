@@ -23,9 +23,8 @@ int main() {
   for (int l = 0; l < nz; ++l)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        const long corner[8] = {id(i, j, l),         id(i + 1, j, l),         id(i + 1, j + 1, l),
-                                id(i, j + 1, l),     id(i, j, l + 1),         id(i + 1, j, l + 1),
-                                id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
+        const long corner[8] = {id(i, j, l),     id(i + 1, j, l),     id(i + 1, j + 1, l),     id(i, j + 1, l),
+                                id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
         for (const auto& tet : kuhn)
           for (int c : tet) tets.nodes.push_back(corner[c]);
       }

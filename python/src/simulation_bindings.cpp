@@ -158,8 +158,7 @@ void bind_simulation(py::module_& m) {
              py::gil_scoped_release release;
              return std::make_unique<Simulation>(loaded, RunOptions{progress, resume});
            }),
-           py::arg("scene"), py::arg("overrides") = py::none(), py::arg("resume") = false,
-           py::arg("progress") = false)
+           py::arg("scene"), py::arg("overrides") = py::none(), py::arg("resume") = false, py::arg("progress") = false)
       .def_static(
           "from_arrays",
           [](const Array& points, const py::dict& cells, const py::object& groups, const py::object& cell_groups,
@@ -193,12 +192,14 @@ the current directory. Every point must belong to a cell.)")
           py::arg("callback") = py::none(),
           "Steps to the end, calling callback(simulation) after each step; returns the report as a dict.")
       .def_property_readonly("finished", &Simulation::finished)
-      .def_property_readonly("time", [](const Simulation& s) { return s.state().time; },
-                             "Seconds (dynamic) or load factor in [0, 1] (static).")
-      .def_property_readonly("step_index", [](const Simulation& s) { return s.state().step; },
-                             "Steps (load steps) completed.")
-      .def_property_readonly("steps", [](const Simulation& s) { return s.scene().solver.total_steps(); },
-                             "Steps (load steps) of the whole run.")
+      .def_property_readonly(
+          "time", [](const Simulation& s) { return s.state().time; },
+          "Seconds (dynamic) or load factor in [0, 1] (static).")
+      .def_property_readonly(
+          "step_index", [](const Simulation& s) { return s.state().step; }, "Steps (load steps) completed.")
+      .def_property_readonly(
+          "steps", [](const Simulation& s) { return s.scene().solver.total_steps(); },
+          "Steps (load steps) of the whole run.")
       .def_property_readonly(
           "displacement", [](const Simulation& s) { return node_array(s.state().displacement, s.model().dim()); },
           "(nodes, dim) copy.")
@@ -252,8 +253,9 @@ the current directory. Every point must belong to a cell.)")
             return out;
           },
           "The adaptive criteria's last values per cell, by name (empty without `adaptivity`).")
-      .def("report", [](const Simulation& s) { return report_dict(s.report()); },
-           "The run's figures so far, as a dict (complete once finished).")
+      .def(
+          "report", [](const Simulation& s) { return report_dict(s.report()); },
+          "The run's figures so far, as a dict (complete once finished).")
       .def("__repr__", [](const Simulation& s) {
         return "<tensormass.Simulation " + s.scene().path + ": step " + std::to_string(s.state().step) + "/" +
                std::to_string(s.scene().solver.total_steps()) + ">";

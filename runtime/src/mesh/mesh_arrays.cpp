@@ -74,7 +74,8 @@ Mesh mesh_from_arrays(const MeshArrays& arrays, const std::string& source) {
   std::vector<const detail::Shape*> shapes;
   for (const CellArray& block : arrays.cells) {
     const detail::Shape* shape = shape_named(block.element);
-    if (!shape) throw InputError(source + ": unknown element '" + block.element + "' (known: " + known_elements() + ")");
+    if (!shape)
+      throw InputError(source + ": unknown element '" + block.element + "' (known: " + known_elements() + ")");
     if (block.nodes.size() % static_cast<std::size_t>(shape->nodes) != 0)
       throw InputError(source + ": the " + block.element + " cells need " + std::to_string(shape->nodes) +
                        " points each, got " + std::to_string(block.nodes.size()) + " indices");
