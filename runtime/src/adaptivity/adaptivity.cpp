@@ -1,5 +1,7 @@
 #include "tensormass/adaptivity/adaptivity.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,7 +15,6 @@
 namespace tensormass {
 
 namespace {
-constexpr int kMaxDofs = 81;
 constexpr int kParallelCells = 4096;  // below this a parallel region costs more than it saves
 
 /// Every ladder law must have a kernel for every element type of the mesh.
@@ -44,9 +45,19 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
     thresholds_.push_back(criterion.threshold);
     target_rungs_.push_back(target_rung(criterion, settings.ladder));
     names_.push_back(criterion.name);
+    quality_.push_back(criteria_.back()->is_quality());
     needs_force_ = needs_force_ || criteria_.back()->needs_force();
   }
+  for (const tm_kernel* kernel : Registry::instance().kernels())
+    for (std::size_t r = 0; r < settings.ladder.size(); ++r)
+      if (settings.ladder[r] == kernel->law)
+        for (const ElementBlock& block : model.mesh().blocks)
+          if (std::string_view(block.element->name) == kernel->element)
+            rungs_.emplace_back(kernel, static_cast<int>(r));
   values_.assign(criteria_.size(), std::vector<double>(model.cell_count(), 0.0));
+  initial_rungs_.resize(model.cell_count());
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    initial_rungs_[cell] = static_cast<signed char>(rung_of(model.initial_kernel(cell)));
   criterion_seconds_.assign(criteria_.size(), 0.0);
   calm_evaluations_.assign(model.cell_count(), 0);
 }
@@ -77,60 +88,22 @@ void Adaptivity::advance_blends() {
     if (model_->blend_from(cell)) model_->set_blend_weight(cell, model_->blend_weight(cell) + increment);
 }
 
-void Adaptivity::evaluate(std::span<const double> u) {
-  if (needs_force_) {
-    nodal_forces_.resize(model_->dof_count());
-    assembler_->assemble(u, nodal_forces_, nullptr);
-  }
-  // One pass per criterion, so that each keeps its own running time.
-  for (std::size_t c = 0; c < criteria_.size(); ++c) {
-    const auto start = std::chrono::steady_clock::now();
-    for (const ElementBlock& block : model_->mesh().blocks) evaluate_block(*criteria_[c], block, u, values_[c]);
-    criterion_seconds_[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-}
-
-void Adaptivity::evaluate_block(const Criterion& criterion, const ElementBlock& block, std::span<const double> u,
-                                std::vector<double>& values) const {
-  const Model& model = *model_;
-  const Mesh& mesh = model.mesh();
-  const int d = model.dim();
-  const bool rest_needed = criterion.needs_rest(), force_needed = criterion.needs_force();
-  // Each cell's value depends on that cell alone: any thread count gives the same values.
-#pragma omp parallel if (block.count() >= kParallelCells)
-  {
-    double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
-#pragma omp for schedule(static)
-    for (int local = 0; local < block.count(); ++local) {
-      const int cell = block.first_cell + local;
-      if (rest_needed) {
-        const auto nodes = model.cell_nodes(cell);
-        for (std::size_t j = 0; j < nodes.size(); ++j)
-          for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
-      }
-      model.gather(cell, u, local_u);
-      if (force_needed) model.gather(cell, nodal_forces_, force);
-      const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, local_u, force, d};
-      values[cell] = criterion.evaluate(view);
-    }
-  }
-}
-
 int Adaptivity::rung_of(const tm_kernel& kernel) const {
-  // A handful of distinct kernels: a linear search by address beats comparing names per cell.
-  for (const auto& [known, rung] : rung_cache_)
+  // Every kernel a cell can hold under a ladder law is listed (a few): a
+  // linear search by address beats comparing names per cell, and the list
+  // is never written after construction (cells are decided in parallel).
+  for (const auto& [known, rung] : rungs_)
     if (known == &kernel) return rung;
-  const std::string_view law = kernel.law;
-  int rung = -1;
-  for (std::size_t r = 0; r < settings_.ladder.size(); ++r)
-    if (settings_.ladder[r] == law) rung = static_cast<int>(r);
-  rung_cache_.emplace_back(&kernel, rung);
-  return rung;
+  return -1;
 }
 
 bool Adaptivity::fails_above(int cell, int rung) const {
-  for (std::size_t c = 0; c < criteria_.size(); ++c)
-    if (target_rungs_[c] > rung && criteria_[c]->fails(values_[c][cell], thresholds_[c])) return true;
+  for (std::size_t c = 0; c < criteria_.size(); ++c) {
+    if (target_rungs_[c] <= rung) continue;
+    const double value = values_[c][cell];
+    // Criterion::fails, without a virtual call per cell.
+    if (quality_[c] ? value < thresholds_[c] : value >= thresholds_[c]) return true;
+  }
   return false;
 }
 
@@ -139,8 +112,8 @@ bool Adaptivity::calm_at(int cell, int rung) const {
   for (std::size_t c = 0; c < criteria_.size(); ++c) {
     if (target_rungs_[c] < rung) continue;  // asks for a lower law: does not hold the cell here
     const double value = values_[c][cell];
-    const bool calm = criteria_[c]->is_quality() ? value >= thresholds_[c] / settings_.hysteresis
-                                                 : value <= thresholds_[c] * settings_.hysteresis;
+    const bool calm =
+        quality_[c] ? value >= thresholds_[c] / settings_.hysteresis : value <= thresholds_[c] * settings_.hysteresis;
     if (!calm) return false;
   }
   return true;
@@ -161,15 +134,13 @@ int Adaptivity::start(std::span<const double> u) {
   AdaptivityRecord record;
   record.step = 0;
   for (std::size_t pass = 0; pass + 1 < settings_.ladder.size(); ++pass) {
-    evaluate(u);
     const int before = record.upgrades;
-    switch_laws(record);
+    assess(u, record);
     if (record.upgrades == before) break;
   }
   settings_.blend_steps = blend_steps;
   criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (record.upgrades == 0) return 0;
-  record_laws(record);
   records_.push_back(record);
   return record.upgrades;
 }
@@ -177,33 +148,102 @@ int Adaptivity::start(std::span<const double> u) {
 int Adaptivity::update(std::span<const double> u, int step) {
   if (criteria_.empty() || step % settings_.every != 0) return 0;
   const auto start = std::chrono::steady_clock::now();
-  evaluate(u);
   AdaptivityRecord record;
   record.step = step;
-  switch_laws(record);
-  record_laws(record);
+  assess(u, record);
   records_.push_back(record);
   criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return record.upgrades + record.downgrades;
 }
 
-void Adaptivity::switch_laws(AdaptivityRecord& record) {
-  for (int cell = 0; cell < model_->cell_count(); ++cell) {
-    const int rung = rung_of(model_->kernel(cell)), initial = rung_of(model_->initial_kernel(cell));
-    if (rung < 0 || initial < 0) continue;  // a law off the ladder never switches
-    if (fails_above(cell, rung)) {
-      calm_evaluations_[cell] = 0;
-      switch_law(cell, settings_.ladder[rung + 1]);
-      ++record.upgrades;
-    } else if (settings_.downgrade && rung > initial) {
-      calm_evaluations_[cell] = calm_at(cell, rung) ? calm_evaluations_[cell] + 1 : 0;
-      if (calm_evaluations_[cell] >= settings_.calm_steps) {
-        switch_law(cell, settings_.ladder[rung - 1]);
-        calm_evaluations_[cell] = 0;
-        ++record.downgrades;
+/// The cells' rungs, read again from their kernels when the model's laws
+/// changed other than by this object's switches (set_law from a script, a
+/// checkpoint restored, a blend ended).
+void Adaptivity::refresh_rungs() {
+  if (rungs_revision_ == model_->law_revision()) return;
+  const int cells = model_->cell_count();
+  cell_rungs_.resize(cells);
+  for (int cell = 0; cell < cells; ++cell) cell_rungs_[cell] = static_cast<signed char>(rung_of(model_->kernel(cell)));
+  rungs_revision_ = model_->law_revision();
+}
+
+/// The move of one cell after its criteria were evaluated: +1 (climb), -1
+/// (descend) or 0; updates its calm count.
+signed char Adaptivity::decide(int cell, int rung) {
+  const int initial = initial_rungs_[cell];
+  if (rung < 0 || initial < 0) return 0;  // a law off the ladder never switches
+  if (fails_above(cell, rung)) {
+    calm_evaluations_[cell] = 0;
+    return 1;
+  }
+  if (!settings_.downgrade || rung <= initial) return 0;
+  calm_evaluations_[cell] = calm_at(cell, rung) ? calm_evaluations_[cell] + 1 : 0;
+  if (calm_evaluations_[cell] < settings_.calm_steps) return 0;
+  calm_evaluations_[cell] = 0;
+  return -1;
+}
+
+/// One parallel pass over the cells, block by block: every criterion on the
+/// block's cells (each criterion's loop compiled for the block's shape),
+/// then each cell's move. The loops of a block share one static schedule,
+/// so a thread decides the cells whose values it computed and no barrier
+/// is needed between them; the only one is at the end. Then the few cells
+/// that move switch, in cell order, and the laws are counted.
+void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
+  if (needs_force_) {
+    nodal_forces_.resize(model_->dof_count());
+    assembler_->assemble(u, nodal_forces_, nullptr);
+  }
+  const int cells = model_->cell_count();
+  const int rungs = static_cast<int>(settings_.ladder.size());
+  moves_.resize(cells);
+  refresh_rungs();
+  std::vector<int> per_rung(rungs, 0);
+  int upgrades = 0, downgrades = 0, off_ladder = 0;
+  std::vector<double> seconds(criteria_.size(), 0.0);  // the first thread's share of each criterion
+#pragma omp parallel if (cells >= kParallelCells)
+  {
+    std::vector<int> my_rungs(rungs, 0);
+    int my_upgrades = 0, my_downgrades = 0, my_off_ladder = 0;
+    const bool timing = omp_get_thread_num() == 0;
+    for (const ElementBlock& block : model_->mesh().blocks) {
+      for (std::size_t c = 0; c < criteria_.size(); ++c) {
+        const auto start = std::chrono::steady_clock::now();
+        criteria_[c]->evaluate_block({*model_, block, u, nodal_forces_}, values_[c]);
+        if (timing) seconds[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+#pragma omp for schedule(static) nowait
+      for (int local = 0; local < block.count(); ++local) {
+        const int cell = block.first_cell + local;
+        const int rung = cell_rungs_[cell];
+        const signed char move = decide(cell, rung);
+        moves_[cell] = move;
+        my_upgrades += move > 0;
+        my_downgrades += move < 0;
+        if (rung >= 0) ++my_rungs[rung + move];
+        else ++my_off_ladder;
       }
     }
+#pragma omp critical(tensormass_adaptivity_counts)
+    {
+      for (int r = 0; r < rungs; ++r) per_rung[r] += my_rungs[r];
+      upgrades += my_upgrades, downgrades += my_downgrades, off_ladder += my_off_ladder;
+    }
   }
+  for (std::size_t c = 0; c < criteria_.size(); ++c) criterion_seconds_[c] += seconds[c];
+  for (int cell = 0; cell < cells; ++cell)
+    if (moves_[cell] != 0) {
+      cell_rungs_[cell] = static_cast<signed char>(cell_rungs_[cell] + moves_[cell]);
+      switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
+    }
+  rungs_revision_ = model_->law_revision();  // the switches above are in cell_rungs_ already
+  record.upgrades += upgrades;
+  record.downgrades += downgrades;
+  if (off_ladder > 0) return record_laws(record);  // laws outside the ladder: count them all by name
+  std::map<std::string, int> per_law;
+  for (int r = 0; r < rungs; ++r)
+    if (per_rung[r] > 0) per_law[settings_.ladder[r]] += per_rung[r];
+  record.cells_per_law.assign(per_law.begin(), per_law.end());
 }
 
 void Adaptivity::record_laws(AdaptivityRecord& record) {

@@ -167,6 +167,56 @@ double by_shape(const ElementView& view) {
   }
 }
 
+constexpr int kMaxDofs = 81;
+
+/// to[j * D + a] = from[nodes[j] * stride + a] for the cell's N nodes.
+template <int D, int N>
+inline void gather_nodes(const int* nodes, const double* from, int stride, double* to) {
+  for (int j = 0; j < N; ++j)
+    for (int a = 0; a < D; ++a) to[j * D + a] = from[static_cast<std::size_t>(nodes[j]) * stride + a];
+}
+
+/// Self::value<D, N> on every cell of the block, the nodes gathered inline.
+template <typename Self, int D, int N>
+void evaluate_cells(const Criterion& self, const BlockInput& in, std::span<double> values) {
+  const Model& model = in.model;
+  const ElementBlock& block = in.block;
+  const bool rest_needed = self.needs_rest(), force_needed = self.needs_force();
+  const double* rest_positions = model.mesh().rest_positions.data();
+  const double* u_all = in.u.data();
+  const double* forces = in.forces.data();
+#pragma omp for schedule(static) nowait
+  for (int local = 0; local < block.count(); ++local) {
+    const int cell = block.first_cell + local;
+    const int* nodes = model.cell_nodes(cell).data();
+    double rest[D * N], u[D * N], force[D * N];
+    if (rest_needed) gather_nodes<D, N>(nodes, rest_positions, 3, rest);
+    gather_nodes<D, N>(nodes, u_all, D, u);
+    if (force_needed) gather_nodes<D, N>(nodes, forces, D, force);
+    const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, u, force, D};
+    values[cell] = Self::template value<D, N>(view);
+  }
+}
+
+/// evaluate_cells for the block's shape (the registry's node counts), else
+/// the generic loop of Criterion::evaluate_block.
+template <typename Self>
+void block_by_shape(const Criterion& self, const BlockInput& in, std::span<double> values) {
+  switch (in.model.dim() * 100 + in.block.element->nodes) {
+    case 203: return evaluate_cells<Self, 2, 3>(self, in, values);
+    case 204: return evaluate_cells<Self, 2, 4>(self, in, values);
+    case 206: return evaluate_cells<Self, 2, 6>(self, in, values);
+    case 208: return evaluate_cells<Self, 2, 8>(self, in, values);
+    case 304: return evaluate_cells<Self, 3, 4>(self, in, values);
+    case 305: return evaluate_cells<Self, 3, 5>(self, in, values);
+    case 306: return evaluate_cells<Self, 3, 6>(self, in, values);
+    case 308: return evaluate_cells<Self, 3, 8>(self, in, values);
+    case 310: return evaluate_cells<Self, 3, 10>(self, in, values);
+    case 320: return evaluate_cells<Self, 3, 20>(self, in, values);
+    default: return self.Criterion::evaluate_block(in, values);
+  }
+}
+
 /// R_EL = max over edges |l - l0| / l0 = |sqrt(r) - 1| with r = l^2 / l0^2,
 /// largest at the smallest or the largest r (two square roots per element).
 class EdgeLengthCriterion final : public Criterion {
@@ -193,6 +243,9 @@ class VolumeCriterion final : public Criterion {
   std::string name() const override { return "R_V"; }
   bool needs_rest() const override { return false; }
   double evaluate(const ElementView& view) const override { return by_shape<VolumeCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<VolumeCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -207,6 +260,9 @@ class VolumeLengthCriterion final : public Criterion {
   std::string name() const override { return "R_VL"; }
   bool is_quality() const override { return true; }
   double evaluate(const ElementView& view) const override { return by_shape<VolumeLengthCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<VolumeLengthCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -222,6 +278,9 @@ class VolumeLengthHarmonicCriterion final : public Criterion {
   std::string name() const override { return "R_VLX"; }
   bool is_quality() const override { return true; }
   double evaluate(const ElementView& view) const override { return by_shape<VolumeLengthHarmonicCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<VolumeLengthHarmonicCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -241,6 +300,9 @@ class StressCriterion final : public Criterion {
   bool needs_rest() const override { return false; }
   bool needs_force() const override { return true; }
   double evaluate(const ElementView& view) const override { return by_shape<StressCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<StressCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -281,6 +343,9 @@ class NonlinearStrainCriterion final : public Criterion {
   std::string name() const override { return "R_NL"; }
   bool needs_rest() const override { return false; }
   double evaluate(const ElementView& view) const override { return by_shape<NonlinearStrainCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<NonlinearStrainCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -310,6 +375,9 @@ class GreenStrainCriterion final : public Criterion {
   std::string name() const override { return "R_E"; }
   bool needs_rest() const override { return false; }
   double evaluate(const ElementView& view) const override { return by_shape<GreenStrainCriterion>(view); }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    block_by_shape<GreenStrainCriterion>(*this, in, values);
+  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -332,6 +400,28 @@ class GreenStrainCriterion final : public Criterion {
 };
 
 }  // namespace
+
+void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) const {
+  const Model& model = in.model;
+  const Mesh& mesh = model.mesh();
+  const ElementBlock& block = in.block;
+  const int d = model.dim();
+  const bool rest_needed = needs_rest(), force_needed = needs_force();
+#pragma omp for schedule(static) nowait
+  for (int local = 0; local < block.count(); ++local) {
+    double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
+    const int cell = block.first_cell + local;
+    if (rest_needed) {
+      const auto nodes = model.cell_nodes(cell);
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
+    }
+    model.gather(cell, in.u, local_u);
+    if (force_needed) model.gather(cell, in.forces, force);
+    const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, local_u, force, d};
+    values[cell] = evaluate(view);
+  }
+}
 
 std::unique_ptr<Criterion> make_criterion(const std::string& name) {
   if (name == "R_EL") return std::make_unique<EdgeLengthCriterion>();

@@ -199,3 +199,33 @@ TEST_F(SteppedBeam, SetPrescribedRefusesFreeDofsAndUnknownGroups) {
 
 }  // namespace
 }  // namespace tensormass
+
+namespace tensormass {
+namespace {
+
+TEST_F(SteppedBeam, AdaptiveModelGoesOnFromLawsSetByScript) {
+  // Every cell put on the top rung by the script; with a huge threshold and
+  // downgrade on, each is calm and descends after calm_steps evaluations:
+  // the adaptive model sees the laws the script set.
+  Scene s = scene("script-then-adaptive", "hooke", SolverType::implicit_euler);
+  s.adaptivity.enabled = true;
+  s.adaptivity.criteria = {{"R_NL", 1e9, 0, ""}};
+  s.adaptivity.downgrade = true;
+  s.adaptivity.calm_steps = 3;
+  Simulation simulation(s, quiet());
+  std::vector<int> every_cell(simulation.model().cell_count());
+  for (int cell = 0; cell < simulation.model().cell_count(); ++cell) every_cell[cell] = cell;
+  simulation.set_law(every_cell, "stvk");
+  for (int step = 0; step < 2; ++step) ASSERT_TRUE(simulation.step());
+  EXPECT_EQ(simulation.model().kernel(0).law, std::string("stvk"));  // calm twice: not yet
+  ASSERT_TRUE(simulation.step());
+  for (int cell = 0; cell < simulation.model().cell_count(); ++cell)
+    ASSERT_EQ(simulation.model().kernel(cell).law, std::string("hooke")) << "cell " << cell;
+  EXPECT_EQ(simulation.report().switches, 0);  // the report is filled at the end
+  while (simulation.step()) {
+  }
+  EXPECT_EQ(simulation.report().switches, simulation.model().cell_count());
+}
+
+}  // namespace
+}  // namespace tensormass

@@ -78,12 +78,11 @@ class Adaptivity {
   void restore(AdaptivityMemory memory);
 
  private:
-  void evaluate(std::span<const double> u);
-  /// values[cell] = the criterion on every cell of the block.
-  void evaluate_block(const Criterion& criterion, const ElementBlock& block, std::span<const double> u,
-                      std::vector<double>& values) const;
-  /// Switches the laws after an evaluation; fills the record's counts.
-  void switch_laws(AdaptivityRecord& record);
+  /// Evaluates the criteria at u, decides and switches every cell; adds
+  /// the switches and the laws' counts to the record.
+  void assess(std::span<const double> u, AdaptivityRecord& record);
+  void refresh_rungs();
+  signed char decide(int cell, int rung);
   void record_laws(AdaptivityRecord& record);
   /// Index of the kernel's law on the ladder, or -1.
   int rung_of(const tm_kernel& kernel) const;
@@ -101,9 +100,14 @@ class Adaptivity {
   std::vector<double> thresholds_;
   std::vector<int> target_rungs_;  ///< per criterion: the ladder index it asks for
   std::vector<std::string> names_;
-  std::vector<std::vector<double>> values_;                           ///< per criterion, per cell
-  std::vector<int> calm_evaluations_;                                 ///< per cell
-  mutable std::vector<std::pair<const tm_kernel*, int>> rung_cache_;  ///< kernel -> rung_of
+  std::vector<char> quality_;                ///< per criterion: Criterion::is_quality
+  std::vector<std::vector<double>> values_;  ///< per criterion, per cell
+  std::vector<int> calm_evaluations_;        ///< per cell
+  std::vector<std::pair<const tm_kernel*, int>>
+      rungs_;                       ///< every kernel of a ladder law on the mesh's elements -> rung
+  std::vector<signed char> moves_;  ///< per cell, scratch of assess: -1, 0, +1
+  std::vector<signed char> initial_rungs_, cell_rungs_;  ///< per cell: rung_of the initial and current kernel
+  long rungs_revision_ = -1;                             ///< the model's law_revision when cell_rungs_ was right
   bool needs_force_ = false;
   int total_switches_ = 0;
   double criteria_seconds_ = 0;

@@ -37,6 +37,7 @@
 #define TENSORMASS_CRITERIA_HPP
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,12 +56,29 @@ struct ElementView {
   int dim;
 };
 
+/// One block of cells to evaluate at once.
+struct BlockInput {
+  const Model& model;
+  const ElementBlock& block;
+  std::span<const double> u;       ///< dof_count displacements
+  std::span<const double> forces;  ///< dof_count assembled internal forces (read only when needs_force())
+};
+
 class Criterion {
  public:
   virtual ~Criterion() = default;
   virtual std::string name() const = 0;
   /// The criterion's value on one element.
   virtual double evaluate(const ElementView& view) const = 0;
+  /// values[cell] (mesh-wide index) for every cell of the block: the same
+  /// values as evaluate() cell by cell. Called by every thread of an
+  /// enclosing parallel region (or outside one, serially), it shares the
+  /// cells among them by a static schedule over block.count() with no
+  /// barrier at the end (`omp for schedule(static) nowait`), so that a
+  /// following loop of the same schedule reads the values its own thread
+  /// wrote. The criteria override it with a loop compiled for the block's
+  /// element shape (no virtual call or shape dispatch per cell).
+  virtual void evaluate_block(const BlockInput& input, std::span<double> values) const;
   /// Quality criteria fail below their threshold, the others above it.
   virtual bool is_quality() const { return false; }
   /// R_S needs the element's internal force.
