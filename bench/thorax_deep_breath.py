@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""The adaptive model on a deep breath: the synthetic thorax, diaphragm down 5 cm.
+
+Issue 13's scene (2): examples/thorax (its surfaces, mesh and scene) with the
+diaphragm descending `--depth` (default 5 cm, against the example's 1.5 cm)
+over half a breathing cycle (`--steps` implicit steps of 0.05 s: 40 reach
+the deepest point at t = 2 s), every solver setting at its default (the
+example's `threads: 1` removed). Runs, side by side through
+tensormass.Simulation:
+  hooke, neohookean, stable_neohookean      every cell under one law
+  adaptive R_NL T                           cells start under Hooke and climb to
+                                            neo-Hookean where R_NL >= T
+and prints, per run: mean ms per step (assembly, solve, criteria), cells per
+law at the end, and the error against pure neo-Hookean (largest nodal
+distance over all steps / the neo-Hookean run's largest displacement), then
+the targets. A run that fails (an inverted element) is reported as such.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/thorax_deep_breath.py [--binary build/tensormass]
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import tensormass as tm
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+THORAX = os.path.join(ROOT, "examples", "thorax")
+LAWS = 4  # materials in thorax.yaml
+
+
+def make_mesh(binary, work):
+    """The example's surfaces and mesh (examples/thorax/run.sh)."""
+    python = sys.executable
+    subprocess.run([python, os.path.join(THORAX, "make_thorax.py"), "--out", work, "--edge", "0.018"], check=True,
+                   capture_output=True)
+    import json
+    tumour = json.load(open(os.path.join(work, "thorax.json")))["tumour"]
+    roi = ",".join(str(x) for x in [*tumour["centre"], 2 * tumour["radius"], 0.01])
+    subprocess.run([binary, "mesh", "thorax.stl", "--size", "0.02", "--levels", "0", "--layer", "0.5", "--roi", roi,
+                    "--region", "tumour=tumour.stl", "--region", "lung_right=lung_right.stl",
+                    "--region", "lung_left=lung_left.stl", "-o", "thorax.msh"], check=True, capture_output=True,
+                   cwd=work)
+    with open(os.path.join(THORAX, "thorax.yaml")) as source, open(os.path.join(work, "thorax.yaml"), "w") as scene:
+        scene.write("".join(line for line in source if not line.lstrip().startswith("threads:")))
+    return os.path.join(work, "thorax.yaml")
+
+
+def overrides_for(label, law, threshold, args, work):
+    o = {f"materials.{m}.law": law for m in range(LAWS)}
+    o.update({"prescribed.1.displacement": [None, None, -args.depth], "solver.steps": args.steps,
+              "output.directory": os.path.join(work, "out", label), "output.every": 0, "output.track": []})
+    if threshold is None:
+        o["adaptivity"] = None
+    else:
+        o["adaptivity"] = {"criteria": [{"name": "R_NL", "threshold": threshold}], "ladder": ["hooke", "neohookean"]}
+    return o
+
+
+def simulate(scene, label, law, threshold, args, work):
+    sim = tm.Simulation(scene, overrides=overrides_for(label, law, threshold, args, work))
+    trajectory, failure = [], None
+    start = time.perf_counter()
+    try:
+        while sim.step():
+            trajectory.append(sim.displacement)
+    except tm.NumericalError as error:
+        failure = str(error).split(";")[0]
+    wall = time.perf_counter() - start
+    report = sim.report()
+    steps = max(1, len(trajectory))
+    laws = {}
+    for name in sim.cell_laws():
+        laws[name] = laws.get(name, 0) + 1
+    return {"label": label, "ms": 1e3 * report["loop_seconds"] / steps, "wall": wall,
+            "assembly": 1e3 * report["assembly_seconds"] / steps, "solve": 1e3 * report["solve_seconds"] / steps,
+            "criteria": 1e3 * report["criteria_seconds"] / steps, "laws": laws, "trajectory": trajectory,
+            "failure": failure}
+
+
+def error(run, reference):
+    steps = min(len(run["trajectory"]), len(reference["trajectory"]))
+    if steps == 0:
+        return float("nan")
+    scale = max(np.linalg.norm(u, axis=1).max() for u in reference["trajectory"])
+    worst = max(np.linalg.norm(run["trajectory"][s] - reference["trajectory"][s], axis=1).max() for s in range(steps))
+    return worst / scale
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "tensormass"))
+    parser.add_argument("--depth", type=float, default=0.05, help="diaphragm descent (m)")
+    parser.add_argument("--steps", type=int, default=40, help="implicit steps of 0.05 s (40: to the deepest point)")
+    parser.add_argument("--thresholds", default="0.005,0.01,0.03", help="R_NL thresholds of the adaptive runs")
+    args = parser.parse_args()
+    work = tempfile.mkdtemp(prefix="tm-deep-breath-")
+    scene = make_mesh(os.path.abspath(args.binary), work)
+    runs = [simulate(scene, law, law, None, args, work) for law in ("hooke", "neohookean", "stable_neohookean")]
+    for threshold in (float(t) for t in args.thresholds.split(",")):
+        runs.append(simulate(scene, f"adaptive R_NL {threshold:g}", "hooke", threshold, args, work))
+    rich = runs[1]
+    cells = sum(rich["laws"].values())
+    print(f"## thorax deep breath: {cells} cells, diaphragm {args.depth * 100:g} cm over {args.steps} steps of 0.05 s, "
+          "ladder [hooke, neohookean], criterion R_NL, default settings\n")
+    print("| run | ms/step | x rich | assembly | solve | criteria | cells per law (end) | error |")
+    print("|---|---:|---:|---:|---:|---:|---|---:|")
+    for run in runs:
+        laws = ", ".join(f"{n} {k}" for k, n in sorted(run["laws"].items()))
+        e = error(run, rich) if run is not rich else 0.0
+        print(f"| {run['label']} | {run['ms']:.2f} | {run['ms'] / rich['ms']:.2f} | {run['assembly']:.2f} | "
+              f"{run['solve']:.2f} | {run['criteria']:.3f} | {laws} | {100 * e:.3f} % |")
+        if run["failure"]:
+            print(f"|   | failed: {run['failure']} |||||||")
+    adaptive = [r for r in runs if r["label"].startswith("adaptive") and not r["failure"]]
+    accurate = [r for r in adaptive if error(r, rich) <= 0.01]
+    best = min(accurate, key=lambda r: r["ms"]) if accurate else None
+    print("\ntargets (thorax deep breath):")
+    if best:
+        ratio = best["ms"] / rich["ms"]
+        print(f"  adaptive within 1 % of neohookean at <= 0.50x its step: {best['label']}, "
+              f"{100 * error(best, rich):.3f} % at {ratio:.2f}x -> {'met' if ratio <= 0.5 else 'MISSED'}")
+    else:
+        print("  adaptive within 1 % of neohookean at <= 0.50x its step: no adaptive run within 1 % -> MISSED")
+    worst = max((r["ms"] / rich["ms"] for r in adaptive), default=float("nan"))
+    print(f"  no adaptive run slower than neohookean x 1.05: worst {worst:.2f}x -> "
+          f"{'met' if worst <= 1.05 else 'MISSED'}")
+    hooke = runs[0]["ms"]
+    crit = max((r["criteria"] / hooke for r in adaptive), default=float("nan"))
+    print(f"  criteria <= 5 % of a hooke step: worst {100 * crit:.1f} % -> {'met' if crit <= 0.05 else 'MISSED'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
