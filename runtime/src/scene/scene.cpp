@@ -13,6 +13,7 @@
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/simulation/track.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 
@@ -40,7 +41,7 @@ const KeyTable& scene_keys() {
        {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "predictor", "damping",
         "linear", "threads", "project_hessian"}},
       {"solver.damping", {"mass", "stiffness"}},
-      {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations"}},
+      {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations", "petsc_options"}},
       {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
       {"adaptivity.criteria[]", {"name", "threshold", "rung"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
@@ -271,8 +272,14 @@ LinearSolverSettings read_linear(const Value& section) {
   LinearSolverSettings linear;
   if (!section.present()) return linear;
   read_optional(section, "type", linear.type, [](const Value& v) {
-    return one_of_enum(v, {LinearSolverType::cholmod, LinearSolverType::cg}, linear_solver_type_name, "linear solver");
+    return one_of_enum(v, {LinearSolverType::cholmod, LinearSolverType::cg, LinearSolverType::petsc},
+                       linear_solver_type_name, "linear solver");
   });
+  if (linear.type == LinearSolverType::petsc && !petsc_available())
+    section.child("type").fail(
+        "petsc: this build has no PETSc (apt-get install libpetsc-real-dev libopenmpi-dev, "
+        "then configure again; or use cholmod or cg)");
+  read_optional(section, "petsc_options", linear.petsc_options, [](const Value& v) { return v.text(); });
   read_optional(section, "tolerance", linear.tolerance, open_fraction);
   read_optional(section, "max_iterations", linear.max_iterations, at_least(1));
   read_optional(section, "reuse_iterations", linear.reuse_iterations, at_least(0));

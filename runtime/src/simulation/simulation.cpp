@@ -187,6 +187,7 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
       integration{model, assembler, *linear, scene.solver, report.statistics},
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)), options.progress) {
   assembler.set_hessian_projection(scene.solver.project_hessian);
+  describe_free_nodes(*linear, model);
   if (scene.adaptivity.enabled) {
     AdaptivitySettings settings = scene.adaptivity;
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over

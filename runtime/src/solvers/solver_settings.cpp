@@ -12,7 +12,12 @@ std::string_view solver_type_name(SolverType type) {
 }
 
 std::string_view linear_solver_type_name(LinearSolverType type) {
-  return type == LinearSolverType::cg ? "cg" : "cholmod";
+  switch (type) {
+    case LinearSolverType::cg: return "cg";
+    case LinearSolverType::petsc: return "petsc";
+    case LinearSolverType::cholmod: break;
+  }
+  return "cholmod";
 }
 
 std::string_view step_predictor_name(StepPredictor predictor) {

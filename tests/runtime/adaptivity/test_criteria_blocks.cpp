@@ -77,8 +77,13 @@ TEST(CriteriaBlocks, EqualEvaluateCellByCellOnEveryElementType) {
             for (int a = 0; a < d; ++a) rest[j * d + a] = mesh.rest_positions[3 * nodes[j] + a];
           model.gather(cell, u, local_u.data());
           model.gather(cell, forces, local_force.data());
-          const ElementView view{*block.element,  model.kernel(cell),  model.consts(cell), rest.data(),
-                                 local_u.data(), local_force.data(), d};
+          const ElementView view{*block.element,
+                                 model.kernel(cell),
+                                 model.consts(cell),
+                                 rest.data(),
+                                 local_u.data(),
+                                 local_force.data(),
+                                 d};
           const double expected = criterion->evaluate(view);
           const double tolerance = 1e-13 * std::max(1.0, std::abs(expected));
           ASSERT_NEAR(serial[cell], expected, tolerance) << name << " on " << mesh.describe_cell(cell);

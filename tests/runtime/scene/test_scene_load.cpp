@@ -3,6 +3,7 @@
 
 #include "scene_test_support.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 namespace {
 
@@ -270,4 +271,23 @@ TEST(SceneLoad, SceneFromTextErrorsNameItsLabelAndLine) {
   } catch (const tensormass::InputError& e) {
     test_support::expect_contains(e.what(), {"from_arrays:", "stepz"});
   }
+}
+
+TEST(SceneLoad, PetscLinearSolverAndItsOptions) {
+  const std::string text =
+      scene_test::kBaseScene + "  linear: {type: petsc, petsc_options: \"-ksp_type cg -pc_type jacobi\"}\n";
+  if (!tensormass::petsc_available()) {
+    try {
+      tensormass::parse_scene(text, "petsc.yaml");
+      FAIL() << "linear.type petsc accepted by a build without PETSc";
+    } catch (const tensormass::InputError& e) {
+      test_support::expect_contains(e.what(), {"petsc.yaml:", "solver.linear.type", "no PETSc"});
+    }
+    return;
+  }
+  const Scene s = tensormass::parse_scene(text, "petsc.yaml");
+  EXPECT_EQ(s.solver.linear.type, tensormass::LinearSolverType::petsc);
+  EXPECT_EQ(s.solver.linear.petsc_options, "-ksp_type cg -pc_type jacobi");
+  const Scene defaults = tensormass::parse_scene(scene_test::kBaseScene + "  linear: {type: petsc}\n", "petsc.yaml");
+  EXPECT_EQ(defaults.solver.linear.petsc_options, "-ksp_type cg -pc_type gamg");
 }

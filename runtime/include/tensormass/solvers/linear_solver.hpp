@@ -1,8 +1,9 @@
 /// \file linear_solver.hpp
 /// Solvers of K x = b for the symmetric matrices of assembly: sparse
 /// Cholesky (SuiteSparse CHOLMOD, supernodal; simplicial LDL^T when K is
-/// not positive definite) and Jacobi-preconditioned conjugate gradients
-/// warm-started from the caller's x.
+/// not positive definite), Jacobi-preconditioned conjugate gradients
+/// warm-started from the caller's x, and PETSc's Krylov solvers and
+/// preconditioners (algebraic multigrid by default) when the build has PETSc.
 #ifndef TENSORMASS_LINEAR_SOLVER_HPP
 #define TENSORMASS_LINEAR_SOLVER_HPP
 
@@ -38,9 +39,23 @@ class LinearSolver {
   /// a direct solver factorises the saved matrix again, which gives the same
   /// factor bit for bit. Throws InputError when `saved` does not fit.
   virtual void restore_state(std::span<const double> saved, const SparseMatrix& pattern);
+  /// Tells the solver that its unknowns are `dim` components of each of the
+  /// nodes at `coordinates` (nodes by dim, rest positions), node-major: an
+  /// algebraic multigrid preconditioner then builds its coarse spaces from
+  /// the rigid-body modes. Ignored by the solvers that have no use for it.
+  virtual void set_node_blocks(int /*dim*/, std::span<const double> /*coordinates*/) {}
 };
 
+class Model;
+/// Calls solver.set_node_blocks with the model's free nodes when every node
+/// has all or none of its components free (the usual clamped or prescribed
+/// groups); does nothing otherwise (a group held in some components only).
+void describe_free_nodes(LinearSolver& solver, const Model& model);
+
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings);
+
+/// Whether this build links PETSc (solver.linear.type: petsc).
+bool petsc_available();
 
 }  // namespace tensormass
 

@@ -5,18 +5,19 @@
 #ifndef TENSORMASS_SOLVERS_SOLVER_SETTINGS_HPP
 #define TENSORMASS_SOLVERS_SOLVER_SETTINGS_HPP
 
+#include <string>
 #include <string_view>
 
 namespace tensormass {
 
 /// Static Newton with load steps, implicit (backward) Euler, explicit symplectic Euler.
 enum class SolverType { static_newton, implicit_euler, explicit_euler };
-enum class LinearSolverType { cholmod, cg };
+enum class LinearSolverType { cholmod, cg, petsc };
 /// Where an implicit step's Newton iterations start for the free dofs:
 /// u0 + dt v0 (the motion continued), or u0 (only the prescribed dofs moved).
 enum class StepPredictor { velocity, none };
 
-/// The scene's names: "static", "implicit", "explicit"; "cholmod", "cg".
+/// The scene's names: "static", "implicit", "explicit"; "cholmod", "cg", "petsc".
 std::string_view solver_type_name(SolverType type);
 std::string_view linear_solver_type_name(LinearSolverType type);
 /// The scene's names: "velocity", "none".
@@ -29,6 +30,10 @@ struct LinearSolverSettings {
   /// cholmod: when the matrix changed, first try at most this many CG
   /// iterations preconditioned by the previous factor (0 = always refactorise)
   int reuse_iterations = 12;
+  /// petsc: PETSc options for its Krylov solver and preconditioner (the
+  /// `-ksp_*` and `-pc_*` of PETSc's manual), read after these defaults;
+  /// `tolerance` and `max_iterations` set -ksp_rtol and -ksp_max_it.
+  std::string petsc_options = "-ksp_type cg -pc_type gamg";
 };
 
 struct SolverSettings {
