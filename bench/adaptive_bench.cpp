@@ -202,6 +202,7 @@ Run simulate(const Case& c, const std::string& label, const Scene& scene, std::o
   std::unique_ptr<Adaptivity> adaptivity;
   if (scene.adaptivity.enabled) adaptivity = std::make_unique<Adaptivity>(scene.adaptivity, model, assembler);
   auto linear = make_linear_solver(scene.solver.linear);
+  describe_free_nodes(*linear, model);  // as Simulation does (used by linear.type: petsc)
   SolveStatistics statistics;
   Integration integration{model, assembler, *linear, scene.solver, statistics};
   State state;

@@ -219,6 +219,19 @@ the current directory. Every point must belong to a cell.)")
           "(nodes, dim) copy.")
       .def_property_readonly("output_directory", [](const Simulation& s) { return s.scene().output.directory; })
       .def(
+          "internal_force",
+          [](const Simulation& s) {
+            std::vector<double> force;
+            {
+              py::gil_scoped_release release;
+              force = s.internal_force();
+            }
+            return node_array(force, s.model().dim());
+          },
+          "dW/du at the current displacement, (nodes, dim): the body's internal force on each node. At a "
+          "constrained node in static equilibrium it is the constraint's reaction (minus it: the force on the "
+          "tool or support).")
+      .def(
           "cell_laws",
           [](const Simulation& s) {
             std::vector<std::string> laws;

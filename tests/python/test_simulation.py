@@ -124,6 +124,27 @@ def test_set_prescribed_moves_the_group(beam):
         sim.set_prescribed("tip", displacement=(0, 0))
 
 
+def test_internal_force_balances_the_loads_at_equilibrium(beam):
+    # A static solve: each element's internal forces sum to zero, so the
+    # nodes' do too; at the free nodes they balance the gravity load, so
+    # their sum is the weight of all but the clamp nodes' share (small here).
+    sim = tm.Simulation(write_scene(beam, "static.yaml"),
+                        overrides={"solver.type": "static", "solver.load_steps": 2, "solver.tolerance": 1e-12})
+    before = sim.internal_force()
+    assert before.shape == sim.displacement.shape and np.abs(before).max() == 0.0
+    sim.run()
+    force = sim.internal_force()
+    clamp = np.isclose(sim.rest_positions[:, 0], 0.0)
+    total_mass = 1000 * 0.4 * 0.1 * 0.1
+    weight = 9.81 * total_mass
+    np.testing.assert_allclose(force.sum(axis=0), 0.0, atol=1e-9 * weight)
+    free_sum = force[~clamp].sum(axis=0)
+    assert -weight < free_sum[1] < -0.8 * weight
+    assert abs(free_sum[0]) < 1e-6 * weight and abs(free_sum[2]) < 1e-6 * weight
+    # The reaction at the clamp (its internal force minus its own gravity load) carries the weight.
+    assert force[clamp].sum(axis=0)[1] == pytest.approx(-free_sum[1], rel=1e-9)
+
+
 def test_criteria_of_the_adaptive_model(beam):
     extra = "adaptivity: {criteria: [{name: R_NL, threshold: 0.001}]}"
     sim = tm.Simulation(write_scene(beam, "adaptive.yaml", law="hooke", extra=extra))

@@ -426,6 +426,12 @@ void Simulation::set_prescribed(const std::string& group, const std::array<doubl
   impl_->model.hold(group, displacement, components);
 }
 
+std::vector<double> Simulation::internal_force() const {
+  std::vector<double> force(impl_->model.dof_count(), 0.0);
+  impl_->assembler.assemble(impl_->state.displacement, force, nullptr);
+  return force;
+}
+
 std::vector<std::pair<std::string, std::vector<double>>> Simulation::criteria() const {
   std::vector<std::pair<std::string, std::vector<double>>> out;
   if (!impl_->adaptivity) return out;

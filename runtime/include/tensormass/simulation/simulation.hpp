@@ -103,6 +103,11 @@ class Simulation {
   /// Model::hold between steps.
   void set_prescribed(const std::string& group, const std::array<double, 3>& displacement,
                       const std::array<bool, 3>& components = {true, true, true});
+  /// dW/du at the current displacement (dof_count, node-major): the
+  /// internal force of the body on every node. At a constrained node in
+  /// static equilibrium it is the force the constraint applies (the
+  /// reaction; minus it, the force on the tool or support).
+  std::vector<double> internal_force() const;
   /// The adaptive criteria's last values, by name, per cell (empty without `adaptivity`).
   std::vector<std::pair<std::string, std::vector<double>>> criteria() const;
 
