@@ -147,23 +147,24 @@ double by_dimension(const ElementView& view) {
   return view.dim == 2 ? Self::template value<2>(view) : Self::template value<3>(view);
 }
 
-/// Calls Self::value<D, N> with the view's dimension D and, for the node
-/// counts of the registry's elements, its node count N (else N = 0).
-template <typename Self>
-double by_shape(const ElementView& view) {
-  assert(view.dim == 2 || view.dim == 3);
-  switch (view.dim * 100 + view.kernel.nodes) {
-    case 203: return Self::template value<2, 3>(view);
-    case 204: return Self::template value<2, 4>(view);
-    case 206: return Self::template value<2, 6>(view);
-    case 208: return Self::template value<2, 8>(view);
-    case 304: return Self::template value<3, 4>(view);
-    case 305: return Self::template value<3, 5>(view);
-    case 306: return Self::template value<3, 6>(view);
-    case 308: return Self::template value<3, 8>(view);
-    case 310: return Self::template value<3, 10>(view);
-    case 320: return Self::template value<3, 20>(view);
-    default: return view.dim == 2 ? Self::template value<2, 0>(view) : Self::template value<3, 0>(view);
+/// Calls visit.template operator()<D, N>() with the dimension D and, for
+/// the node counts of the registry's elements, the node count N (else N = 0,
+/// read at run time).
+template <typename Visit>
+decltype(auto) with_shape(int dim, int nodes, Visit&& visit) {
+  assert(dim == 2 || dim == 3);
+  switch (dim * 100 + nodes) {
+    case 203: return visit.template operator()<2, 3>();
+    case 204: return visit.template operator()<2, 4>();
+    case 206: return visit.template operator()<2, 6>();
+    case 208: return visit.template operator()<2, 8>();
+    case 304: return visit.template operator()<3, 4>();
+    case 305: return visit.template operator()<3, 5>();
+    case 306: return visit.template operator()<3, 6>();
+    case 308: return visit.template operator()<3, 8>();
+    case 310: return visit.template operator()<3, 10>();
+    case 320: return visit.template operator()<3, 20>();
+    default: return dim == 2 ? visit.template operator()<2, 0>() : visit.template operator()<3, 0>();
   }
 }
 
@@ -198,24 +199,23 @@ void evaluate_cells(const Criterion& self, const BlockInput& in, std::span<doubl
   }
 }
 
-/// evaluate_cells for the block's shape (the registry's node counts), else
-/// the generic loop of Criterion::evaluate_block.
+/// A criterion whose Self::value<D, N> is compiled per element shape:
+/// evaluate() and evaluate_block() dispatch on the shape once (per element,
+/// per block), evaluate_block() to a loop compiled for the shape (the
+/// generic loop for node counts outside the registry's).
 template <typename Self>
-void block_by_shape(const Criterion& self, const BlockInput& in, std::span<double> values) {
-  switch (in.model.dim() * 100 + in.block.element->nodes) {
-    case 203: return evaluate_cells<Self, 2, 3>(self, in, values);
-    case 204: return evaluate_cells<Self, 2, 4>(self, in, values);
-    case 206: return evaluate_cells<Self, 2, 6>(self, in, values);
-    case 208: return evaluate_cells<Self, 2, 8>(self, in, values);
-    case 304: return evaluate_cells<Self, 3, 4>(self, in, values);
-    case 305: return evaluate_cells<Self, 3, 5>(self, in, values);
-    case 306: return evaluate_cells<Self, 3, 6>(self, in, values);
-    case 308: return evaluate_cells<Self, 3, 8>(self, in, values);
-    case 310: return evaluate_cells<Self, 3, 10>(self, in, values);
-    case 320: return evaluate_cells<Self, 3, 20>(self, in, values);
-    default: return self.Criterion::evaluate_block(in, values);
+class ShapedCriterion : public Criterion {
+ public:
+  double evaluate(const ElementView& view) const override {
+    return with_shape(view.dim, view.kernel.nodes, [&]<int D, int N>() { return Self::template value<D, N>(view); });
   }
-}
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    with_shape(in.model.dim(), in.block.element->nodes, [&]<int D, int N>() {
+      if constexpr (N == 0) Criterion::evaluate_block(in, values);
+      else evaluate_cells<Self, D, N>(*this, in, values);
+    });
+  }
+};
 
 /// R_EL = max over edges |l - l0| / l0 = |sqrt(r) - 1| with r = l^2 / l0^2,
 /// largest at the smallest or the largest r (two square roots per element).
@@ -238,14 +238,10 @@ class EdgeLengthCriterion final : public Criterion {
 };
 
 /// R_V = |v - v0| / v0.
-class VolumeCriterion final : public Criterion {
+class VolumeCriterion final : public ShapedCriterion<VolumeCriterion> {
  public:
   std::string name() const override { return "R_V"; }
   bool needs_rest() const override { return false; }
-  double evaluate(const ElementView& view) const override { return by_shape<VolumeCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<VolumeCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -255,14 +251,10 @@ class VolumeCriterion final : public Criterion {
 };
 
 /// R_VL = v / mean_edge^D.
-class VolumeLengthCriterion final : public Criterion {
+class VolumeLengthCriterion final : public ShapedCriterion<VolumeLengthCriterion> {
  public:
   std::string name() const override { return "R_VL"; }
   bool is_quality() const override { return true; }
-  double evaluate(const ElementView& view) const override { return by_shape<VolumeLengthCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<VolumeLengthCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -273,14 +265,10 @@ class VolumeLengthCriterion final : public Criterion {
 };
 
 /// R_VLX = 6 sqrt(2) v l_harm / mean^4 (3D), (4 / sqrt 3) a l_harm / mean^3 (2D).
-class VolumeLengthHarmonicCriterion final : public Criterion {
+class VolumeLengthHarmonicCriterion final : public ShapedCriterion<VolumeLengthHarmonicCriterion> {
  public:
   std::string name() const override { return "R_VLX"; }
   bool is_quality() const override { return true; }
-  double evaluate(const ElementView& view) const override { return by_shape<VolumeLengthHarmonicCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<VolumeLengthHarmonicCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -294,15 +282,11 @@ class VolumeLengthHarmonicCriterion final : public Criterion {
 };
 
 /// R_S = |(1/v) sum_q w_q det(J0_q) sum_j N_j(q) f_j|; infinite for v <= 0.
-class StressCriterion final : public Criterion {
+class StressCriterion final : public ShapedCriterion<StressCriterion> {
  public:
   std::string name() const override { return "R_S"; }
   bool needs_rest() const override { return false; }
   bool needs_force() const override { return true; }
-  double evaluate(const ElementView& view) const override { return by_shape<StressCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<StressCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -338,14 +322,10 @@ double largest_over_points(const ElementView& view, PerPoint per_point) {
 }
 
 /// R_NL = max over points of |1/2 H^T H|_F.
-class NonlinearStrainCriterion final : public Criterion {
+class NonlinearStrainCriterion final : public ShapedCriterion<NonlinearStrainCriterion> {
  public:
   std::string name() const override { return "R_NL"; }
   bool needs_rest() const override { return false; }
-  double evaluate(const ElementView& view) const override { return by_shape<NonlinearStrainCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<NonlinearStrainCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {
@@ -370,14 +350,10 @@ class NonlinearStrainCriterion final : public Criterion {
 /// R_E = max over points of |E|_F, E = (H + H^T + H^T H) / 2: the strain with
 /// the rotation removed (zero under any rigid motion), what a corotational law
 /// still treats linearly.
-class GreenStrainCriterion final : public Criterion {
+class GreenStrainCriterion final : public ShapedCriterion<GreenStrainCriterion> {
  public:
   std::string name() const override { return "R_E"; }
   bool needs_rest() const override { return false; }
-  double evaluate(const ElementView& view) const override { return by_shape<GreenStrainCriterion>(view); }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    block_by_shape<GreenStrainCriterion>(*this, in, values);
-  }
 
   template <int D, int N>
   static double value(const ElementView& view) {

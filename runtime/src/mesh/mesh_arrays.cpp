@@ -43,25 +43,20 @@ struct GroupKeys {
 
 GroupKeys group_keys(const MeshArrays& arrays, long points, long cells, const std::string& source) {
   GroupKeys keys{std::vector<std::vector<long>>(points), std::vector<std::vector<long>>(cells)};
-  long key = 0;
-  for (const auto& [name, members] : arrays.point_groups) {
-    for (long p : members) {
-      if (p < 0 || p >= points)
-        throw InputError(source + ": point group '" + name + "' holds point " + std::to_string(p) + ", not in 0.." +
-                         std::to_string(points - 1));
-      keys.of_point[p].push_back(key);
+  long key = 0;  // point groups first, then cell groups
+  auto add = [&](const auto& groups, std::vector<std::vector<long>>& of, const char* kind, const char* member) {
+    for (const auto& [name, members] : groups) {
+      for (long m : members) {
+        if (m < 0 || m >= static_cast<long>(of.size()))
+          throw InputError(source + ": " + kind + " group '" + name + "' holds " + member + " " + std::to_string(m) +
+                           ", not in 0.." + std::to_string(static_cast<long>(of.size()) - 1));
+        of[m].push_back(key);
+      }
+      ++key;
     }
-    ++key;
-  }
-  for (const auto& [name, members] : arrays.cell_groups) {
-    for (long c : members) {
-      if (c < 0 || c >= cells)
-        throw InputError(source + ": cell group '" + name + "' holds cell " + std::to_string(c) + ", not in 0.." +
-                         std::to_string(cells - 1));
-      keys.of_cell[c].push_back(key);
-    }
-    ++key;
-  }
+  };
+  add(arrays.point_groups, keys.of_point, "point", "point");
+  add(arrays.cell_groups, keys.of_cell, "cell", "cell");
   return keys;
 }
 

@@ -98,23 +98,31 @@ int Model::law_id(int cell) const {
   return static_cast<int>(it - law_names_.begin());
 }
 
-void Model::set_law(int cell, const std::string& law) {
+const tm_kernel* Model::law_kernel(int cell, const std::string& law) const {
   const tm_kernel& current = *kernels_[cell];
-  if (law == current.law) return;
-  ++law_revision_;
-  if (law == initial_kernels_[cell]->law) {
-    kernels_[cell] = initial_kernels_[cell];
-    return;
-  }
+  if (law == current.law) return &current;
+  if (law == initial_kernels_[cell]->law) return initial_kernels_[cell];
   const Registry& registry = Registry::instance();
   // The tensor split's constants extend the quadrature layout that `whole`
   // reads, so a tensor cell can switch to `whole` of another law in place.
   const tm_kernel* next = registry.find(law, current.element, current.split);
   if (!next || next->consts > current.consts) next = registry.find(law, current.element, "whole");
-  if (!next) throw std::invalid_argument("no kernel for law '" + law + "' on " + current.element);
   const std::size_t slot = consts_offsets_[cell + 1] - consts_offsets_[cell];
-  if (static_cast<std::size_t>(next->consts) > slot)
-    throw std::invalid_argument("law switch to " + law + " needs more constants than the cell holds");
+  return next && static_cast<std::size_t>(next->consts) <= slot ? next : nullptr;
+}
+
+void Model::set_law(int cell, const std::string& law) {
+  const tm_kernel& current = *kernels_[cell];
+  if (law == current.law) return;
+  const tm_kernel* next = law_kernel(cell, law);
+  if (!next)
+    throw std::invalid_argument("no kernel for law '" + law + "' on " + current.element + " that fits the cell's " +
+                                "constants");
+  ++law_revision_;
+  if (next == initial_kernels_[cell]) {
+    kernels_[cell] = next;
+    return;
+  }
   const bool same_prefix = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
   kernels_[cell] = next;
   if (!same_prefix) {

@@ -409,13 +409,11 @@ const Model& Simulation::model() const { return impl_->model; }
 
 void Simulation::set_law(const std::vector<int>& cells, const std::string& law) {
   Model& model = impl_->model;
-  const Registry& registry = Registry::instance();
   for (int cell : cells) {  // all checked before any changes
     if (cell < 0 || cell >= model.cell_count())
       throw InputError("set_law: cell " + std::to_string(cell) + " is not in 0.." +
                        std::to_string(model.cell_count() - 1));
-    const tm_kernel& current = model.kernel(cell);
-    if (!registry.find(law, current.element, current.split) && !registry.find(law, current.element, "whole"))
+    if (!model.law_kernel(cell, law))
       throw InputError("set_law: no kernel for law '" + law + "' on " + model.mesh().describe_cell(cell));
   }
   for (int cell : cells) model.set_law(cell, law);

@@ -86,11 +86,7 @@ class PetscSolver final : public LinearSolver {
     check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     // The preconditioner is built afresh only when the policy asks (the
     // first time, or once lagged solves cost more than the cycle's mean).
-    rebuilding_ = !built_ || rebuild_next_ || settings_.reuse_iterations == 0;
-    if (rebuilding_) reset_preconditioner();
-    check(KSPSetReusePreconditioner(ksp_, rebuilding_ ? PETSC_FALSE : PETSC_TRUE), "KSPSetReusePreconditioner");
-    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
-    built_ = true;
+    use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0);
   }
 
   int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
@@ -100,10 +96,7 @@ class PetscSolver final : public LinearSolver {
     if (reason < 0 && !rebuilding_) {
       // The reused preconditioner no longer fits the matrix (its smoothers'
       // eigenvalue bounds, say): build it afresh and solve again.
-      rebuilding_ = true;
-      reset_preconditioner();
-      check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
-      check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+      use_preconditioner(true);
       std::copy(start_.begin(), start_.end(), x.begin());
       reason = run_ksp(b, x);
     }
@@ -170,14 +163,19 @@ class PetscSolver final : public LinearSolver {
     MatNullSpaceDestroy(&modes);
   }
 
-  /// Forgets the preconditioner so that the next solve builds it from the
-  /// matrix's values (a PC reused once records the matrix's state and would
-  /// otherwise skip the next setup).
-  void reset_preconditioner() {
-    if (!built_) return;
-    PC pc;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    check(PCReset(pc), "PCReset");
+  /// The matrix for the next solves, with the preconditioner reused or
+  /// rebuilt from its values. A rebuild resets the PC first: a PC reused
+  /// once records the matrix's state and would otherwise skip the setup.
+  void use_preconditioner(bool rebuild) {
+    rebuilding_ = rebuild;
+    if (rebuild && built_) {
+      PC pc;
+      check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+      check(PCReset(pc), "PCReset");
+    }
+    check(KSPSetReusePreconditioner(ksp_, rebuild ? PETSC_FALSE : PETSC_TRUE), "KSPSetReusePreconditioner");
+    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    built_ = true;
   }
 
   /// KSPSolve on b and x in place; its converged (> 0) or diverged (< 0) reason.

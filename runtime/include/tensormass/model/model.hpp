@@ -89,7 +89,12 @@ class Model {
   /// (O(1) when the constants layout is shared, else recomputed once).
   /// Switching back to the cell's initial law restores its initial kernel
   /// exactly (its constants are never overwritten by a switch).
+  /// Throws std::invalid_argument when law_kernel(cell, law) is nullptr.
   void set_law(int cell, const std::string& law);
+  /// The kernel set_law(cell, law) would give the cell: its initial kernel
+  /// for its initial law, else the same element and split (or `whole`)
+  /// whose constants fit the cell's; nullptr when the registry has none.
+  const tm_kernel* law_kernel(int cell, const std::string& law) const;
   const tm_kernel& initial_kernel(int cell) const { return *initial_kernels_[cell]; }
   /// Counts the changes of kernels and blends (set_law, start_blend, a blend
   /// ending): what the assembler caches per cell is stale when it moved.
