@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/common/thread_defaults.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 
 namespace {
 
@@ -24,7 +25,9 @@ constexpr const char* kUsage =
     "                                   (bench runs the tensormass-bench program, built with\n"
     "                                   -DTENSORMASS_BUILD_BENCH=ON)\n"
     "  run SCENE.yaml [--set a.b=VALUE ...]\n"
-    "                                   run a scene (exit 2: bad input, 3: numerical failure)\n"
+    "                                   run a scene (exit 2: bad input, 3: numerical failure);\n"
+    "                                   mpirun -n N tensormass run ... --set solver.backend=petsc\n"
+    "                                   shares it among N MPI ranks\n"
     "  beam [OPTIONS] -o OUT.msh        write a test beam (tensormass beam --help)\n"
     "  mesh SURFACE --size H [OPTIONS] -o OUT.msh\n"
     "                                   hex-dominant volume mesh of a closed surface (tensormass mesh --help)\n"
@@ -37,35 +40,40 @@ int usage_error(const std::string& message) {
   return 2;
 }
 
+/// The command's exit code; errors are thrown.
+int run(const std::string& command, const tensormass::cli::Arguments& args) {
+  if (command == "help" || command == "--help" || command == "-h") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (command == "kernels") return tensormass::cli::kernels_command(args);
+  if (command == "demo") return tensormass::cli::demo_command(args);
+  if (command == "run") return tensormass::cli::run_command(args);
+  if (command == "beam") return tensormass::cli::beam_command(args);
+  if (command == "mesh") return tensormass::cli::mesh_command(args);
+  if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
+  if (command == "render") return tensormass::cli::render_command(args);
+  if (command == "bench") return tensormass::cli::bench_command(args);
+  return usage_error("unknown command '" + command + "'");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  namespace parallel = tensormass::parallel;
   tensormass::apply_default_wait_policy(argv);
   if (argc < 2) return usage_error("missing command");
   const std::string command = argv[1];
   tensormass::cli::Arguments args(argv + 2, argv + argc);
+  // Under mpirun every rank runs this program; errors end all ranks together.
   try {
-    if (command == "help" || command == "--help" || command == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (command == "kernels") return tensormass::cli::kernels_command(args);
-    if (command == "demo") return tensormass::cli::demo_command(args);
-    if (command == "run") return tensormass::cli::run_command(args);
-    if (command == "beam") return tensormass::cli::beam_command(args);
-    if (command == "mesh") return tensormass::cli::mesh_command(args);
-    if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
-    if (command == "render") return tensormass::cli::render_command(args);
-    if (command == "bench") return tensormass::cli::bench_command(args);
-    return usage_error("unknown command '" + command + "'");
+    parallel::start_world();
+    const int code = run(command, args);
+    parallel::finish_world();
+    return code;
   } catch (const tensormass::NumericalError& error) {
-    std::fprintf(stderr, "tensormass: numerical failure: %s\n", error.what());
-    return 3;
-  } catch (const tensormass::InputError& error) {
-    std::fprintf(stderr, "tensormass: error: %s\n", error.what());
-    return 2;
+    return parallel::end_after_error(std::string("tensormass: numerical failure: ") + error.what(), 3);
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "tensormass: error: %s\n", error.what());
-    return 2;
+    return parallel::end_after_error(std::string("tensormass: error: ") + error.what(), 2);
   }
 }

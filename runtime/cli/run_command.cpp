@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/scene/scene.hpp"
 #include "tensormass/simulation/simulation.hpp"
 
@@ -53,7 +54,7 @@ int run_command(const Arguments& args) {
   options.progress = !quiet;
   options.resume = resume;
   const RunReport report = run_scene(scene, options);
-  if (!quiet) std::fputs(format_report(scene, report).c_str(), stdout);
+  if (!quiet && parallel::world_rank() == 0) std::fputs(format_report(scene, report).c_str(), stdout);
   return 0;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "tensormass/assembly/psd_projection.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 
 namespace tensormass {
 
@@ -140,12 +141,19 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
     if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
   }
   if (folded < model_->cell_count()) assemble_kernels(u, gradient, stiffness);
+  if (distribution_) distribution_->complete_dofs(gradient);
+}
+
+void Assembler::tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const {
+  K.multiply(x, y);
+  if (distribution_) distribution_->complete_free(y);
 }
 
 void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {
   const Model& model = *model_;
   const int cells = model.cell_count();
-  const int active = cells - folded_cell_count();
+  const int active = (distribution_ ? distribution_->assembled_cell_count() : cells) - folded_cell_count();
+  const Distribution* shared = distribution_;
   // One parallel region for all colours; small (or mostly folded) meshes
   // stay on one thread, where the barriers between colours would cost more
   // than they save.
@@ -159,7 +167,8 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
         const int first = coloured_chunks_[k] * kChunkCells;
         const int last = std::min(cells, first + kChunkCells);
         for (int cell = first; cell < last; ++cell)
-          if (!linear_ || !linear_->folded(cell)) assemble_cell(cell, u, gradient, stiffness, buffers);
+          if ((!linear_ || !linear_->folded(cell)) && (!shared || shared->assembles_cell(cell)))
+            assemble_cell(cell, u, gradient, stiffness, buffers);
       }
     }
   }
@@ -172,24 +181,26 @@ double Assembler::energy(std::span<const double> u) const {
   if (folded > 0) {
     std::vector<double> g(u.size());
     linear_->multiply(u, g);
+    if (distribution_) distribution_->keep_own_dofs(g);  // each row counted on one rank
     for (std::size_t d = 0; d < u.size(); ++d) total += 0.5 * u[d] * g[d];
   }
   const int cells = model.cell_count();
-  if (folded == cells) return total;
+  if (folded == cells) return distribution_ ? parallel::sum_over_ranks(total) : total;
+  const Distribution* shared = distribution_;
   const int chunks = (cells + kChunkCells - 1) / kChunkCells;
   std::vector<double> chunk_energy(chunks, 0.0);
 #pragma omp parallel for schedule(dynamic, 1) if (cells - folded >= kParallelCells)
   for (int chunk = 0; chunk < chunks; ++chunk) {
     double local[CellBuffers::kMaxDofs], sum = 0.0;
     for (int cell = chunk * kChunkCells; cell < std::min(cells, (chunk + 1) * kChunkCells); ++cell) {
-      if (linear_ && linear_->folded(cell)) continue;
+      if ((linear_ && linear_->folded(cell)) || (shared && !shared->owns_cell(cell))) continue;
       model.gather(cell, u, local);
       sum += cell_energy(model, cell, local);
     }
     chunk_energy[chunk] = sum;
   }
   for (double e : chunk_energy) total += e;
-  return total;
+  return distribution_ ? parallel::sum_over_ranks(total) : total;
 }
 
 void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,

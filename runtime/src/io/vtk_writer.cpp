@@ -92,14 +92,21 @@ struct CellArrays {
   std::vector<std::uint8_t> types;
 };
 
-/// Connectivity in VTK node order: the k-th VTK node is our node vtk_order[k].
-CellArrays cell_arrays(const Mesh& mesh) {
+/// Connectivity in VTK node order (the k-th VTK node is our node
+/// vtk_order[k]) of the cells where `keep` is true (every cell when empty),
+/// with node numbers through `node_number` (identity when empty).
+CellArrays cell_arrays(const Mesh& mesh, const std::vector<bool>& keep = {},
+                       const std::vector<std::int64_t>& node_number = {}) {
   CellArrays cells;
   for (const ElementBlock& block : mesh.blocks) {
     const tm_element_info& element = *block.element;
     for (int local = 0; local < block.count(); ++local) {
+      if (!keep.empty() && !keep[block.first_cell + local]) continue;
       const std::span<const int> nodes = block.cell_nodes(local);
-      for (int k = 0; k < element.nodes; ++k) cells.connectivity.push_back(nodes[element.vtk_order[k]]);
+      for (int k = 0; k < element.nodes; ++k) {
+        const int node = nodes[element.vtk_order[k]];
+        cells.connectivity.push_back(node_number.empty() ? node : node_number[node]);
+      }
       cells.offsets.push_back(static_cast<std::int64_t>(cells.connectivity.size()));
       cells.types.push_back(static_cast<std::uint8_t>(element.vtk_type));
     }
@@ -107,25 +114,29 @@ CellArrays cell_arrays(const Mesh& mesh) {
   return cells;
 }
 
-}  // namespace
+/// The entries of `values` (count by components) where `keep` is true, in order.
+std::vector<double> kept(const std::vector<double>& values, int components, const std::vector<bool>& keep) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) out.insert(out.end(), values.begin() + i * components, values.begin() + (i + 1) * components);
+  return out;
+}
 
-void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& displacement,
-               const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
-  for (const Field& field : point_data) check_field(field, mesh.node_count(), path, "point");
-  for (const Field& field : cell_data) check_field(field, mesh.cell_count(), path, "cell");
+/// One piece: points (by 3), cells, point and cell data (already cut to them).
+void write_piece(const std::string& path, const std::vector<double>& points, const CellArrays& cells,
+                 const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
   AppendedData data;
   std::ostringstream xml;
   xml << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
       << "\" header_type=\"UInt64\">\n"
       << "  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << mesh.node_count() << "\" NumberOfCells=\"" << mesh.cell_count() << "\">\n";
+      << "    <Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfCells=\"" << cells.types.size() << "\">\n";
   write_fields(xml, data, "PointData", point_data);
   write_fields(xml, data, "CellData", cell_data);
   xml << "      <Points>\n";
-  data_array(xml, "Float64", "Points", 3, data.add(current_positions(mesh, displacement, path)));
+  data_array(xml, "Float64", "Points", 3, data.add(points));
   xml << "      </Points>\n      <Cells>\n";
-  const CellArrays cells = cell_arrays(mesh);
   data_array(xml, "Int64", "connectivity", 0, data.add(cells.connectivity));
   data_array(xml, "Int64", "offsets", 0, data.add(cells.offsets));
   data_array(xml, "UInt8", "types", 0, data.add(cells.types));
@@ -135,6 +146,69 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
     out.write(data.bytes().data(), static_cast<std::streamsize>(data.bytes().size()));
     out << "\n  </AppendedData>\n</VTKFile>\n";
   });
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& displacement,
+               const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+  for (const Field& field : point_data) check_field(field, mesh.node_count(), path, "point");
+  for (const Field& field : cell_data) check_field(field, mesh.cell_count(), path, "cell");
+  write_piece(path, current_positions(mesh, displacement, path), cell_arrays(mesh), point_data, cell_data);
+}
+
+void write_vtu_piece(const std::string& path, const Mesh& mesh, const std::vector<bool>& cells,
+                     const std::vector<double>& displacement, const std::vector<Field>& point_data,
+                     const std::vector<Field>& cell_data) {
+  if (cells.size() != static_cast<std::size_t>(mesh.cell_count()))
+    throw std::invalid_argument(path + ": the piece's cell mask has " + std::to_string(cells.size()) + " entries for " +
+                                std::to_string(mesh.cell_count()) + " cells");
+  for (const Field& field : point_data) check_field(field, mesh.node_count(), path, "point");
+  for (const Field& field : cell_data) check_field(field, mesh.cell_count(), path, "cell");
+  // The points the piece's cells use, numbered in mesh order.
+  std::vector<bool> used(mesh.node_count(), false);
+  for (const ElementBlock& block : mesh.blocks)
+    for (int local = 0; local < block.count(); ++local)
+      if (cells[block.first_cell + local])
+        for (int node : block.cell_nodes(local)) used[node] = true;
+  std::vector<std::int64_t> number(mesh.node_count(), -1);
+  Field global_node{"global_node", 1, {}}, global_cell{"global_cell", 1, {}};
+  for (int node = 0; node < mesh.node_count(); ++node)
+    if (used[node])
+      number[node] = static_cast<std::int64_t>(global_node.values.size()), global_node.values.push_back(node);
+  for (int cell = 0; cell < mesh.cell_count(); ++cell)
+    if (cells[cell]) global_cell.values.push_back(cell);
+  std::vector<Field> piece_points{global_node}, piece_cells{global_cell};
+  for (const Field& field : point_data)
+    piece_points.push_back({field.name, field.components, kept(field.values, field.components, used)});
+  for (const Field& field : cell_data)
+    piece_cells.push_back({field.name, field.components, kept(field.values, field.components, cells)});
+  write_piece(path, kept(current_positions(mesh, displacement, path), 3, used), cell_arrays(mesh, cells, number),
+              piece_points, piece_cells);
+}
+
+void write_pvtu(const std::string& path, const std::vector<std::string>& pieces, const std::vector<Field>& point_data,
+                const std::vector<Field>& cell_data) {
+  const auto declare = [](std::ostream& xml, const char* section, const std::string& ids,
+                          const std::vector<Field>& fields) {
+    xml << "    <" << section << ">\n      <PDataArray type=\"Float64\" Name=\"" << ids << "\"/>\n";
+    for (const Field& field : fields)
+      xml << "      <PDataArray type=\"Float64\" Name=\"" << xml_escape(field.name) << "\" NumberOfComponents=\""
+          << field.components << "\"/>\n";
+    xml << "    </" << section << ">\n";
+  };
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
+      << "\" header_type=\"UInt64\">\n"
+      << "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  declare(xml, "PPointData", "global_node", point_data);
+  declare(xml, "PCellData", "global_cell", cell_data);
+  xml << "    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    "
+         "</PPoints>\n";
+  for (const std::string& piece : pieces) xml << "    <Piece Source=\"" << xml_escape(piece) << "\"/>\n";
+  xml << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  write_atomically(path, [&](std::ostream& out) { out << xml.str(); });
 }
 
 void write_pvd(const std::string& path, const std::vector<SeriesEntry>& entries) {

@@ -39,7 +39,7 @@ const KeyTable& scene_keys() {
       {"loads.profile", kProfileKeys},
       {"solver",
        {"type", "load_steps", "tolerance", "max_iterations", "dt", "steps", "newton_iterations", "predictor", "damping",
-        "linear", "threads", "project_hessian"}},
+        "linear", "threads", "project_hessian", "backend"}},
       {"solver.damping", {"mass", "stiffness"}},
       {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations", "petsc_options"}},
       {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
@@ -286,6 +286,25 @@ LinearSolverSettings read_linear(const Value& section) {
   return linear;
 }
 
+/// solver.backend: serial (the default: the linear solver of solver.linear)
+/// or petsc (PETSc's KSP, which also runs on several MPI ranks).
+void read_backend(const Value& section, LinearSolverSettings& linear) {
+  const Value backend = section.child("backend");
+  if (!backend.present()) return;
+  const std::string name = one_of(backend, {"serial", "petsc"}, "backend");
+  if (name == "serial") return;
+  const Value linear_section = section.child("linear");
+  if (linear_section.present() && linear_section.child("type").present() && linear.type != LinearSolverType::petsc)
+    linear_section.child("type").fail(
+        "is " + std::string(linear_solver_type_name(linear.type)) +
+        ", but solver.backend is petsc (PETSc solves the linear systems: leave linear.type out)");
+  if (!petsc_available())
+    backend.fail(
+        "petsc: this build has no PETSc (apt-get install libpetsc-real-dev libopenmpi-dev, "
+        "then configure again)");
+  linear.type = LinearSolverType::petsc;
+}
+
 SolverSettings read_solver(const Value& section) {
   section.expect_map();
   SolverSettings solver;
@@ -310,6 +329,7 @@ SolverSettings read_solver(const Value& section) {
   read_optional(section, "project_hessian", solver.project_hessian, boolean);
   read_damping(section.child("damping"), solver);
   solver.linear = read_linear(section.child("linear"));
+  read_backend(section, solver.linear);
   read_optional(section, "threads", solver.threads, at_least(0));
   return solver;
 }

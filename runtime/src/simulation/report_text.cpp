@@ -36,7 +36,9 @@ std::string format_report(const Scene& scene, const RunReport& report) {
   text << "  solver    " << solver_type_name(scene.solver.type);
   if (dynamic) text << format(", dt %g s, %g steps", scene.solver.dt, scene.solver.steps);
   else text << format(", %g load steps, tolerance %g", scene.solver.load_steps, scene.solver.tolerance);
-  text << ", linear: " << report.linear_solver << "\n";
+  text << ", linear: " << report.linear_solver;
+  if (report.mpi_ranks > 1) text << " on " << report.mpi_ranks << " MPI ranks";
+  text << "\n";
   if (scene.solver.type == SolverType::explicit_euler) text << format("  stable dt %.4g s (estimated)\n", s.stable_dt);
   text << format("  time      %.3f s; per step mean %.4g ms, median %.4g ms\n", report.wall_seconds, mean, median);
   text << format("  phases    assembly %.3f s, solve %.3f s", s.assembly_seconds, s.solve_seconds)

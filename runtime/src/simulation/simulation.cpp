@@ -1,6 +1,7 @@
 #include "tensormass/simulation/simulation.hpp"
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,9 @@
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model.hpp"
+#include "tensormass/parallel/cell_partition.hpp"
+#include "tensormass/parallel/distribution.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -33,7 +37,11 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Point displacement (and velocity) with 3 components, and per-cell fields.
-void write_state(const std::string& path, const Model& model, const State& state, const Adaptivity* adaptivity) {
+struct StateFields {
+  std::vector<io::Field> point_data, cell_data;
+};
+
+StateFields state_fields(const Model& model, const State& state, const Adaptivity* adaptivity) {
   const Mesh& mesh = model.mesh();
   const int d = model.dim(), nodes = mesh.node_count();
   std::vector<double> displacement(3 * static_cast<std::size_t>(nodes), 0.0);
@@ -54,10 +62,34 @@ void write_state(const std::string& path, const Model& model, const State& state
     }
   // The deformed shape is displacement applied to the rest positions: keep
   // the points at rest so ParaView's "Warp By Vector" shows the motion.
-  std::vector<io::Field> cell_data{law, type, material};
+  StateFields fields{{point_displacement, velocity}, {law, type, material}};
   if (adaptivity)
-    for (io::Field& field : adaptivity->cell_fields()) cell_data.push_back(std::move(field));
-  io::write_vtu(path, mesh, {}, {point_displacement, velocity}, cell_data);
+    for (io::Field& field : adaptivity->cell_fields()) fields.cell_data.push_back(std::move(field));
+  return fields;
+}
+
+/// `name`.vtu on one process; over MPI ranks, each rank's piece
+/// `name`_p<rank>.vtu (its cells) and, from rank 0, `name`.pvtu. Returns
+/// the file to name in a series.
+std::string write_state(const std::string& directory, const std::string& name, const Model& model, const State& state,
+                        const Adaptivity* adaptivity, const Distribution* distribution) {
+  const StateFields fields = state_fields(model, state, adaptivity);
+  const fs::path folder(directory);
+  if (!distribution) {
+    io::write_vtu((folder / (name + ".vtu")).string(), model.mesh(), {}, fields.point_data, fields.cell_data);
+    return name + ".vtu";
+  }
+  const auto piece = [&](int rank) { return name + "_p" + std::to_string(rank) + ".vtu"; };
+  std::vector<bool> own(model.cell_count());
+  for (int cell = 0; cell < model.cell_count(); ++cell) own[cell] = distribution->owns_cell(cell);
+  io::write_vtu_piece((folder / piece(distribution->rank())).string(), model.mesh(), own, {}, fields.point_data,
+                      fields.cell_data);
+  if (distribution->rank() == 0) {
+    std::vector<std::string> pieces;
+    for (int rank = 0; rank < distribution->size(); ++rank) pieces.push_back(piece(rank));
+    io::write_pvtu((folder / (name + ".pvtu")).string(), pieces, fields.point_data, fields.cell_data);
+  }
+  return name + ".pvtu";
 }
 
 void locate_max_displacement(const Model& model, const State& state, RunReport& report) {
@@ -79,6 +111,13 @@ void collect_adaptivity(const Adaptivity* adaptivity, RunReport& report) {
   report.criterion_seconds = adaptivity->criterion_seconds();
   report.switches = adaptivity->total_switches();
   report.adaptivity = adaptivity->records();
+}
+
+/// This process's peak resident memory so far, in MiB.
+double peak_memory_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // KiB on Linux
 }
 
 void count_cells(const Model& model, RunReport& report) {
@@ -146,12 +185,16 @@ struct Simulation::Impl {
   bool step();
   [[noreturn]] void fail(const NumericalError& failure);
   void finish_run();
+  void share_among_ranks();
+  /// Whether this process writes the files: the only one, or rank 0 of several.
+  bool writes_files() const { return !distribution || distribution->rank() == 0; }
 
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   Scene scene;
   Mesh mesh;
   Model model;
   Assembler assembler;
+  std::unique_ptr<Distribution> distribution;  // null on one process
   bool dynamic;
   std::unique_ptr<Adaptivity> adaptivity;
   std::unique_ptr<LinearSolver> linear;
@@ -185,7 +228,9 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
       tracks(make_tracks(scene, mesh)),
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
       integration{model, assembler, *linear, scene.solver, report.statistics},
-      progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)), options.progress) {
+      progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
+               options.progress && parallel::world_rank() == 0) {
+  if (parallel::world_size() > 1) share_among_ranks();
   assembler.set_hessian_projection(scene.solver.project_hessian);
   describe_free_nodes(*linear, model);
   if (scene.adaptivity.enabled) {
@@ -202,6 +247,7 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
   report.nodes = mesh.node_count();
   report.cells = mesh.cell_count();
   report.dofs = model.dof_count();
+  report.mpi_ranks = distribution ? distribution->size() : 1;
   report.free_dofs = model.free_dof_count();
   report.linear_solver = scene.solver.type == SolverType::explicit_euler ? "none (lumped mass)" : linear->name();
   std::error_code error;
@@ -220,6 +266,19 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     adaptivity->start(last_good.displacement);
   }
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+}
+
+/// Every rank holds the whole model and state; each assembles the cells
+/// of its part of the mesh (and those touching its nodes) and the linear
+/// solver spreads its rows over the ranks. Rank 0 writes the files.
+void Simulation::Impl::share_among_ranks() {
+  const int ranks = parallel::world_size(), rank = parallel::world_rank();
+  std::vector<int> cell_owner =
+      rank == 0 ? parallel::partition_cells(model, ranks) : std::vector<int>(model.cell_count(), 0);
+  parallel::broadcast_from_root(cell_owner);
+  distribution = std::make_unique<Distribution>(model, std::move(cell_owner), rank, ranks);
+  assembler.distribute(distribution.get());
+  if (scene.solver.type != SolverType::explicit_euler) linear->distribute(*distribution);
 }
 
 /// Everything the steps so far left behind, as the killed run had it.
@@ -242,11 +301,13 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
   phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
   report.resumed_from_step = state.step;
-  std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
-               state.time);
+  if (writes_files())
+    std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
+                 state.time);
 }
 
 void Simulation::Impl::write_checkpoint_now(const State& state_now) {
+  if (!writes_files()) return;
   detail::PhaseTimer timer(report.output_seconds);
   Checkpoint saved = fingerprints;
   saved.state = state_now;
@@ -297,10 +358,11 @@ bool Simulation::Impl::observe(const State& now) {
   if (scene.output.every > 0 && now.step % scene.output.every == 0) {
     detail::PhaseTimer timer(report.output_seconds);
     char name[32];
-    std::snprintf(name, sizeof name, "frame_%06d.vtu", now.step);
-    write_state(output_path(name), model, now, adaptivity.get());
-    series.push_back({now.time, name});
-    io::write_pvd(output_path("series.pvd"), series);
+    std::snprintf(name, sizeof name, "frame_%06d", now.step);
+    const std::string file =
+        write_state(scene.output.directory, name, model, now, adaptivity.get(), distribution.get());
+    series.push_back({now.time, file});
+    if (writes_files()) io::write_pvd(output_path("series.pvd"), series);
   }
   // Running sum of the finished steps (a repeated static step is popped
   // before it is ever counted here).
@@ -334,18 +396,20 @@ bool Simulation::Impl::step() {
 void Simulation::Impl::fail(const NumericalError& failure) {
   done = true;
   progress.finish();
-  write_state(output_path("last_good.vtu"), model, last_good, adaptivity.get());
-  report.files.push_back("last_good.vtu");
-  write_tracks(tracks, scene.output.directory, report);
+  const std::string file =
+      write_state(scene.output.directory, "last_good", model, last_good, adaptivity.get(), distribution.get());
+  report.files.push_back(file);
+  if (writes_files()) write_tracks(tracks, scene.output.directory, report);
   report.state = last_good;
   time_loop(scene, last_good, adaptivity_seconds, report);
   report.wall_seconds = detail::seconds_since(start);
   count_cells(model, report);
   collect_adaptivity(adaptivity.get(), report);
   locate_max_displacement(model, last_good, report);
-  detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
+  report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
+  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
   throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
-                       ") written to " + output_path("last_good.vtu"));
+                       ") written to " + output_path(file));
 }
 
 /// final.vtu, series.pvd, the tracks and summary.json.
@@ -354,11 +418,11 @@ void Simulation::Impl::finish_run() {
   progress.finish();
   {
     detail::PhaseTimer timer(report.output_seconds);
-    write_state(output_path("final.vtu"), model, state, adaptivity.get());
+    report.files.push_back(
+        write_state(scene.output.directory, "final", model, state, adaptivity.get(), distribution.get()));
   }
-  report.files.push_back("final.vtu");
   if (!series.empty()) report.files.push_back("series.pvd");
-  write_tracks(tracks, scene.output.directory, report);
+  if (writes_files()) write_tracks(tracks, scene.output.directory, report);
   time_loop(scene, state, adaptivity_seconds, report);
   report.state = state;
   count_cells(model, report);
@@ -366,7 +430,8 @@ void Simulation::Impl::finish_run() {
   locate_max_displacement(model, report.state, report);
   report.wall_seconds = detail::seconds_since(start);
   report.files.push_back("summary.json");
-  detail::write_summary(output_path("summary.json"), scene, model, report, "");
+  report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
+  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, "");
 }
 
 namespace {

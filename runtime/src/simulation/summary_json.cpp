@@ -76,7 +76,11 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   j << ", \"threads\": " << omp_get_max_threads()
     << ", \"omp_wait_policy\": " << quoted(wait_policy ? wait_policy : "unset") << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
-    << ", \"free_dofs\": " << report.free_dofs << ",\n";
+    << ", \"free_dofs\": " << report.free_dofs << ", \"mpi_ranks\": " << report.mpi_ranks << ",\n";
+  j << "  \"peak_memory_mib_per_rank\": [";
+  for (std::size_t i = 0; i < report.peak_memory_mib.size(); ++i)
+    j << (i ? ", " : "") << number(report.peak_memory_mib[i]);
+  j << "],\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";
   if (report.resumed_from_step >= 0) j << "  \"resumed_from_step\": " << report.resumed_from_step << ",\n";
   j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";

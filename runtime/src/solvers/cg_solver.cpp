@@ -4,13 +4,9 @@
 
 #include "solvers/preconditioned_cg.hpp"
 #include "tensormass/common/errors.hpp"
-#include "tensormass/model/model.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
-
-std::unique_ptr<LinearSolver> make_cholmod_solver(const LinearSolverSettings& settings);
-std::unique_ptr<LinearSolver> make_petsc_solver(const LinearSolverSettings& settings);
 
 namespace {
 
@@ -56,32 +52,8 @@ class ConjugateGradientSolver final : public LinearSolver {
 
 }  // namespace
 
-void LinearSolver::restore_state(std::span<const double> saved, const SparseMatrix&) {
-  if (!saved.empty())
-    throw InputError("the checkpoint holds a direct solver's factor; this run's linear solver (" + name() +
-                     ") keeps none");
-}
-
-void describe_free_nodes(LinearSolver& solver, const Model& model) {
-  const int d = model.dim();
-  const auto& free = model.free_dofs();
-  if (free.size() % d != 0) return;
-  std::vector<double> coordinates;
-  coordinates.reserve(free.size());
-  for (std::size_t block = 0; block < free.size(); block += d) {
-    const int node = free[block] / d;
-    for (int a = 0; a < d; ++a)
-      if (free[block + a] != node * d + a) return;  // a node with only some components free
-    for (int a = 0; a < d; ++a)
-      coordinates.push_back(model.mesh().rest_positions[3 * static_cast<std::size_t>(node) + a]);
-  }
-  solver.set_node_blocks(d, coordinates);
-}
-
-std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings) {
-  if (settings.type == LinearSolverType::cg) return std::make_unique<ConjugateGradientSolver>(settings);
-  if (settings.type == LinearSolverType::petsc) return make_petsc_solver(settings);
-  return make_cholmod_solver(settings);
+std::unique_ptr<LinearSolver> make_cg_solver(const LinearSolverSettings& settings) {
+  return std::make_unique<ConjugateGradientSolver>(settings);
 }
 
 }  // namespace tensormass

@@ -25,7 +25,7 @@ double estimate_stable_time_step(const Model& model, const Assembler& assembler,
     const double length = norm(x);
     for (double& value : x) value /= length;
     for (int i = 0; i < n; ++i) w[i] = inverse_sqrt_mass[i] * x[i];
-    K.multiply(w, y);
+    assembler.tangent_product(K, w, y);
     for (int i = 0; i < n; ++i) y[i] *= inverse_sqrt_mass[i];
     lambda = dot(x, y);
     x.swap(y);

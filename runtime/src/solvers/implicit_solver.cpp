@@ -43,7 +43,7 @@ struct EulerStep {
     std::vector<double>& kv = scratch_b;
     v_free.resize(n), kv.assign(n, 0.0);
     for (int i = 0; i < n; ++i) v_free[i] = (u[free[i]] - u0[free[i]]) / s.dt;
-    if (s.damping_stiffness != 0.0) K.multiply(v_free, kv);
+    if (s.damping_stiffness != 0.0) run.assembler.tangent_product(K, v_free, kv);
     for (int i = 0; i < n; ++i) {
       const int d = free[i];
       r[i] = mass[d] * ((v_free[i] - v0[d]) / s.dt + s.damping_mass * v_free[i]) + s.damping_stiffness * kv[i] + g[d] -
@@ -70,7 +70,7 @@ struct EulerStep {
     }
     double damping = 0.0;
     if (s.damping_stiffness != 0.0) {
-      K.multiply(du, kdu);
+      run.assembler.tangent_product(K, du, kdu);
       damping = 0.5 * s.damping_stiffness / s.dt * dot(du, kdu);
     }
     double energy = 0.0;

@@ -1,20 +1,27 @@
 // solver.linear.type: petsc: the free-dof system solved by a PETSc KSP
 // (default: conjugate gradients preconditioned by smoothed-aggregation
 // algebraic multigrid, GAMG, with the rigid-body modes when the free dofs
-// are whole nodes), on one process. The matrix is a SeqAIJ with the
-// assembler's pattern, set up once; each factorize() copies the values; the
-// preconditioner is rebuilt only when lagged solves grow dear (count_solve);
-// options come from linear.petsc_options under a prefix of this solver's own.
+// are whole nodes). On one process the matrix is a SeqAIJ with the
+// assembler's pattern, set up once, and each factorize() copies the values;
+// once distribute()d over MPI ranks it is an MPIAIJ of which each rank sets
+// its own rows (complete in its partial assembly: Distribution) and the
+// solution is gathered to every rank. The preconditioner is rebuilt only
+// when lagged solves grow dear (count_solve); options come from
+// linear.petsc_options under a prefix of this solver's own.
 #include <petscksp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cstring>
-#include <mutex>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "parallel/petsc_start.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/distribution.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
@@ -30,22 +37,10 @@ void check(PetscErrorCode code, const char* what) {
   throw NumericalError(std::string("PETSc: ") + what + " failed: " + (text ? text : "error " + std::to_string(code)));
 }
 
-/// PETSc (and MPI, as a singleton process) started once per process, on
-/// first use; finalised at exit by PETSc's own atexit handling of MPI.
-void initialize() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    PetscBool started = PETSC_FALSE;
-    PetscInitialized(&started);
-    if (!started) check(PetscInitializeNoArguments(), "PetscInitialize");
-    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-  });
-}
-
 class PetscSolver final : public LinearSolver {
  public:
   explicit PetscSolver(const LinearSolverSettings& settings) : settings_(settings) {
-    initialize();
+    parallel::detail::ensure_petsc_started();
     static std::atomic<int> count{0};
     prefix_ = "tensormass" + std::to_string(count++) + "_";
     check(PetscOptionsPrefixPush(nullptr, prefix_.c_str()), "PetscOptionsPrefixPush");
@@ -53,7 +48,48 @@ class PetscSolver final : public LinearSolver {
     PetscOptionsPrefixPop(nullptr);
     if (inserted != 0)
       throw InputError("solver.linear.petsc_options '" + settings.petsc_options + "': not PETSc options");
-    check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    make_ksp(PETSC_COMM_SELF);
+  }
+  ~PetscSolver() override {
+    if (ksp_) KSPDestroy(&ksp_);
+    destroy_matrix();
+  }
+  PetscSolver(const PetscSolver&) = delete;
+  PetscSolver& operator=(const PetscSolver&) = delete;
+
+  void distribute(const Distribution& distribution) override {
+    if (distribution.size() != parallel::world_size())
+      throw std::invalid_argument("PETSc solver: a distribution over " + std::to_string(distribution.size()) +
+                                  " ranks on " + std::to_string(parallel::world_size()) + " MPI ranks");
+    distribution_ = &distribution;
+    destroy_matrix();
+    KSPDestroy(&ksp_);
+    make_ksp(PETSC_COMM_WORLD);
+    built_ = false;
+  }
+
+  void factorize(const SparseMatrix& A) override {
+    if (!matrix_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) create(A);
+    if (distribution_) {
+      set_own_rows(A);
+    } else {
+      PetscScalar* values = nullptr;
+      check(MatSeqAIJGetArray(matrix_, &values), "MatSeqAIJGetArray");
+      std::memcpy(values, A.values.data(), sizeof(double) * A.values.size());
+      check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
+    }
+    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    // The preconditioner is built afresh only when the policy asks (the
+    // first time, or once lagged solves cost more than the cycle's mean).
+    use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0);
+  }
+
+ private:
+  /// The Krylov solver on `comm`, CG + GAMG unless the options say otherwise.
+  void make_ksp(MPI_Comm comm) {
+    const LinearSolverSettings& settings = settings_;
+    check(KSPCreate(comm, &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
     // The tolerance is on the true residual |b - A x| / |b|, as for the other solvers.
@@ -67,28 +103,8 @@ class PetscSolver final : public LinearSolver {
                        "': PETSc refused them (a misspelt -ksp_type or -pc_type?)");
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   }
-  ~PetscSolver() override {
-    if (ksp_) KSPDestroy(&ksp_);
-    if (matrix_) MatDestroy(&matrix_);
-    if (b_) VecDestroy(&b_);
-    if (x_) VecDestroy(&x_);
-  }
-  PetscSolver(const PetscSolver&) = delete;
-  PetscSolver& operator=(const PetscSolver&) = delete;
 
-  void factorize(const SparseMatrix& A) override {
-    if (!matrix_ || rows_ != A.rows || nonzeros_ != A.nonzeros()) create(A);
-    PetscScalar* values = nullptr;
-    check(MatSeqAIJGetArray(matrix_, &values), "MatSeqAIJGetArray");
-    std::memcpy(values, A.values.data(), sizeof(double) * A.values.size());
-    check(MatSeqAIJRestoreArray(matrix_, &values), "MatSeqAIJRestoreArray");
-    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    // The preconditioner is built afresh only when the policy asks (the
-    // first time, or once lagged solves cost more than the cycle's mean).
-    use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0);
-  }
-
+ public:
   int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
     check(KSPSetTolerances(ksp_, tolerance, 0.0, PETSC_DEFAULT, settings_.max_iterations), "KSPSetTolerances");
     if (!rebuilding_) start_.assign(x.begin(), x.end());  // to start again if the lagged solve fails
@@ -112,7 +128,7 @@ class PetscSolver final : public LinearSolver {
   void set_node_blocks(int dim, std::span<const double> coordinates) override {
     block_size_ = dim;
     coordinates_.assign(coordinates.begin(), coordinates.end());
-    if (matrix_) MatDestroy(&matrix_);  // made again with the blocks at the next factorize()
+    destroy_matrix();  // made again with the blocks at the next factorize()
     built_ = false;
   }
 
@@ -129,9 +145,8 @@ class PetscSolver final : public LinearSolver {
  private:
   /// The matrix with A's pattern (both triangles, sorted columns), and the vectors.
   void create(const SparseMatrix& A) {
-    if (matrix_) MatDestroy(&matrix_);
-    if (b_) VecDestroy(&b_);
-    if (x_) VecDestroy(&x_);
+    destroy_matrix();
+    if (distribution_) return create_distributed(A);
     check(MatCreate(PETSC_COMM_SELF, &matrix_), "MatCreate");
     check(MatSetSizes(matrix_, A.rows, A.rows, A.rows, A.rows), "MatSetSizes");
     check(MatSetType(matrix_, MATSEQAIJ), "MatSetType");
@@ -148,13 +163,83 @@ class PetscSolver final : public LinearSolver {
     nonzeros_ = A.nonzeros();
   }
 
+  void destroy_matrix() {
+    if (matrix_) MatDestroy(&matrix_);
+    if (b_) VecDestroy(&b_);
+    if (x_) VecDestroy(&x_);
+    if (gather_) VecScatterDestroy(&gather_);
+    if (x_all_) VecDestroy(&x_all_);
+    rows_ = nonzeros_ = -1;
+  }
+
+  /// An MPIAIJ with this rank's rows of A's pattern in the global numbering
+  /// (columns sorted, their positions in A kept in own_positions_), the
+  /// vectors, and the scatter that gathers a solution to every rank.
+  void create_distributed(const SparseMatrix& A) {
+    const Distribution& dist = *distribution_;
+    const auto& global = dist.global_row();
+    const auto& own = dist.owned_free_rows();
+    const PetscInt local = static_cast<PetscInt>(own.size());
+    std::vector<PetscInt> row_start(1, 0), columns;
+    own_positions_.clear();
+    std::vector<std::pair<int, int>> row;  // (global column, position in A)
+    for (int r : own) {
+      row.clear();
+      for (int k = A.row_start[r]; k < A.row_start[r + 1]; ++k) row.push_back({global[A.columns[k]], k});
+      std::sort(row.begin(), row.end());
+      for (const auto& [column, position] : row) {
+        columns.push_back(column);
+        own_positions_.push_back(position);
+      }
+      row_start.push_back(static_cast<PetscInt>(columns.size()));
+    }
+    own_columns_.assign(columns.begin(), columns.end());
+    own_row_start_.assign(row_start.begin(), row_start.end());
+    check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
+    check(MatSetSizes(matrix_, local, local, A.rows, A.rows), "MatSetSizes");
+    check(MatSetType(matrix_, MATMPIAIJ), "MatSetType");
+    const bool blocks = block_size_ > 1 && coordinates_.size() == static_cast<std::size_t>(A.rows);
+    if (blocks) check(MatSetBlockSize(matrix_, block_size_), "MatSetBlockSize");
+    check(MatMPIAIJSetPreallocationCSR(matrix_, row_start.data(), columns.data(), nullptr),
+          "MatMPIAIJSetPreallocationCSR");
+    check(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    check(MatSetOption(matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+    check(MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
+    if (blocks) set_rigid_body_modes();
+    check(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
+    check(VecScatterCreateToAll(x_, &gather_, &x_all_), "VecScatterCreateToAll");
+    rows_ = A.rows;
+    nonzeros_ = A.nonzeros();
+  }
+
+  /// Copies this rank's rows of A (complete there) into the MPIAIJ.
+  void set_own_rows(const SparseMatrix& A) {
+    const auto& own = distribution_->owned_free_rows();
+    const PetscInt first = distribution_->first_global_row();
+    own_values_.resize(own_positions_.size());
+    for (std::size_t k = 0; k < own_positions_.size(); ++k) own_values_[k] = A.values[own_positions_[k]];
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      const PetscInt global_row = first + static_cast<PetscInt>(i);
+      const PetscInt begin = own_row_start_[i], count = own_row_start_[i + 1] - begin;
+      check(MatSetValues(matrix_, 1, &global_row, count, own_columns_.data() + begin, own_values_.data() + begin,
+                         INSERT_VALUES),
+            "MatSetValues");
+    }
+  }
+
   /// The near null space of elasticity (translations and rotations of the
   /// free nodes) for the multigrid's coarse spaces.
   void set_rigid_body_modes() {
+    std::vector<double> own_coordinates;
+    if (distribution_)
+      for (int r : distribution_->owned_free_rows()) own_coordinates.push_back(coordinates_[r]);
+    std::vector<double>& points = distribution_ ? own_coordinates : coordinates_;
     Vec coordinates;
-    check(VecCreateSeqWithArray(PETSC_COMM_SELF, block_size_, static_cast<PetscInt>(coordinates_.size()),
-                                coordinates_.data(), &coordinates),
-          "VecCreateSeqWithArray");
+    const PetscInt count = static_cast<PetscInt>(points.size());
+    check(distribution_
+              ? VecCreateMPIWithArray(PETSC_COMM_WORLD, block_size_, count, PETSC_DECIDE, points.data(), &coordinates)
+              : VecCreateSeqWithArray(PETSC_COMM_SELF, block_size_, count, points.data(), &coordinates),
+          "VecCreateWithArray");
     MatNullSpace modes;
     const PetscErrorCode made = MatNullSpaceCreateRigidBody(coordinates, &modes);
     VecDestroy(&coordinates);
@@ -180,6 +265,7 @@ class PetscSolver final : public LinearSolver {
 
   /// KSPSolve on b and x in place; its converged (> 0) or diverged (< 0) reason.
   KSPConvergedReason run_ksp(std::span<const double> b, std::span<double> x) {
+    if (distribution_) return run_distributed_ksp(b, x);
     check(VecPlaceArray(b_, b.data()), "VecPlaceArray");
     check(VecPlaceArray(x_, x.data()), "VecPlaceArray");
     const PetscErrorCode solved = KSPSolve(ksp_, b_, x_);
@@ -188,6 +274,29 @@ class PetscSolver final : public LinearSolver {
     check(solved, "KSPSolve");
     KSPConvergedReason reason;
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    return reason;
+  }
+
+  /// run_ksp over the ranks: b and x are complete on every rank; each rank
+  /// gives its own rows, and the solution comes back to all.
+  KSPConvergedReason run_distributed_ksp(std::span<const double> b, std::span<double> x) {
+    const auto& own = distribution_->owned_free_rows();
+    PetscScalar *b_local = nullptr, *x_local = nullptr;
+    check(VecGetArray(b_, &b_local), "VecGetArray");
+    check(VecGetArray(x_, &x_local), "VecGetArray");
+    for (std::size_t i = 0; i < own.size(); ++i) b_local[i] = b[own[i]], x_local[i] = x[own[i]];
+    VecRestoreArray(b_, &b_local);
+    VecRestoreArray(x_, &x_local);
+    check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    check(VecScatterBegin(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* all = nullptr;
+    check(VecGetArrayRead(x_all_, &all), "VecGetArrayRead");
+    const auto& global = distribution_->global_row();
+    for (std::size_t r = 0; r < x.size(); ++r) x[r] = all[global[r]];
+    VecRestoreArrayRead(x_all_, &all);
     return reason;
   }
 
@@ -221,6 +330,13 @@ class PetscSolver final : public LinearSolver {
   Mat matrix_ = nullptr;
   Vec b_ = nullptr, x_ = nullptr;
   int rows_ = -1, nonzeros_ = -1;
+  // Distributed (null on one process): this rank's rows in the global numbering.
+  const Distribution* distribution_ = nullptr;
+  std::vector<PetscInt> own_row_start_, own_columns_;
+  std::vector<int> own_positions_;  ///< per own entry: its position in A.values
+  std::vector<PetscScalar> own_values_;
+  VecScatter gather_ = nullptr;  ///< x to x_all_ on every rank
+  Vec x_all_ = nullptr;
 };
 
 }  // namespace

@@ -12,6 +12,10 @@
 /// and whose copy starts the tangent, so a step costs kernels only for the
 /// non-linear cells. The folded set follows the model's law switches at the
 /// next assemble().
+///
+/// Over MPI ranks (distribute()), each rank runs the kernels of the cells
+/// touching its nodes only: its rows are complete, the gradient is completed
+/// over the ranks, and products with the tangent go through tangent_product.
 #ifndef TENSORMASS_ASSEMBLER_HPP
 #define TENSORMASS_ASSEMBLER_HPP
 
@@ -23,6 +27,7 @@
 #include "tensormass/assembly/node_graph.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/model/model.hpp"
+#include "tensormass/parallel/distribution.hpp"
 
 namespace tensormass {
 
@@ -57,6 +62,16 @@ class Assembler {
   long folding_changes() const { return linear_ ? linear_->changes() : 0; }
   /// The folded linear part (nullptr when folding is off), for checkpoints.
   LinearPart* linear_part() const { return linear_.get(); }
+  /// Shares the work among MPI ranks (nullptr: every cell here, the
+  /// default). assemble() then runs the kernels of the cells touching this
+  /// rank's nodes and completes the gradient over the ranks; the stiffness
+  /// has this rank's rows complete and the others partial; energy() adds
+  /// each cell on its owner's rank and sums over the ranks. The
+  /// distribution must outlive the assembler.
+  void distribute(const Distribution* distribution) { distribution_ = distribution; }
+  const Distribution* distribution() const { return distribution_; }
+  /// y = K x over the free dofs for a stiffness from assemble(), complete on every rank.
+  void tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const;
 
  private:
   /// Per-thread scratch space for one cell.
@@ -81,6 +96,7 @@ class Assembler {
   std::vector<int> colour_start_;             ///< colours+1, into coloured_chunks_
   std::vector<int> coloured_chunks_;          ///< chunk c holds cells [c*S, (c+1)*S)
   bool project_hessians_ = false;
+  const Distribution* distribution_ = nullptr;
 };
 
 }  // namespace tensormass

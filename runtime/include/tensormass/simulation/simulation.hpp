@@ -48,6 +48,8 @@ struct RunReport {
   /// Tracked groups and their files (relative to output_directory), in scene order.
   std::vector<std::pair<std::string, std::string>> tracks;
   int nodes = 0, cells = 0, dofs = 0, free_dofs = 0;
+  int mpi_ranks = 1;                    ///< MPI ranks the run was shared among
+  std::vector<double> peak_memory_mib;  ///< each rank's peak resident memory at the end (MiB)
   std::vector<std::pair<std::string, int>> cells_per_law;
   std::vector<std::pair<std::string, int>> cells_per_type;
   std::string linear_solver;

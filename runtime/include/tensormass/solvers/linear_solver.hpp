@@ -17,6 +17,8 @@
 
 namespace tensormass {
 
+class Distribution;
+
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
@@ -44,6 +46,12 @@ class LinearSolver {
   /// algebraic multigrid preconditioner then builds its coarse spaces from
   /// the rigid-body modes. Ignored by the solvers that have no use for it.
   virtual void set_node_blocks(int /*dim*/, std::span<const double> /*coordinates*/) {}
+  /// Shares the solve among MPI ranks (the distribution must outlive the
+  /// solver). factorize() then gets this rank's partial assembly, whose own
+  /// rows are complete (Distribution); b is complete on every rank, and x
+  /// comes back complete on every rank. Throws InputError for the solvers
+  /// that run on one process (all but PETSc's).
+  virtual void distribute(const Distribution& distribution);
 };
 
 class Model;

@@ -1,0 +1,43 @@
+/// \file mpi_world.hpp
+/// The MPI ranks a run spans. A process started by mpirun (or mpiexec)
+/// starts MPI, through PETSc, in start_world(); any other process stays
+/// one rank and never loads MPI's machinery. Every function works on one
+/// rank, in builds with or without PETSc.
+#ifndef TENSORMASS_PARALLEL_MPI_WORLD_HPP
+#define TENSORMASS_PARALLEL_MPI_WORLD_HPP
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tensormass::parallel {
+
+/// True when a launcher's environment is present (Open MPI, PMIx or PMI).
+bool launched_by_mpirun();
+/// Starts MPI when launched_by_mpirun(); call once at program start. Unless
+/// OMP_NUM_THREADS is set, each rank then runs the machine's cores divided
+/// by the ranks on it as OpenMP threads (solver.threads still overrides).
+/// Throws InputError when launched on several ranks by a build without PETSc.
+void start_world();
+/// Ends what start_world started (MPI and PETSc); safe to call when nothing was started.
+void finish_world();
+/// This process's rank (0 unless started) and the number of ranks (1 unless started).
+int world_rank();
+int world_size();
+/// In-place sums over all ranks, the same bits on every rank (a no-op on one rank).
+void sum_over_ranks(std::span<double> values);
+double sum_over_ranks(double value);
+/// Every rank's `value`, in rank order, on rank 0 (other ranks get an empty vector).
+std::vector<double> gather_to_root(double value);
+/// Rank 0's values, sent to every rank (a no-op on one rank).
+void broadcast_from_root(std::span<int> values);
+/// The exit after an error caught on this rank: when every rank caught one
+/// (a bad scene, a numerical failure: the ranks hold the same state), rank 0
+/// prints `message` and all return `exit_code`; when the others do not
+/// arrive within a few seconds, this rank prints it with its number and
+/// aborts every rank with `exit_code` (nothing hangs). One rank: prints, returns.
+int end_after_error(const std::string& message, int exit_code);
+
+}  // namespace tensormass::parallel
+
+#endif

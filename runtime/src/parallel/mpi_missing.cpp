@@ -1,0 +1,41 @@
+// A build without PETSc (and so without MPI): one rank.
+#include <cstdio>
+#include <cstdlib>
+
+#include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/cell_partition.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
+
+namespace tensormass::parallel {
+
+/// Only a launch on several ranks matters here: one rank runs as usual.
+bool launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* value = std::getenv(name); value && std::atoi(value) > 1) return true;
+  return false;
+}
+
+void start_world() {
+  if (launched_by_mpirun())
+    throw InputError(
+        "launched by mpirun on several ranks, but this build has no MPI (apt-get install libpetsc-real-dev "
+        "libopenmpi-dev, then build again)");
+}
+void finish_world() {}
+int world_rank() { return 0; }
+int world_size() { return 1; }
+void sum_over_ranks(std::span<double>) {}
+double sum_over_ranks(double value) { return value; }
+std::vector<double> gather_to_root(double value) { return {value}; }
+void broadcast_from_root(std::span<int>) {}
+int end_after_error(const std::string& message, int exit_code) {
+  std::fprintf(stderr, "%s\n", message.c_str());
+  return exit_code;
+}
+
+std::vector<int> partition_cells(const Model& model, int parts) {
+  if (parts > 1) throw InputError("cutting the mesh for MPI ranks needs PETSc, which this build lacks");
+  return std::vector<int>(model.cell_count(), 0);
+}
+
+}  // namespace tensormass::parallel

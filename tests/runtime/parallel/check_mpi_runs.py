@@ -1,0 +1,202 @@
+"""`mpirun -n 1/2/3 tensormass run ... --set solver.backend=petsc` against the
+serial solver (ctest parallel.mpirun): static StVK and implicit runs of a 3D
+beam, a mixed-element beam, a run whose cells switch laws, an explicit run;
+the .pvtu pieces hold every cell once; a bad scene exits non-zero on every
+rank with one message and no hang.
+
+usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
+(--without-petsc: the build has no PETSc; the test says so and is skipped)
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import meshio
+import numpy as np
+
+TOLERANCE = 1e-8  # largest nodal difference over the largest displacement
+RANKS = (1, 2, 3)
+
+SCENES = {
+    "static_stvk": """
+mesh: beam.msh
+materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver: {type: static, load_steps: 3, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
+""",
+    "implicit_damped": """
+mesh: beam.msh
+materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver:
+  type: implicit
+  dt: 0.01
+  steps: 15
+  newton_iterations: 2
+  damping: {mass: 0.1, stiffness: 0.001}
+  linear: {tolerance: 1.0e-12}
+output: {every: 5}
+""",
+    "static_mixed": """
+mesh: mixed.msh
+materials: [{region: all, law: neohookean, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver: {type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
+""",
+    "implicit_switching": """
+mesh: beam.msh
+materials: [{region: all, law: hooke, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver: {type: implicit, dt: 0.01, steps: 25, linear: {tolerance: 1.0e-12}}
+adaptivity:
+  criteria: [{name: R_NL, threshold: 0.003}]
+  ladder: [hooke, neohookean]
+""",
+    "explicit": """
+mesh: beam.msh
+materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}
+""",
+}
+
+
+def mpirun(ranks):
+    command = ["mpirun", "-n", str(ranks)]
+    if ranks > os.cpu_count():
+        command.append("--oversubscribe")
+    return command
+
+
+def run(command, cwd, timeout=240):
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+
+
+def read_result(directory):
+    """(displacement by node, law_id by cell) of final.vtu or final.pvtu's pieces."""
+    single = os.path.join(directory, "final.vtu")
+    if os.path.exists(single):
+        mesh = meshio.read(single)
+        return mesh.point_data["displacement"], np.concatenate(mesh.cell_data["law_id"]).ravel()
+    root = ET.parse(os.path.join(directory, "final.pvtu")).getroot()
+    pieces = [meshio.read(os.path.join(directory, p.get("Source"))) for p in root.iter("Piece")]
+    nodes = int(max(p.point_data["global_node"].max() for p in pieces)) + 1
+    cells = sum(len(np.concatenate(p.cell_data["global_cell"])) for p in pieces)
+    displacement = np.full((nodes, 3), np.nan)
+    laws = np.full(cells, -1.0)
+    for piece in pieces:
+        displacement[piece.point_data["global_node"].ravel().astype(int)] = piece.point_data["displacement"]
+        global_cell = np.concatenate(piece.cell_data["global_cell"]).ravel().astype(int)
+        assert np.all(laws[global_cell] == -1), "a cell is in two pieces"
+        laws[global_cell] = np.concatenate(piece.cell_data["law_id"]).ravel()
+    assert not np.isnan(displacement).any(), "a node is in no piece"
+    assert np.all(laws >= 0), "a cell is in no piece"
+    return displacement, laws
+
+
+def check_scene(binary, work, name):
+    failures = []
+    scene = os.path.join(work, name + ".yaml")
+    with open(scene, "w") as f:
+        f.write(SCENES[name])
+    serial = run([binary, "run", scene, "--quiet", "--set", f"output.directory=out-{name}-serial"], work)
+    if serial.returncode != 0:
+        return [f"{name}: serial run failed: {serial.stderr}"]
+    reference, reference_laws = read_result(os.path.join(work, f"out-{name}-serial"))
+    scale = np.abs(reference).max()
+    for ranks in RANKS:
+        out = f"out-{name}-{ranks}"
+        result = run(mpirun(ranks) + [binary, "run", scene, "--quiet", "--set", "solver.backend=petsc",
+                                      "--set", f"output.directory={out}"], work)
+        if result.returncode != 0:
+            failures.append(f"{name}, {ranks} ranks: exit {result.returncode}: {result.stderr[-2000:]}")
+            continue
+        displacement, laws = read_result(os.path.join(work, out))
+        difference = np.abs(displacement - reference).max() / scale
+        summary = json.load(open(os.path.join(work, out, "summary.json")))
+        print(f"{name:20s} {ranks} ranks: difference {difference:.2e} of the largest displacement "
+              f"{scale:.4g}; laws {'equal' if np.array_equal(laws, reference_laws) else 'DIFFER'}")
+        if not difference <= TOLERANCE:
+            failures.append(f"{name}, {ranks} ranks: differs from serial by {difference:.3e} (> {TOLERANCE})")
+        if not np.array_equal(laws, reference_laws):
+            failures.append(f"{name}, {ranks} ranks: cells ended under other laws than in the serial run")
+        if summary["mpi_ranks"] != ranks:
+            failures.append(f"{name}, {ranks} ranks: summary.json says mpi_ranks {summary['mpi_ranks']}")
+    return failures
+
+
+def check_bad_scene(binary, work):
+    scene = os.path.join(work, "bad.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENES["static_stvk"].replace("load_steps: 3", "load_step: 3"))
+    result = run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc"], work, timeout=60)
+    count = result.stderr.count("unknown key")
+    print(f"bad scene on 2 ranks: exit {result.returncode}, the key named {count} time(s)")
+    failures = []
+    if result.returncode == 0:
+        failures.append("a bad scene exited 0 under mpirun")
+    if count < 1:
+        failures.append("the bad scene's message does not name the key: " + result.stderr)
+    if count > 1:
+        failures.append(f"the bad scene's message came {count} times: " + result.stderr)
+    return failures
+
+
+def check_numerical_failure(binary, work):
+    scene = os.path.join(work, "diverging.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENES["static_stvk"].replace("load_steps: 3", "load_steps: 1, max_iterations: 1"))
+    result = run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc",
+                              "--set", "output.directory=out-diverging"], work, timeout=60)
+    count = result.stderr.count("numerical failure")
+    print(f"failing run on 2 ranks: exit {result.returncode}, the failure told {count} time(s)")
+    failures = []
+    if result.returncode != 3 or count != 1:
+        failures.append(f"a numerical failure on 2 ranks: exit {result.returncode}, told {count} times: "
+                        + result.stderr)
+    pieces = ["last_good.pvtu", "last_good_p0.vtu", "last_good_p1.vtu", "summary.json"]
+    missing = [p for p in pieces if not os.path.exists(os.path.join(work, "out-diverging", p))]
+    if missing:
+        failures.append(f"a numerical failure on 2 ranks left no {', '.join(missing)}")
+    return failures
+
+
+def main():
+    if "--without-petsc" in sys.argv:
+        print("SKIP: this build has no PETSc, so no MPI runs (apt-get install libpetsc-real-dev libopenmpi-dev)")
+        return 77
+    binary, work = os.path.abspath(sys.argv[1]), sys.argv[2]
+    if not shutil.which("mpirun"):
+        print("SKIP: no mpirun (apt-get install openmpi-bin)")
+        return 77
+    if os.geteuid() == 0:
+        os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    for args, name in ((["--cells", "12,3,3", "--type", "tet6"], "beam.msh"),
+                       (["--cells", "10,2,2", "--mix", "hex8:0.4,tet6:0.3,prism6:0.3"], "mixed.msh")):
+        made = run([binary, "beam", "--dim", "3", "--size", "4,1,1", *args, "-o", name], work)
+        if made.returncode != 0:
+            print(made.stderr)
+            return 1
+    failures = []
+    for name in SCENES:
+        failures += check_scene(binary, work, name)
+    failures += check_bad_scene(binary, work)
+    failures += check_numerical_failure(binary, work)
+    for failure in failures:
+        print("FAIL:", failure)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
