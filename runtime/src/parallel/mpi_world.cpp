@@ -50,7 +50,8 @@ void ensure_petsc_started() {
     PetscBool started = PETSC_FALSE;
     PetscInitialized(&started);
     if (!started && PetscInitializeNoArguments() != 0) throw NumericalError("PETSc (and MPI) failed to start");
-    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+    // PETSc's own traceback on stderr when asked (debugging a PETSc option).
+    if (!std::getenv("TENSORMASS_PETSC_TRACEBACK")) PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   });
 }
 }  // namespace detail

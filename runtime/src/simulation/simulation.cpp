@@ -430,6 +430,7 @@ void Simulation::Impl::finish_run() {
   locate_max_displacement(model, report.state, report);
   report.wall_seconds = detail::seconds_since(start);
   report.files.push_back("summary.json");
+  if (scene.solver.type != SolverType::explicit_euler) report.linear_solver = linear->name();  // after any fallback
   report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
   if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, "");
 }

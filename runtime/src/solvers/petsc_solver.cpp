@@ -34,7 +34,8 @@ void check(PetscErrorCode code, const char* what) {
   if (code == 0) return;
   const char* text = nullptr;
   PetscErrorMessage(code, &text, nullptr);
-  throw NumericalError(std::string("PETSc: ") + what + " failed: " + (text ? text : "error " + std::to_string(code)));
+  throw NumericalError(std::string("PETSc: ") + what + " failed: " + (text ? text : "error " + std::to_string(code)) +
+                       " (TENSORMASS_PETSC_TRACEBACK=1 prints PETSc's own message)");
 }
 
 class PetscSolver final : public LinearSolver {
@@ -81,8 +82,9 @@ class PetscSolver final : public LinearSolver {
     check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     // The preconditioner is built afresh only when the policy asks (the
-    // first time, or once lagged solves cost more than the cycle's mean).
-    use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0);
+    // first time, or once lagged solves cost more than the cycle's mean);
+    // a direct solve (preonly) has no iterations to make up for an old factor.
+    use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0 || !krylov_);
   }
 
  private:
@@ -101,18 +103,47 @@ class PetscSolver final : public LinearSolver {
     if (KSPSetFromOptions(ksp_) != 0)
       throw InputError("solver.linear.petsc_options '" + settings.petsc_options +
                        "': PETSc refused them (a misspelt -ksp_type or -pc_type?)");
-    check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+    KSPType type = nullptr;
+    check(KSPGetType(ksp_, &type), "KSPGetType");
+    cg_ = std::strcmp(type, KSPCG) == 0;
+    // Krylov methods start from the caller's x; preonly (a direct solve) takes none.
+    krylov_ = std::strcmp(type, KSPPREONLY) != 0;
+    check(KSPSetInitialGuessNonzero(ksp_, krylov_ ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
+  }
+
+  /// GMRES from here on, with right preconditioning so that its residual
+  /// is the true one (the tolerance means the same as with CG).
+  void switch_to_gmres() {
+    check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+    check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
+    check(KSPGMRESSetRestart(ksp_, 50), "KSPGMRESSetRestart");
+    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    cg_ = false;
   }
 
  public:
   int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
-    check(KSPSetTolerances(ksp_, tolerance, 0.0, PETSC_DEFAULT, settings_.max_iterations), "KSPSetTolerances");
-    if (!rebuilding_) start_.assign(x.begin(), x.end());  // to start again if the lagged solve fails
+    // CG gets a bounded attempt: it stalls rather than fails where the
+    // tangent or the preconditioner is not positive definite.
+    const int attempt = cg_ ? std::min(settings_.max_iterations, kCgAttemptIterations) : settings_.max_iterations;
+    check(KSPSetTolerances(ksp_, tolerance, 0.0, PETSC_DEFAULT, attempt), "KSPSetTolerances");
+    start_.assign(x.begin(), x.end());  // to start again if a solve fails
     KSPConvergedReason reason = run_ksp(b, x);
     if (reason < 0 && !rebuilding_) {
       // The reused preconditioner no longer fits the matrix (its smoothers'
       // eigenvalue bounds, say): build it afresh and solve again.
       use_preconditioner(true);
+      std::copy(start_.begin(), start_.end(), x.begin());
+      reason = run_ksp(b, x);
+    }
+    if (reason < 0 && cg_) {
+      // CG on an indefinite tangent or preconditioner (a large-deflection
+      // static StVK step: CG + GAMG stalled at 1e-4 where GMRES + GAMG
+      // took about 20 iterations per solve): GMRES for the rest of the run, as
+      // CHOLMOD falls back to LDL^T.
+      switch_to_gmres();
+      use_preconditioner(true);
+      check(KSPSetTolerances(ksp_, tolerance, 0.0, PETSC_DEFAULT, settings_.max_iterations), "KSPSetTolerances");
       std::copy(start_.begin(), start_.end(), x.begin());
       reason = run_ksp(b, x);
     }
@@ -317,6 +348,10 @@ class PetscSolver final : public LinearSolver {
   /// A GAMG setup in CG iterations: 100 to 110 ms against 1.5 ms per
   /// iteration on the 24,000-tet indentation block (13k dofs, AMD EPYC).
   static constexpr double kSetupCost = 70.0;
+  /// CG's iterations before GMRES takes over (GAMG usually needs 10 to 100).
+  static constexpr int kCgAttemptIterations = 200;
+  bool cg_ = false;     ///< the Krylov method is CG (which falls back to GMRES)
+  bool krylov_ = true;  ///< false for preonly: a direct solve with the preconditioner's factor
 
   bool built_ = false, rebuilding_ = false, rebuild_next_ = false;
   double cycle_cost_ = 0.0;

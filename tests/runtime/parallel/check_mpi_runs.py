@@ -1,8 +1,9 @@
 """`mpirun -n 1/2/3 tensormass run ... --set solver.backend=petsc` against the
-serial solver (ctest parallel.mpirun): static StVK and implicit runs of a 3D
-beam, a mixed-element beam, a run whose cells switch laws, an explicit run;
-the .pvtu pieces hold every cell once; a bad scene exits non-zero on every
-rank with one message and no hang.
+serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
+direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
+whose cells switch laws, an explicit run; the .pvtu pieces hold every cell
+once; a bad scene and a numerical failure exit non-zero on every rank with
+one message and no hang.
 
 usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
 (--without-petsc: the build has no PETSc; the test says so and is skipped)
@@ -27,6 +28,17 @@ materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
 fixed: [clamp]
 loads: {gravity: [0, -9.81, 0]}
 solver: {type: static, load_steps: 3, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
+""",
+    "static_mumps_direct": """
+mesh: beam.msh
+materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
+fixed: [clamp]
+loads: {gravity: [0, -9.81, 0]}
+solver:
+  type: static
+  load_steps: 3
+  tolerance: 1.0e-11
+  linear: {petsc_options: "-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps"}
 """,
     "implicit_damped": """
 mesh: beam.msh

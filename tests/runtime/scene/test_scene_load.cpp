@@ -291,3 +291,35 @@ TEST(SceneLoad, PetscLinearSolverAndItsOptions) {
   const Scene defaults = tensormass::parse_scene(scene_test::kBaseScene + "  linear: {type: petsc}\n", "petsc.yaml");
   EXPECT_EQ(defaults.solver.linear.petsc_options, "-ksp_type cg -pc_type gamg");
 }
+
+TEST(SceneLoad, PetscBackendSelectsPetscAndRefusesAnotherLinearType) {
+  const std::string text = scene_test::kBaseScene + "  backend: petsc\n";
+  if (!tensormass::petsc_available()) {
+    try {
+      tensormass::parse_scene(text, "backend.yaml");
+      FAIL() << "backend petsc accepted by a build without PETSc";
+    } catch (const tensormass::InputError& e) {
+      test_support::expect_contains(e.what(), {"backend.yaml:8", "solver.backend", "no PETSc"});
+    }
+    return;
+  }
+  EXPECT_EQ(tensormass::parse_scene(text, "backend.yaml").solver.linear.type, tensormass::LinearSolverType::petsc);
+  const Scene serial = tensormass::parse_scene(scene_test::kBaseScene + "  backend: serial\n", "backend.yaml");
+  EXPECT_EQ(serial.solver.linear.type, tensormass::LinearSolverType::cholmod);
+  const Scene options =
+      tensormass::parse_scene(text + "  linear: {type: petsc, petsc_options: \"-ksp_type gmres\"}\n", "backend.yaml");
+  EXPECT_EQ(options.solver.linear.petsc_options, "-ksp_type gmres");
+  try {
+    tensormass::parse_scene(text + "  linear: {type: cholmod}\n", "backend.yaml");
+    FAIL() << "backend petsc beside linear.type cholmod was accepted";
+  } catch (const tensormass::InputError& e) {
+    test_support::expect_contains(e.what(),
+                                  {"backend.yaml:9", "solver.linear.type", "cholmod", "solver.backend is petsc"});
+  }
+  try {
+    tensormass::parse_scene(scene_test::kBaseScene + "  backend: mpi\n", "backend.yaml");
+    FAIL() << "backend mpi was accepted";
+  } catch (const tensormass::InputError& e) {
+    test_support::expect_contains(e.what(), {"backend.yaml:8", "solver.backend", "mpi", "serial", "petsc"});
+  }
+}

@@ -2,7 +2,8 @@
 // the requested tolerance, reuses its preconditioner for a drifted matrix
 // and rebuilds it once that stops paying, uses the rigid-body modes of the
 // free nodes, gives implicit and static runs that agree with CHOLMOD, and
-// turns bad options and a solve that does not converge into clear errors.
+// turns bad options and a solve that does not converge into clear errors;
+// where CG breaks down (an indefinite matrix) it goes on with GMRES.
 // Skipped, saying so, in a build without PETSc.
 #include <gtest/gtest.h>
 
@@ -137,6 +138,27 @@ TEST(PetscSolver, BadOptionsAndNonConvergenceAreClearErrors) {
   } catch (const NumericalError& e) {
     expect_contains(e.what(), {"did not converge", "DIVERGED_ITS", "2 iterations"});
   }
+}
+
+TEST(PetscSolver, FallsBackToGmresWhereCgBreaksDown) {
+  SKIP_WITHOUT_PETSC();
+  // [[0, 1], [1, 0]] is symmetric and indefinite (eigenvalues 1 and -1):
+  // from b = (1, 0), CG's first direction has p.A p = 0.
+  SparseMatrix A;
+  A.rows = 2;
+  A.row_start = {0, 2, 4};
+  A.columns = {0, 1, 0, 1};
+  A.values = {0.0, 1.0, 1.0, 0.0};
+  A.diagonal = {0, 3};
+  auto solver = make_linear_solver(petsc_settings("-ksp_type cg -pc_type none"));
+  EXPECT_NE(solver->name().find("cg"), std::string::npos) << solver->name();
+  solver->factorize(A);
+  const std::vector<double> b = {1.0, 0.0};
+  std::vector<double> x = {0.0, 0.0};
+  solver->solve(b, x, 1e-12);
+  EXPECT_NEAR(x[0], 0.0, 1e-10);
+  EXPECT_NEAR(x[1], 1.0, 1e-10);
+  EXPECT_NE(solver->name().find("gmres"), std::string::npos) << solver->name();
 }
 
 TEST(PetscSolver, ImplicitAndStaticRunsAgreeWithCholmod) {
