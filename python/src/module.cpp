@@ -5,6 +5,8 @@
 #include "kernel_bindings.hpp"
 #include "simulation_bindings.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
+#include "tensormass/solvers/linear_solver.hpp"
 
 PYBIND11_MODULE(_tensormass, m) {
   m.doc() = "tensormass: adaptive Tensor-Mass soft-tissue simulation (compiled core)";
@@ -20,4 +22,13 @@ PYBIND11_MODULE(_tensormass, m) {
   });
   tensormass::python::bind_kernels(m);
   tensormass::python::bind_simulation(m);
+  // Under mpirun every rank imports this module: MPI starts here, and ends
+  // when the interpreter exits. Elsewhere neither does anything.
+  tensormass::parallel::start_world();
+  pybind11::module_::import("atexit").attr("register")(
+      pybind11::cpp_function([] { tensormass::parallel::finish_world(); }));
+  m.def("mpi_rank", &tensormass::parallel::world_rank, "This process's MPI rank (0 unless run by mpirun).");
+  m.def("mpi_size", &tensormass::parallel::world_size, "The number of MPI ranks (1 unless run by mpirun).");
+  m.def("petsc_available", &tensormass::petsc_available,
+        "Whether this build has PETSc (solver.backend: petsc, runs over MPI ranks).");
 }

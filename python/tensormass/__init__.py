@@ -19,6 +19,10 @@ A scene run step by step, its state as NumPy arrays::
     sim = tm.Simulation.from_arrays(points, {"tetra": tets}, groups={"base": nodes},
                                     materials=[...], fixed=["base"], solver={...})
 
+Under ``mpirun -n N python script.py`` with ``solver.backend: petsc`` every
+rank runs the script and the run is shared among the ranks (each holds the
+whole state; rank 0 writes the files; ``tm.mpi_rank()``, ``tm.mpi_size()``).
+
 Bad input raises ValueError; a numerical failure raises tensormass.NumericalError.
 See docs/python.md.
 """
@@ -30,6 +34,7 @@ import os as _os
 # the import below; a value set by the user stays.
 _os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
-from ._tensormass import Kernel, NumericalError, Simulation, kernel, kernels  # noqa: E402
+from ._tensormass import (  # noqa: E402
+    Kernel, NumericalError, Simulation, kernel, kernels, mpi_rank, mpi_size, petsc_available)
 
-__all__ = ["Kernel", "NumericalError", "Simulation", "kernel", "kernels"]
+__all__ = ["Kernel", "NumericalError", "Simulation", "kernel", "kernels", "mpi_rank", "mpi_size", "petsc_available"]

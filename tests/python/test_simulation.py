@@ -5,7 +5,9 @@ against the same mesh read from its file, laws and boundary conditions
 changed between steps, the GIL released while stepping, and every error
 path (ValueError with the file/key, TypeError, NumericalError)."""
 import os
+import shutil
 import subprocess
+import sys
 import threading
 
 import meshio
@@ -202,3 +204,31 @@ def test_numerical_failure_raises_and_keeps_the_last_good_state(beam):
         sim.run()
     assert sim.finished
     assert (beam / "out-diverges" / "last_good.vtu").exists()
+
+
+MPI_SCRIPT = """
+import sys, numpy as np, tensormass as tm
+sim = tm.Simulation(sys.argv[1], overrides={"output.directory": "out-mpi-python", "solver.backend": "petsc",
+                                            "solver.linear.tolerance": 1e-12})
+sim.run()
+if tm.mpi_rank() == 0:
+    np.save(sys.argv[2], sim.displacement)
+    print("ranks", tm.mpi_size())
+"""
+
+
+@pytest.mark.skipif(not tm.petsc_available() or not shutil.which("mpirun"), reason="no PETSc build or no mpirun")
+def test_runs_shared_among_mpi_ranks(beam):
+    scene = write_scene(beam, "mpi.yaml")
+    serial = tm.Simulation(scene, overrides={"output.directory": "out-mpi-serial"})
+    serial.run()
+    script = beam / "mpi_run.py"
+    script.write_text(MPI_SCRIPT)
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    result = subprocess.run(["mpirun", "-n", "2", sys.executable, str(script), scene, str(beam / "mpi.npy")],
+                            capture_output=True, text=True, env=environment, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert "ranks 2" in result.stdout
+    shared = np.load(beam / "mpi.npy")
+    assert np.abs(shared - serial.displacement).max() <= 1e-8 * np.abs(serial.displacement).max()
+    assert (beam / "out-mpi-python" / "final.pvtu").exists()

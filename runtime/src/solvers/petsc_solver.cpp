@@ -52,6 +52,11 @@ class PetscSolver final : public LinearSolver {
     make_ksp(PETSC_COMM_SELF);
   }
   ~PetscSolver() override {
+    // A solver that outlives PETSc (a Python object collected after the
+    // interpreter's exit handlers finalised MPI) has nothing left to free.
+    PetscBool finalized = PETSC_FALSE;
+    PetscFinalized(&finalized);
+    if (finalized) return;
     if (ksp_) KSPDestroy(&ksp_);
     destroy_matrix();
   }
