@@ -144,6 +144,26 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
   if (distribution_) distribution_->complete_dofs(gradient);
 }
 
+const std::vector<int>& Assembler::changing_rows() const {
+  const long folds = linear_ ? (linear_->update(), linear_->changes()) : 0;
+  if (folds == changing_seen_folds_) return changing_rows_;
+  changing_seen_folds_ = folds;
+  ++changing_revision_;
+  const Model& model = *model_;
+  const int d = model.dim();
+  std::vector<char> changing(model.free_dof_count(), 0);
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    if (linear_ && linear_->folded(cell)) continue;
+    for (int node : model.cell_nodes(cell))
+      for (int a = 0; a < d; ++a)
+        if (const int row = model.free_index()[node * d + a]; row >= 0) changing[row] = 1;
+  }
+  changing_rows_.clear();
+  for (int row = 0; row < model.free_dof_count(); ++row)
+    if (changing[row]) changing_rows_.push_back(row);
+  return changing_rows_;
+}
+
 void Assembler::tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const {
   K.multiply(x, y);
   if (distribution_) distribution_->complete_free(y);

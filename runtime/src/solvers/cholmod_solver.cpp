@@ -1,7 +1,10 @@
 // Sparse Cholesky through the CHOLMOD C API (SuiteSparse), with the
 // previous factor reused as a CG preconditioner while that is cheaper than
 // a new one (a Newton or implicit step's tangent drifts slowly): see
-// FactorReusePolicy.
+// FactorReusePolicy. When only a block of the matrix changes (the cells
+// under a non-linear law: set_changing_rows) and the old factor alone stops
+// converging, an exact factor of that block corrects it (two_level_solve)
+// before a whole new factor is paid for.
 #include <cholmod.h>
 #include <dlfcn.h>
 #include <omp.h>
@@ -81,6 +84,7 @@ class CholmodSolver final : public LinearSolver {
   }
   ~CholmodSolver() override {
     if (factor_) cholmod_free_factor(&factor_, &common_);
+    if (local_factor_) cholmod_free_factor(&local_factor_, &common_);
     cholmod_finish(&common_);
   }
   CholmodSolver(const CholmodSolver&) = delete;
@@ -96,19 +100,43 @@ class CholmodSolver final : public LinearSolver {
     // unless the last such solves cost more than a new factor would.
     if (same_pattern && settings_.reuse_iterations > 0 && !reuse_.refactorize()) {
       lagged_ = true;
+      if (local_ready_) local_ready_ = factorize_local_block(A);  // the correction stays on: refresh it
       return;
     }
     factorize_now(A);
   }
 
+  void set_changing_rows(std::span<const int> rows, long revision) override {
+    if (revision == local_revision_) return;
+    local_revision_ = revision;
+    changing_rows_.assign(rows.begin(), rows.end());
+    local_pattern_stale_ = true;  // the correction, when on, is made for the new block at the next matrix
+  }
+
   int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
     if (lagged_) {
+      // The old factor alone while it converges. Once it does not, the old
+      // factor corrected by an exact factor of the changing block
+      // (two_level_solve), kept on for the next matrices (the block
+      // factorised for each) until the next whole factorisation, which
+      // follows when that does not converge either.
       const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
-      const detail::PcgResult result =
-          detail::preconditioned_cg(*current_, b, x, old_factor, tolerance, settings_.reuse_iterations, workspace_);
-      if (result.converged) {
-        reuse_.lagged_solve(result.iterations);
-        return result.iterations;
+      const auto two_level = [this](std::span<const double> r, std::span<double> z) { two_level_solve(r, z); };
+      int iterations = 0;
+      const auto converges = [&](const auto& precondition) {
+        const detail::PcgResult result =
+            detail::preconditioned_cg(*current_, b, x, precondition, tolerance, settings_.reuse_iterations, workspace_);
+        iterations += result.iterations;
+        return result.converged;
+      };
+      bool done = local_ready_ ? converges(two_level) : converges(old_factor);
+      if (!done && !local_ready_) {
+        local_ready_ = factorize_local_block(*current_);
+        done = local_ready_ && converges(two_level);
+      }
+      if (done) {
+        reuse_.lagged_solve(iterations);
+        return iterations;
       }
       factorize_now(*current_);  // drifted too far: a fresh factor
     }
@@ -119,11 +147,13 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
   int factorizations() const override { return factorizations_; }
 
-  /// [simplicial, factorisations, 3 reuse counts, the factorised values...], empty before a factor.
+  /// [simplicial, factorisations, 3 reuse counts, block correction on, the
+  /// factorised values...], empty before a factor.
   std::vector<double> save_state() const override {
     if (factorized_values_.empty()) return {};
     const std::array<double, 3> counts = reuse_.saved();
-    std::vector<double> saved = {simplicial_ ? 1.0 : 0.0, double(factorizations_), counts[0], counts[1], counts[2]};
+    std::vector<double> saved = {simplicial_ ? 1.0 : 0.0, double(factorizations_), counts[0], counts[1], counts[2],
+                                 local_ready_ ? 1.0 : 0.0};
     saved.insert(saved.end(), factorized_values_.begin(), factorized_values_.end());
     return saved;
   }
@@ -139,6 +169,7 @@ class CholmodSolver final : public LinearSolver {
     factorize_now(A);
     factorizations_ = static_cast<int>(saved[1]);
     reuse_.restore({saved[2], saved[3], saved[4]});
+    local_ready_ = saved[5] != 0.0;  // made for the next matrix's block, as in the run that saved it
   }
 
  private:
@@ -151,6 +182,7 @@ class CholmodSolver final : public LinearSolver {
     nonzeros_ = A.nonzeros();
     factorized_values_.clear();
     lagged_ = false;
+    local_ready_ = false;
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF && !simplicial_) {
       // Not positive definite (buckling, compressed StVK): LDL^T without
@@ -182,15 +214,125 @@ class CholmodSolver final : public LinearSolver {
     cholmod_free_dense(&solution, &common_);
   }
 
+  /// The changing block K_NN of A (rows and columns local_rows_) factorised
+  /// afresh, when it is a small enough part of A and positive definite.
+  bool factorize_local_block(const SparseMatrix& A) {
+    const std::size_t rows = changing_rows_.size();
+    if (rows == 0 || rows > kMaxLocalFraction * A.rows) return false;
+    const SerialBlas serial;
+    if (local_pattern_stale_ || local_.rows != static_cast<int>(rows)) build_local_pattern(A);
+    // Worth it only while refactorising the block costs a small part of a
+    // whole factorisation (CHOLMOD's flop counts from the two analyses).
+    if (!(local_flops_ <= kMaxLocalFlopShare * factor_flops_)) return false;
+    for (std::size_t k = 0; k < local_positions_.size(); ++k) local_.values[k] = A.values[local_positions_[k]];
+    cholmod_sparse view = view_of(local_);
+    cholmod_factorize(&view, local_factor_, &common_);
+    return common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;
+  }
+
+  /// local_: A's entries between changing rows, in their order, and where each sits in A.values.
+  void build_local_pattern(const SparseMatrix& A) {
+    local_rows_ = changing_rows_;
+    std::vector<int> local_index(A.rows, -1);
+    for (std::size_t i = 0; i < local_rows_.size(); ++i) local_index[local_rows_[i]] = static_cast<int>(i);
+    local_ = SparseMatrix{};
+    local_.rows = static_cast<int>(local_rows_.size());
+    local_.row_start.assign(1, 0);
+    local_positions_.clear();
+    for (int row : local_rows_) {
+      for (int k = A.row_start[row]; k < A.row_start[row + 1]; ++k)
+        if (const int column = local_index[A.columns[k]]; column >= 0) {
+          local_.columns.push_back(column);
+          local_positions_.push_back(k);
+        }
+      local_.row_start.push_back(static_cast<int>(local_.columns.size()));
+    }
+    local_.values.assign(local_.columns.size(), 0.0);
+    local_neighbourhood_.clear();  // rows with an entry in a changing column
+    for (int row = 0; row < A.rows; ++row)
+      for (int k = A.row_start[row]; k < A.row_start[row + 1]; ++k)
+        if (local_index[A.columns[k]] >= 0) {
+          local_neighbourhood_.push_back(row);
+          break;
+        }
+    if (local_factor_) cholmod_free_factor(&local_factor_, &common_);
+    cholmod_sparse view = view_of(local_);
+    common_.supernodal = CHOLMOD_AUTO;
+    common_.final_ll = 1;
+    local_factor_ = cholmod_analyze(&view, &common_);
+    if (!local_factor_) throw NumericalError("CHOLMOD analysis of the changing block failed (out of memory?)");
+    local_flops_ = common_.fl;
+    local_pattern_stale_ = false;
+  }
+
+  /// z = M^-1 r, symmetric multiplicative Schwarz: an exact solve on the
+  /// changing block, the old factor on what remains of the residual, the
+  /// changing block again.
+  /// Only the rows that matter are multiplied: after the first local solve
+  /// z lives on N, so A z has entries on N and its neighbours only; the last
+  /// local solve reads the residual on N only.
+  void two_level_solve(std::span<const double> r, std::span<double> z) {
+    const int n = static_cast<int>(r.size());
+    const SparseMatrix& A = *current_;
+    residual_.assign(r.begin(), r.end());
+    correction_.resize(n);
+    std::fill(z.begin(), z.end(), 0.0);
+    local_solve(r, z);
+    for (int row : local_neighbourhood_) residual_[row] = r[row] - row_product(A, row, z);
+    direct_solve(residual_, correction_);
+    for (int i = 0; i < n; ++i) z[i] += correction_[i];
+    for (int row : local_rows_) residual_[row] = r[row] - row_product(A, row, z);
+    local_solve(residual_, z);
+  }
+
+  static double row_product(const SparseMatrix& A, int row, std::span<const double> x) {
+    double sum = 0.0;
+    for (int k = A.row_start[row]; k < A.row_start[row + 1]; ++k) sum += A.values[k] * x[A.columns[k]];
+    return sum;
+  }
+
+  /// z[N] += K_NN^-1 r[N] over the changing rows N.
+  void local_solve(std::span<const double> r, std::span<double> z) {
+    const std::size_t m = local_rows_.size();
+    local_rhs_.resize(m);
+    for (std::size_t i = 0; i < m; ++i) local_rhs_[i] = r[local_rows_[i]];
+    cholmod_dense rhs{};
+    rhs.nrow = rhs.nzmax = rhs.d = m;
+    rhs.ncol = 1;
+    rhs.x = local_rhs_.data();
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    const SerialBlas serial;
+    cholmod_dense* solution = cholmod_solve(CHOLMOD_A, local_factor_, &rhs, &common_);
+    if (!solution) throw NumericalError("sparse Cholesky solve of the changing block failed");
+    const double* values = static_cast<const double*>(solution->x);
+    for (std::size_t i = 0; i < m; ++i) z[local_rows_[i]] += values[i];
+    cholmod_free_dense(&solution, &common_);
+  }
+
   void analyse(cholmod_sparse& view, int supernodal) {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     common_.supernodal = supernodal;
     common_.final_ll = supernodal == CHOLMOD_SIMPLICIAL ? 0 : 1;
     factor_ = cholmod_analyze(&view, &common_);
     if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
+    factor_flops_ = common_.fl;
   }
 
-  static constexpr std::size_t kSavedCounts = 5;
+  static constexpr std::size_t kSavedCounts = 6;
+  /// The changing block gets its own factor up to this share of the rows.
+  static constexpr double kMaxLocalFraction = 0.6;
+  /// ... and while its factorisation costs at most this share of the whole one's flops.
+  static constexpr double kMaxLocalFlopShare = 0.1;
+  double factor_flops_ = 0.0, local_flops_ = 0.0;
+  std::vector<int> changing_rows_;  ///< the newest set (set_changing_rows)
+  std::vector<int> local_rows_;     ///< the rows of the block factorised in local_factor_
+  long local_revision_ = -1;
+  bool local_pattern_stale_ = true, local_ready_ = false;
+  SparseMatrix local_;
+  std::vector<int> local_positions_, local_neighbourhood_;
+  cholmod_factor* local_factor_ = nullptr;
+  std::vector<double> local_rhs_, residual_, correction_;
   LinearSolverSettings settings_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;

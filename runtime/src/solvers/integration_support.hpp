@@ -26,6 +26,8 @@ inline void linear_solve(Integration& run, const SparseMatrix& A, std::span<cons
                          double tolerance = 0.0) {
   PhaseTimer timer(run.statistics.solve_seconds);
   const int factorizations = run.linear.factorizations();
+  const std::vector<int>& changing = run.assembler.changing_rows();
+  run.linear.set_changing_rows(changing, run.assembler.changing_rows_revision());
   run.linear.factorize(A);
   if (tolerance <= 0.0) tolerance = run.settings.linear.tolerance;
   run.statistics.linear_iterations += run.linear.solve(b, x, tolerance);

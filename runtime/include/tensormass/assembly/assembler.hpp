@@ -70,6 +70,12 @@ class Assembler {
   /// distribution must outlive the assembler.
   void distribute(const Distribution* distribution) { distribution_ = distribution; }
   const Distribution* distribution() const { return distribution_; }
+  /// The free dofs (sorted) of the nodes of the cells that run kernels (not
+  /// folded): the only rows and columns of K that change between
+  /// assemblies while no law switches. Brought up to date with the folded
+  /// set; changing_rows_revision() changes when the set does.
+  const std::vector<int>& changing_rows() const;
+  long changing_rows_revision() const { return changing_revision_; }
   /// y = K x over the free dofs for a stiffness from assemble(), complete on every rank.
   void tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const;
 
@@ -97,6 +103,8 @@ class Assembler {
   std::vector<int> coloured_chunks_;          ///< chunk c holds cells [c*S, (c+1)*S)
   bool project_hessians_ = false;
   const Distribution* distribution_ = nullptr;
+  mutable std::vector<int> changing_rows_;
+  mutable long changing_revision_ = 0, changing_seen_folds_ = -1;
 };
 
 }  // namespace tensormass

@@ -52,6 +52,12 @@ class LinearSolver {
   /// comes back complete on every rank. Throws InputError for the solvers
   /// that run on one process (all but PETSc's).
   virtual void distribute(const Distribution& distribution);
+  /// The free dofs (sorted) whose rows and columns are the only ones that
+  /// change between the matrices given to factorize(): those of the cells
+  /// under a non-linear law (the others are folded into a constant part).
+  /// `revision` changes whenever the set does. CHOLMOD uses it to correct
+  /// its reused factor with an exact factor of that block. Ignored by the others.
+  virtual void set_changing_rows(std::span<const int> /*rows*/, long /*revision*/) {}
 };
 
 class Model;
