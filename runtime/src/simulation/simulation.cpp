@@ -185,6 +185,7 @@ struct Simulation::Impl {
   bool step();
   [[noreturn]] void fail(const NumericalError& failure);
   void finish_run();
+  void close_report(const State& end, const std::string& failure);
   void share_among_ranks();
   /// Whether this process writes the files: the only one, or rank 0 of several.
   bool writes_files() const { return !distribution || distribution->rank() == 0; }
@@ -399,15 +400,7 @@ void Simulation::Impl::fail(const NumericalError& failure) {
   const std::string file =
       write_state(scene.output.directory, "last_good", model, last_good, adaptivity.get(), distribution.get());
   report.files.push_back(file);
-  if (writes_files()) write_tracks(tracks, scene.output.directory, report);
-  report.state = last_good;
-  time_loop(scene, last_good, adaptivity_seconds, report);
-  report.wall_seconds = detail::seconds_since(start);
-  count_cells(model, report);
-  collect_adaptivity(adaptivity.get(), report);
-  locate_max_displacement(model, last_good, report);
-  report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
-  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, failure.what());
+  close_report(last_good, failure.what());
   throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
                        ") written to " + output_path(file));
 }
@@ -422,17 +415,23 @@ void Simulation::Impl::finish_run() {
         write_state(scene.output.directory, "final", model, state, adaptivity.get(), distribution.get()));
   }
   if (!series.empty()) report.files.push_back("series.pvd");
+  close_report(state, "");
+}
+
+/// The tracks, the report of a run that ended at `end` (failed when
+/// `failure` is not empty) and summary.json.
+void Simulation::Impl::close_report(const State& end, const std::string& failure) {
   if (writes_files()) write_tracks(tracks, scene.output.directory, report);
-  time_loop(scene, state, adaptivity_seconds, report);
-  report.state = state;
+  if (failure.empty()) report.files.push_back("summary.json");
+  report.state = end;
+  time_loop(scene, end, adaptivity_seconds, report);
   count_cells(model, report);
   collect_adaptivity(adaptivity.get(), report);
-  locate_max_displacement(model, report.state, report);
-  report.wall_seconds = detail::seconds_since(start);
-  report.files.push_back("summary.json");
+  locate_max_displacement(model, end, report);
   if (scene.solver.type != SolverType::explicit_euler) report.linear_solver = linear->name();  // after any fallback
   report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
-  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, "");
+  report.wall_seconds = detail::seconds_since(start);
+  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, failure);
 }
 
 namespace {

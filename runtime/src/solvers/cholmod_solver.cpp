@@ -220,7 +220,7 @@ class CholmodSolver final : public LinearSolver {
     const std::size_t rows = changing_rows_.size();
     if (rows == 0 || rows > kMaxLocalFraction * A.rows) return false;
     const SerialBlas serial;
-    if (local_pattern_stale_ || local_.rows != static_cast<int>(rows)) build_local_pattern(A);
+    if (local_pattern_stale_) build_local_pattern(A);
     // Worth it only while refactorising the block costs a small part of a
     // whole factorisation (CHOLMOD's flop counts from the two analyses).
     if (!(local_flops_ <= kMaxLocalFlopShare * factor_flops_)) return false;

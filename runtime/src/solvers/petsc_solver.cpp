@@ -92,41 +92,6 @@ class PetscSolver final : public LinearSolver {
     use_preconditioner(!built_ || rebuild_next_ || settings_.reuse_iterations == 0 || !krylov_);
   }
 
- private:
-  /// The Krylov solver on `comm`, CG + GAMG unless the options say otherwise.
-  void make_ksp(MPI_Comm comm) {
-    const LinearSolverSettings& settings = settings_;
-    check(KSPCreate(comm, &ksp_), "KSPCreate");
-    check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
-    check(KSPSetType(ksp_, KSPCG), "KSPSetType");
-    // The tolerance is on the true residual |b - A x| / |b|, as for the other solvers.
-    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-    check(KSPSetTolerances(ksp_, settings.tolerance, 0.0, PETSC_DEFAULT, settings.max_iterations), "KSPSetTolerances");
-    PC pc;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    check(PCSetType(pc, PCGAMG), "PCSetType");
-    if (KSPSetFromOptions(ksp_) != 0)
-      throw InputError("solver.linear.petsc_options '" + settings.petsc_options +
-                       "': PETSc refused them (a misspelt -ksp_type or -pc_type?)");
-    KSPType type = nullptr;
-    check(KSPGetType(ksp_, &type), "KSPGetType");
-    cg_ = std::strcmp(type, KSPCG) == 0;
-    // Krylov methods start from the caller's x; preonly (a direct solve) takes none.
-    krylov_ = std::strcmp(type, KSPPREONLY) != 0;
-    check(KSPSetInitialGuessNonzero(ksp_, krylov_ ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
-  }
-
-  /// GMRES from here on, with right preconditioning so that its residual
-  /// is the true one (the tolerance means the same as with CG).
-  void switch_to_gmres() {
-    check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
-    check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
-    check(KSPGMRESSetRestart(ksp_, 50), "KSPGMRESSetRestart");
-    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-    cg_ = false;
-  }
-
- public:
   int solve(std::span<const double> b, std::span<double> x, double tolerance) override {
     // CG gets a bounded attempt: it stalls rather than fails where the
     // tangent or the preconditioner is not positive definite.
@@ -179,6 +144,39 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
+  /// The Krylov solver on `comm`, CG + GAMG unless the options say otherwise.
+  void make_ksp(MPI_Comm comm) {
+    const LinearSolverSettings& settings = settings_;
+    check(KSPCreate(comm, &ksp_), "KSPCreate");
+    check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
+    check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+    // The tolerance is on the true residual |b - A x| / |b|, as for the other solvers.
+    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    check(KSPSetTolerances(ksp_, settings.tolerance, 0.0, PETSC_DEFAULT, settings.max_iterations), "KSPSetTolerances");
+    PC pc;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    if (KSPSetFromOptions(ksp_) != 0)
+      throw InputError("solver.linear.petsc_options '" + settings.petsc_options +
+                       "': PETSc refused them (a misspelt -ksp_type or -pc_type?)");
+    KSPType type = nullptr;
+    check(KSPGetType(ksp_, &type), "KSPGetType");
+    cg_ = std::strcmp(type, KSPCG) == 0;
+    // Krylov methods start from the caller's x; preonly (a direct solve) takes none.
+    krylov_ = std::strcmp(type, KSPPREONLY) != 0;
+    check(KSPSetInitialGuessNonzero(ksp_, krylov_ ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
+  }
+
+  /// GMRES from here on, with right preconditioning so that its residual
+  /// is the true one (the tolerance means the same as with CG).
+  void switch_to_gmres() {
+    check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+    check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
+    check(KSPGMRESSetRestart(ksp_, 50), "KSPGMRESSetRestart");
+    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    cg_ = false;
+  }
+
   /// The matrix with A's pattern (both triangles, sorted columns), and the vectors.
   void create(const SparseMatrix& A) {
     destroy_matrix();

@@ -21,31 +21,25 @@ import numpy as np
 TOLERANCE = 1e-8  # largest nodal difference over the largest displacement
 RANKS = (1, 2, 3)
 
+def clamped_beam(rest, law="stvk", mesh="beam.msh"):
+    """A clamped beam under gravity; `rest`: the solver and what else the scene has."""
+    return f"""mesh: {mesh}
+materials: [{{region: all, law: {law}, young: 2.0e6, poisson: 0.3, density: 1000}}]
+fixed: [clamp]
+loads: {{gravity: [0, -9.81, 0]}}
+{rest}"""
+
+
 SCENES = {
-    "static_stvk": """
-mesh: beam.msh
-materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver: {type: static, load_steps: 3, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
-""",
-    "static_mumps_direct": """
-mesh: beam.msh
-materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver:
+    "static_stvk": clamped_beam(
+        "solver: {type: static, load_steps: 3, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}\n"),
+    "static_mumps_direct": clamped_beam("""solver:
   type: static
   load_steps: 3
   tolerance: 1.0e-11
   linear: {petsc_options: "-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps"}
-""",
-    "implicit_damped": """
-mesh: beam.msh
-materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver:
+"""),
+    "implicit_damped": clamped_beam("""solver:
   type: implicit
   dt: 0.01
   steps: 15
@@ -53,31 +47,16 @@ solver:
   damping: {mass: 0.1, stiffness: 0.001}
   linear: {tolerance: 1.0e-12}
 output: {every: 5}
-""",
-    "static_mixed": """
-mesh: mixed.msh
-materials: [{region: all, law: neohookean, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver: {type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
-""",
-    "implicit_switching": """
-mesh: beam.msh
-materials: [{region: all, law: hooke, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver: {type: implicit, dt: 0.01, steps: 25, linear: {tolerance: 1.0e-12}}
+"""),
+    "static_mixed": clamped_beam(
+        "solver: {type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}\n",
+        law="neohookean", mesh="mixed.msh"),
+    "implicit_switching": clamped_beam("""solver: {type: implicit, dt: 0.01, steps: 25, linear: {tolerance: 1.0e-12}}
 adaptivity:
   criteria: [{name: R_NL, threshold: 0.003}]
   ladder: [hooke, neohookean]
-""",
-    "explicit": """
-mesh: beam.msh
-materials: [{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}]
-fixed: [clamp]
-loads: {gravity: [0, -9.81, 0]}
-solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}
-""",
+""", law="hooke"),
+    "explicit": clamped_beam("solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}\n"),
 }
 
 
