@@ -70,6 +70,11 @@ struct Row {
   tm_precompute_fn precompute = nullptr;
   tm_gradient_fn gradient = nullptr;
   tm_gradient_hessian_fn gradient_hessian = nullptr;
+  /// Batched rows (split "batched"): elements per call and the batched entry
+  /// points; the working set is then in structure-of-arrays batches.
+  int batch_width = 0;
+  tm_gradient_batch_fn gradient_batch = nullptr;
+  tm_gradient_hessian_batch_fn gradient_hessian_batch = nullptr;
   bool baseline = false;
   // Working set.
   std::vector<double> constants, u;
@@ -176,6 +181,25 @@ Geometry make_geometry(const tm_element_info& info, const tm_kernel& check, int 
   return geometry;
 }
 
+/// Whole batches only, each in structure-of-arrays layout (kernel_abi.h):
+/// entry i of the batch's element l at [i*W + l]. The transposition is not
+/// timed (the assembler's is, in the scaling and adaptive benchmarks).
+void to_batches(Row& row) {
+  const int width = row.batch_width;
+  row.elements -= row.elements % width;
+  auto transpose = [&](std::vector<double>& values, int per_element) {
+    std::vector<double> batched(static_cast<std::size_t>(row.elements) * per_element);
+    for (int e = 0; e < row.elements; ++e) {
+      const std::size_t base = static_cast<std::size_t>(e / width) * per_element * width + e % width;
+      for (int i = 0; i < per_element; ++i)
+        batched[base + static_cast<std::size_t>(i) * width] = values[static_cast<std::size_t>(e) * per_element + i];
+    }
+    values.swap(batched);
+  };
+  transpose(row.constants, row.consts);
+  transpose(row.u, row.dofs);
+}
+
 /// Fills the row's constants and displacements from the first elements of `geometry`.
 void load(Row& row, const Geometry& geometry, const Settings& settings) {
   const double bytes = 8.0 * (row.consts + row.dofs);
@@ -190,6 +214,7 @@ void load(Row& row, const Geometry& geometry, const Settings& settings) {
       throw std::runtime_error("bench: " + row.law + "/" + row.element + "/" + row.split +
                                " precompute refused element " + std::to_string(e) + " (point " +
                                std::to_string(bad - 1) + ")");
+  if (row.batch_width > 0) to_batches(row);
 }
 
 /// Scratch outputs, big enough for any kernel (reused by every element).
@@ -207,7 +232,21 @@ double sample(const Row& row, bool hessian, int sweeps, Scratch& scratch) {
   const int dofs2 = dofs * dofs;
   double checksum = 0.0;
   const auto start = Clock::now();
-  if (hessian) {
+  if (row.batch_width > 0) {
+    const int width = row.batch_width, batches = n / width;
+    const std::ptrdiff_t u_step = static_cast<std::ptrdiff_t>(dofs) * width,
+                         c_step = static_cast<std::ptrdiff_t>(nc) * width;
+    for (int s = 0; s < sweeps; ++s)
+      for (int b = 0; b < batches; ++b) {
+        if (hessian) {
+          row.gradient_hessian_batch(u + b * u_step, c + b * c_step, g, K);
+          checksum += g[b % dofs] + K[(b * 13) % dofs2];
+        } else {
+          row.gradient_batch(u + b * u_step, c + b * c_step, g);
+          checksum += g[b % dofs];
+        }
+      }
+  } else if (hessian) {
     const tm_gradient_hessian_fn fn = row.gradient_hessian;
     for (int s = 0; s < sweeps; ++s)
       for (int e = 0; e < n; ++e) {
@@ -407,6 +446,16 @@ Row registry_row(const tm_kernel& k) {
   return row;
 }
 
+/// The batched entry points of `k` as a row of their own (split "batched").
+Row batched_row(const tm_kernel& k) {
+  Row row = registry_row(k);
+  row.split = "batched";
+  row.batch_width = k.batch_width;
+  row.gradient_batch = k.gradient_batch;
+  row.gradient_hessian_batch = k.gradient_hessian_batch;
+  return row;
+}
+
 Row baseline_row(const std::string& element) {
   namespace hw = handwritten;
   Row row;
@@ -523,8 +572,10 @@ void print_targets(const std::vector<const Row*>& rows, const Registry& registry
       "\n(iii) stvk / hooke, same element and split (target: gradient+hessian ratio <= 2.5; gradient ratio "
       "for information)\n");
   std::printf("    %-8s %-7s %10s %10s\n", "element", "split", "g+h ratio", "g ratio");
+  std::vector<std::string> splits = registry.splits();
+  splits.push_back("batched");
   for (const tm_element_info* info : registry.elements())
-    for (const std::string& split : registry.splits()) {
+    for (const std::string& split : splits) {
       const Row* stvk = find("stvk", info->name, split);
       const Row* hooke = find("hooke", info->name, split);
       if (!stvk || !hooke) continue;
@@ -547,6 +598,19 @@ void print_targets(const std::vector<const Row*>& rows, const Registry& registry
       std::printf("    %-11s %-8s %10.2f %10.2f   %s by %.2fx\n", law.c_str(), info->name, ratio,
                   tensor->ns_gradient / whole->ns_gradient, ratio < 1.0 ? "tensor" : "whole",
                   ratio < 1.0 ? 1.0 / ratio : ratio);
+    }
+  // (v) batched vs per-element whole.
+  std::printf(
+      "\n(v) batched vs per-element whole split: time ratio batched/whole per element (< 1: batched faster; "
+      "the batched rows exclude the transposition to structure of arrays)\n");
+  std::printf("    %-11s %-8s %10s %10s\n", "law", "element", "g+h ratio", "g ratio");
+  for (const tm_element_info* info : registry.elements())
+    for (const std::string& law : registry.laws()) {
+      const Row* batched = find(law, info->name, "batched");
+      const Row* whole = find(law, info->name, "whole");
+      if (!batched || !whole) continue;
+      std::printf("    %-11s %-8s %10.2f %10.2f\n", law.c_str(), info->name,
+                  batched->ns_gradient_hessian / whole->ns_gradient_hessian, batched->ns_gradient / whole->ns_gradient);
     }
   std::printf("\ntargets: %d PASS, %d MISS\n", tally.pass, tally.miss);
 }
@@ -599,16 +663,21 @@ int kernels_command(const std::vector<std::string>& args) {
 
   // Rows, grouped by element in registry order.
   std::vector<Row> rows;
-  rows.reserve(registry.kernels().size() + 2);
-  for (const tm_kernel* k : registry.kernels()) rows.push_back(registry_row(*k));
+  rows.reserve(2 * registry.kernels().size() + 2);
+  for (const tm_kernel* k : registry.kernels()) {
+    rows.push_back(registry_row(*k));
+    if (k->batch_width > 0) rows.push_back(batched_row(*k));
+  }
   for (const char* element : {"tet4", "hex8"})
     if (registry.element(element)) rows.push_back(baseline_row(element));
 
   Scratch scratch;
   int max_dofs = 0;
   for (const Row& r : rows) max_dofs = std::max(max_dofs, r.dofs);
-  scratch.gradient.assign(max_dofs, 0.0);
-  scratch.hessian.assign(static_cast<std::size_t>(max_dofs) * max_dofs, 0.0);
+  int max_width = 1;
+  for (const Row& r : rows) max_width = std::max(max_width, r.batch_width);
+  scratch.gradient.assign(static_cast<std::size_t>(max_dofs) * max_width, 0.0);
+  scratch.hessian.assign(static_cast<std::size_t>(max_dofs) * max_dofs * max_width, 0.0);
 
   std::vector<std::string> warnings;
   bool baseline_ok = true;
@@ -620,7 +689,7 @@ int kernels_command(const std::vector<std::string>& args) {
       if (r.element == info->name) group.push_back(&r);
     if (group.empty()) continue;
     std::sort(group.begin(), group.end(), [](const Row* a, const Row* b) {
-      return a->law != b->law ? a->law < b->law : a->split > b->split;  // whole, terms, tensor, handwritten
+      return a->law != b->law ? a->law < b->law : a->split > b->split;  // whole, terms, tensor, handwritten, batched
     });
     const tm_kernel* check = nullptr;
     for (const tm_kernel* k : registry.kernels())

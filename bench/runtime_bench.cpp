@@ -51,7 +51,7 @@ constexpr const char* kUsage =
     "                                [--scaling]\n"
     "  --quick        smaller problems and fewer repetitions (CI smoke test, well under a minute)\n"
     "  --json FILE    also write the results as JSON to FILE (atomically)\n"
-    "  --only NAME    run one part: ccx, threads, implicit or quad\n"
+    "  --only NAME    run one part: ccx, threads, implicit, quad or batch\n"
     "  --threads N    threads of tensormass AND ccx (OMP_NUM_THREADS) in the ccx comparison (default: the\n"
     "                 OpenMP default a user gets, all cores)\n"
     "  --ccx PATH     the CalculiX executable (default: $TENSORMASS_CCX, else ccx in PATH)\n"
@@ -753,6 +753,79 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
   return true;
 }
 
+// --- 5. Batched kernels in the assembly --------------------------------------------
+
+struct BatchCase {
+  const char* label;
+  const char* law;
+  const char* cut;  // beam cut: tet6 (6 tets per cube) or hex8
+  std::array<int, 3> cells;
+};
+constexpr BatchCase kBatchCases[] = {{"stvk tet4", "stvk", "tet6", {40, 8, 8}},
+                                     {"neohookean tet4", "neohookean", "tet6", {40, 8, 8}},
+                                     {"stvk hex8", "stvk", "hex8", {40, 8, 8}}};
+
+/// Median ms of assemblies batched and per element, alternated: `tangent`
+/// true for forces and tangent (implicit and static steps), false for the
+/// forces alone (explicit steps).
+std::array<double, 2> time_batched_assembly(Assembler& assembler, const std::vector<double>& u, bool tangent,
+                                            int repetitions) {
+  std::vector<double> g(u.size());
+  SparseMatrix K = assembler.pattern();
+  std::vector<double> samples[2];  // per element, batched
+  for (int rep = 0; rep < repetitions + 1; ++rep)
+    for (int batched = 0; batched < 2; ++batched) {
+      assembler.set_batched(batched == 1);
+      const auto start = Clock::now();
+      assembler.assemble(u, g, tangent ? &K : nullptr);
+      if (rep > 0) samples[batched].push_back(1e3 * since(start));  // the first is a warm-up
+    }
+  assembler.set_batched(true);
+  return {median(samples[0]), median(samples[1])};
+}
+
+bool run_batched_assembly(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+  const int repetitions = options.quick ? 5 : 21;
+  const int defaults = omp_get_max_threads();
+  std::printf("\n== 5. Batched kernels in the assembly: batched vs per element ==\n");
+  std::printf(
+      "one assembly of u = a small wave (values do not change the time); runs alternate, median of %d; "
+      "hex8 and neo-Hookean have no batched kernels (the per-element ones are faster)\n",
+      repetitions);
+  std::printf("%-16s %6s %7s | %-26s | %-26s\n", "", "", "", "forces + tangent (ms)", "forces alone (ms)");
+  std::printf("%-16s %6s %7s | %9s %9s %6s | %9s %9s %6s\n", "case", "cells", "threads", "per elem", "batched", "ratio",
+              "per elem", "batched", "ratio");
+  for (const BatchCase& c : kBatchCases) {
+    std::array<int, 3> cells = c.cells;
+    if (options.quick) cells = {10, 4, 4};
+    const Mesh mesh = beam_mesh(3, c.cut, cells, {0.1 * cells[0], 0.1 * cells[1], 0.1 * cells[2]});
+    const Scene scene = cantilever(c.law, 1.0e6, 9.81, SolverType::implicit_euler);
+    const Model model(mesh, scene.model);
+    Assembler assembler(model);
+    std::vector<double> u(model.dof_count());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = 1e-3 * std::sin(0.7 * static_cast<double>(i));
+    for (const int threads : {1, defaults}) {
+      const Threads scope(threads);
+      const auto full = time_batched_assembly(assembler, u, true, repetitions);
+      const auto forces = time_batched_assembly(assembler, u, false, repetitions);
+      std::printf("%-16s %6d %7d | %9.3f %9.3f %6.2f | %9.3f %9.3f %6.2f\n", c.label, model.cell_count(), threads,
+                  full[0], full[1], full[1] / full[0], forces[0], forces[1], forces[1] / forces[0]);
+      JsonObject row;
+      row.add("case", c.label).add("cells", model.cell_count()).add("threads", threads);
+      row.add("tangent_per_element_ms", full[0]).add("tangent_batched_ms", full[1]);
+      row.add("forces_per_element_ms", forces[0]).add("forces_batched_ms", forces[1]);
+      json.push_back(row);
+      if (threads == defaults && std::string(c.label) == "stvk tet4") {
+        targets.push_back(
+            {"batched / per-element assembly, forces + tangent, StVK tet4", full[1] / full[0], "<=", 1.0, true});
+        targets.push_back(
+            {"batched / per-element assembly, forces alone, StVK tet4", forces[1] / forces[0], "<=", 1.0, true});
+      }
+    }
+  }
+  return true;
+}
+
 bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
   auto value = [&](std::size_t& i, const char* what) -> const std::string* {
     if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1].rfind("--", 0) == 0) {
@@ -778,8 +851,9 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       if (a == "--json") options.json = *v;
       if (a == "--ccx") options.ccx = *v;
       if (a == "--only") {
-        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad") {
-          std::fprintf(stderr, "tensormass bench runtime: --only expects ccx, threads, implicit or quad, not '%s'\n%s",
+        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad" && *v != "batch") {
+          std::fprintf(stderr,
+                       "tensormass bench runtime: --only expects ccx, threads, implicit, quad or batch, not '%s'\n%s",
                        v->c_str(), kUsage);
           exit_code = 2;
           return false;
@@ -852,15 +926,17 @@ int runtime_command(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   JsonObject ccx_json, threads_json, quad_json;
-  std::vector<JsonObject> implicit_json;
+  std::vector<JsonObject> implicit_json, batch_json;
   guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
   guarded("threads", [&] { return run_thread_defaults(options, threads_json, targets); });
   guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
   guarded("quad", [&] { return run_quad_beam(options, quad_json, targets); });
+  guarded("batch", [&] { return run_batched_assembly(options, batch_json, targets); });
   if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
   if (options.only.empty() || options.only == "threads") report.add("threads", threads_json);
   if (options.only.empty() || options.only == "implicit") report.add("implicit", implicit_json);
   if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
+  if (options.only.empty() || options.only == "batch") report.add("batched_assembly", batch_json);
 
   std::printf("\ntargets\n");
   int pass = 0, miss = 0;

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import jinja2
 
-from .ir import ElementIR, KernelIR, LoweredIR, TensorIR, TermsIR
+from .ir import ElementIR, KernelIR, LoweredIR, TensorIR, TermsIR, WholeIR
 from .model import Block
 from .printer import double_literal, print_expr
 
@@ -86,6 +86,7 @@ def kernel_context(k: KernelIR) -> dict:
         "flops": k.flops,
         "linear": k.linear,
         "invertible": k.invertible,
+        "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched,
         "rotation": "rotation" in k.law_ir.tangent.auxiliaries,
         "parameters": list(law.parameters),
         "derived": [name for name, _ in law.derived],
@@ -140,7 +141,7 @@ def manifest(lowered: LoweredIR) -> str:
     rows = [{"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
              "dim": k.element.dim, "consts": k.consts_size, "flops_energy": k.flops.energy,
              "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
-             "invertible": k.invertible}
+             "invertible": k.invertible, "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched}
             for k in lowered.kernels]
     refused = [{"law": r.law, "element": r.element, "split": r.split, "reason": r.reason} for r in lowered.refused]
     return json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"

@@ -28,7 +28,9 @@ class Flops:
 
 @dataclass(frozen=True)
 class WholeIR:
-    """The whole split needs nothing beyond the law block and the element tables."""
+    """The whole split needs the law block and the element tables, and says
+    whether it also gets batched entry points (several elements per call)."""
+    batched: bool
 
 
 @dataclass(frozen=True)

@@ -53,8 +53,10 @@ inline void law_stress(const double* H, const double* consts, double* P) {
   P[3] = R[3]*s0 + mu*(2.0*H[3] - 2.0*R[3] + 2.0);
 }
 
-/// w P(H) at one point.
-inline void law_weighted_stress(const double* H, double w, const double* consts, double* wP) {
+/// w P(H) at one point. H, consts and wP are pointers (one element) or
+/// kernel::Lane views (one lane of a batch).
+template <class Matrix, class Params, class Out>
+inline void law_weighted_stress(Matrix H, double w, Params consts, Out wP) {
   [[maybe_unused]] const double lam = consts[0];
   [[maybe_unused]] const double mu = consts[1];
   double R[4];
@@ -66,8 +68,10 @@ inline void law_weighted_stress(const double* H, double w, const double* consts,
   wP[3] = w*(R[3]*s0 + mu*(2.0*H[3] - 2.0*R[3] + 2.0));
 }
 
-/// w P(H) and the full weighted tangent w A(H) (d^2 by d^2) at one point.
-inline void law_tangent(const double* H, double w, const double* consts, double* wP, double* wA) {
+/// w P(H) and the full weighted tangent w A(H) (d^2 by d^2) at one point;
+/// pointers or kernel::Lane views as above.
+template <class Matrix, class Params, class Out>
+inline void law_tangent(Matrix H, double w, Params consts, Out wP, Out wA) {
   [[maybe_unused]] const double lam = consts[0];
   [[maybe_unused]] const double mu = consts[1];
   double R[4];

@@ -6,6 +6,8 @@ Input: `Triple`. Output: `SplitLowering` with `WholeIR` and the flops of the
 quadrature loops."""
 from __future__ import annotations
 
+import sympy
+
 from ..ir import Flops, WholeIR
 from ..model import ElementSpec, LawKernelIR
 from .common import SplitLowering, Triple
@@ -29,6 +31,31 @@ def quadrature_flops(element: ElementSpec, points: int, law_ir: LawKernelIR) -> 
     )
 
 
+# Batched entry points (W elements per call, SIMD across the elements) pay
+# where the law block vectorises across the lanes and the W lanes' Hessian
+# blocks stay in the L1 cache (docs/results/kernels.md has the figures):
+# - at most BATCH_BLOCK_LIMIT doubles of component-pair blocks per lane. Above
+#   it (hex8, tet10, hex20) the batched kernel was 1.8 to 8x slower than the
+#   per-element one, which is already vectorised along its 8 or more nodes.
+# - no library calls (log, sqrt, pow: glibc has no vector variants without
+#   -ffast-math) and no polar rotation (an iteration per lane): neo-Hookean and
+#   corotational ran batched at 0.8 to 1.0x alone and 1.07 to 1.13x in the
+#   assembly, where packing the batch costs more than the kernel saves.
+BATCH_BLOCK_LIMIT = 256
+
+
+def batch_pays(element: ElementSpec, law_ir: LawKernelIR) -> bool:
+    """True when the (law, element)'s whole kernels get batched entry points."""
+    d, n = element.dim, element.node_count
+    if d * (d + 1) // 2 * n * n > BATCH_BLOCK_LIMIT:
+        return False
+    block = law_ir.tangent
+    calls = any(a.expr.atoms(sympy.Function) or any(not p.exp.is_Integer for p in a.expr.atoms(sympy.Pow))
+                for a in block.assignments)
+    return not calls and not block.auxiliaries
+
+
 def lower(triple: Triple) -> SplitLowering:
     flops = quadrature_flops(triple.element, len(triple.tables.weights), triple.law_ir)
-    return SplitLowering(split_ir=WholeIR(), flops=flops, extra_consts=0, symbol_names=())
+    return SplitLowering(split_ir=WholeIR(batched=batch_pays(triple.element, triple.law_ir)), flops=flops, extra_consts=0,
+                         symbol_names=())

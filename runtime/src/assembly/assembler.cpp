@@ -181,17 +181,70 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 #pragma omp parallel if (active >= kParallelCells)
   {
     CellBuffers buffers(stiffness != nullptr);
+    CellBatch batch;
     for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(dynamic, 1)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
         const int first = coloured_chunks_[k] * kChunkCells;
         const int last = std::min(cells, first + kChunkCells);
-        for (int cell = first; cell < last; ++cell)
-          if ((!linear_ || !linear_->folded(cell)) && (!shared || shared->assembles_cell(cell)))
+        for (int cell = first; cell < last; ++cell) {
+          if ((linear_ && linear_->folded(cell)) || (shared && !shared->assembles_cell(cell))) continue;
+          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, batch, buffers);
+          else {
+            run_batch(u, gradient, stiffness, batch, buffers);  // keeps the cell order of the scatter
             assemble_cell(cell, u, gradient, stiffness, buffers);
+          }
+        }
+        run_batch(u, gradient, stiffness, batch, buffers);  // a chunk's cells are all in before the next chunk
       }
     }
   }
+}
+
+bool Assembler::batches(int cell) const {
+  const tm_kernel& kernel = model_->kernel(cell);
+  return batched_ && kernel.batch_width > 1 && kernel.batch_width <= CellBatch::kMaxBatch && !model_->blend_from(cell);
+}
+
+void Assembler::batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                           CellBatch& batch, CellBuffers& buffers) const {
+  const tm_kernel& kernel = model_->kernel(cell);
+  if (batch.size > 0 && (batch.kernel != &kernel || batch.size == kernel.batch_width))
+    run_batch(u, gradient, stiffness, batch, buffers);
+  batch.kernel = &kernel;
+  batch.cells[batch.size++] = cell;
+}
+
+void Assembler::run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                          CellBatch& batch, CellBuffers& buffers) const {
+  if (batch.size == 0) return;
+  const Model& model = *model_;
+  const tm_kernel& kernel = *batch.kernel;
+  const int width = kernel.batch_width, dofs = kernel.dofs;
+  batch.u.resize(static_cast<std::size_t>(dofs) * width);
+  batch.consts.resize(static_cast<std::size_t>(kernel.consts) * width);
+  batch.g.resize(static_cast<std::size_t>(dofs) * width);
+  // Unused lanes repeat the first cell: every lane then runs on valid data.
+  for (int lane = 0; lane < width; ++lane) {
+    const int cell = batch.cells[lane < batch.size ? lane : 0];
+    model.gather(cell, u, buffers.u);
+    const double* consts = model.consts(cell);
+    for (int i = 0; i < dofs; ++i) batch.u[i * width + lane] = buffers.u[i];
+    for (int i = 0; i < kernel.consts; ++i) batch.consts[i * width + lane] = consts[i];
+  }
+  if (stiffness) {
+    batch.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
+    kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), batch.g.data(), batch.k.data());
+  } else {
+    kernel.gradient_batch(batch.u.data(), batch.consts.data(), batch.g.data());
+  }
+  const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
+  for (int lane = 0; lane < batch.size; ++lane) {
+    double* k = stiffness ? batch.k.data() + lane * dofs2 : nullptr;
+    if (k && project_hessians_) project_to_positive_semidefinite(k, dofs);
+    scatter_cell(batch.cells[lane], batch.g.data() + static_cast<std::size_t>(lane) * dofs, k, gradient, stiffness);
+  }
+  batch.size = 0;
 }
 
 double Assembler::energy(std::span<const double> u) const {
@@ -226,7 +279,6 @@ double Assembler::energy(std::span<const double> u) const {
 void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                               CellBuffers& buffers) const {
   const Model& model = *model_;
-  const int d = model.dim();
   const tm_kernel& kernel = model.kernel(cell);
   double* local_k = stiffness ? buffers.k.data() : nullptr;
   model.gather(cell, u, buffers.u);
@@ -238,15 +290,22 @@ void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<dou
     kernel.gradient(buffers.u, model.consts(cell), buffers.g);
   }
   if (stiffness && project_hessians_) project_to_positive_semidefinite(local_k, kernel.dofs);
+  scatter_cell(cell, buffers.g, local_k, gradient, stiffness);
+}
+
+void Assembler::scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
+                             SparseMatrix* stiffness) const {
+  const Model& model = *model_;
+  const int d = model.dim();
+  const auto cn = model.cell_nodes(cell);
   if (stiffness) {
     const int* scatter = scatter_.data() + scatter_offsets_[cell];
-    const int dofs2 = kernel.dofs * kernel.dofs;
+    const int dofs2 = static_cast<int>(cn.size()) * d * static_cast<int>(cn.size()) * d;
     for (int e = 0; e < dofs2; ++e)
-      if (scatter[e] >= 0) stiffness->values[scatter[e]] += local_k[e];
+      if (scatter[e] >= 0) stiffness->values[scatter[e]] += k[e];
   }
-  const auto cn = model.cell_nodes(cell);
   for (int j = 0; j < static_cast<int>(cn.size()); ++j)
-    for (int a = 0; a < d; ++a) gradient[static_cast<std::size_t>(cn[j]) * d + a] += buffers.g[j * d + a];
+    for (int a = 0; a < d; ++a) gradient[static_cast<std::size_t>(cn[j]) * d + a] += g[j * d + a];
 }
 
 }  // namespace tensormass

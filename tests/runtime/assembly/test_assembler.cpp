@@ -163,6 +163,71 @@ TEST(Assembler, FoldedPartFollowsLawSwitchesAndBlends) {
   EXPECT_EQ(folded.folding_changes(), model.cell_count() + stvk_cells + 1 + (model.cell_count() - stvk_cells + 1));
 }
 
+/// Largest difference between the batched and the per-element assembly
+/// (forces and tangent), relative to the largest entry.
+double batched_against_per_element(const Model& model, Assembler& assembler, const std::vector<double>& u) {
+  std::vector<double> g_batched(model.dof_count()), g_single(model.dof_count());
+  SparseMatrix K_batched = assembler.pattern(), K_single = assembler.pattern();
+  assembler.set_batched(true);
+  assembler.assemble(u, g_batched, &K_batched);
+  assembler.set_batched(false);
+  assembler.assemble(u, g_single, &K_single);
+  assembler.set_batched(true);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < g_single.size(); ++i) {
+    worst = std::max(worst, std::abs(g_batched[i] - g_single[i]));
+    scale = std::max(scale, std::abs(g_single[i]));
+  }
+  for (std::size_t i = 0; i < K_single.values.size(); ++i) {
+    worst = std::max(worst, std::abs(K_batched.values[i] - K_single.values[i]));
+    scale = std::max(scale, std::abs(K_single.values[i]));
+  }
+  return scale > 0 ? worst / scale : worst;
+}
+
+TEST(Assembler, BatchedKernelsGiveThePerElementForcesAndTangent) {
+  // Four element types in runs of every length, laws interleaved so that
+  // batches break on kernel changes, and a blending cell in a run.
+  BeamSpec spec;
+  spec.dim = 3;
+  spec.cells = {6, 2, 2};
+  spec.size = {6, 1, 1};
+  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
+  const Mesh mesh = make_beam(spec);
+  Model model(mesh, test::cantilever("stvk").model);
+  Assembler assembler(model, false);
+  EXPECT_TRUE(assembler.batched());
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.03);
+  EXPECT_LT(batched_against_per_element(model, assembler, u), 1e-13);
+  for (int cell = 0; cell < model.cell_count(); cell += 5) model.set_law(cell, "neohookean");
+  const tm_kernel* before = &model.kernel(7);
+  model.set_law(7, "corotational");
+  model.start_blend(7, before);
+  model.set_blend_weight(7, 0.25);
+  EXPECT_LT(batched_against_per_element(model, assembler, u), 1e-13);
+  assembler.set_hessian_projection(true);
+  EXPECT_LT(batched_against_per_element(model, assembler, u), 1e-13);
+  // The forces alone (explicit integration) go through the batched gradient.
+  std::vector<double> g_batched(model.dof_count()), g_single(model.dof_count());
+  assembler.assemble(u, g_batched, nullptr);
+  assembler.set_batched(false);
+  assembler.assemble(u, g_single, nullptr);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < g_single.size(); ++i) {
+    worst = std::max(worst, std::abs(g_batched[i] - g_single[i]));
+    scale = std::max(scale, std::abs(g_single[i]));
+  }
+  EXPECT_LT(worst, 1e-13 * scale);
+}
+
+TEST(Assembler, BatchedAssemblyIsIdenticalOnOneAndTwoThreads) {
+  const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
+  Model model(mesh, test::cantilever("stvk").model);
+  for (int cell = 0; cell < model.cell_count(); cell += 7) model.set_law(cell, "neohookean");
+  const Assembler assembler(model);
+  expect_same_on_one_and_two_threads(model, assembler);
+}
+
 TEST(Assembler, FoldedAssemblyIsIdenticalOnOneAndTwoThreads) {
   // 4320 tets, a third of them StVK: both the block product and the kernels go parallel.
   const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});

@@ -78,6 +78,13 @@ class Assembler {
   long changing_rows_revision() const { return changing_revision_; }
   /// y = K x over the free dofs for a stiffness from assemble(), complete on every rank.
   void tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const;
+  /// When on (the default), runs of consecutive cells with the same kernel
+  /// go through its batched entry points (tm_kernel::batch_width cells per
+  /// call, SIMD across the cells); off, every cell calls the per-element
+  /// kernel. Results agree to round-off; either way they do not depend on
+  /// the thread count. Blending cells always run per element.
+  void set_batched(bool on) { batched_ = on; }
+  bool batched() const { return batched_; }
 
  private:
   /// Per-thread scratch space for one cell.
@@ -87,8 +94,28 @@ class Assembler {
     double u[kMaxDofs], g[kMaxDofs], blend_g[kMaxDofs];
     std::vector<double> k, blend_k;
   };
+  /// Up to kMaxBatch cells of one kernel waiting for a batched call, with
+  /// the batch's scratch space (kernel_abi.h layouts).
+  struct CellBatch {
+    static constexpr int kMaxBatch = 8;
+    const tm_kernel* kernel = nullptr;
+    int cells[kMaxBatch];
+    int size = 0;
+    std::vector<double> u, consts, g, k;
+  };
   void assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                      CellBuffers& buffers) const;
+  /// True when the cell runs through its kernel's batched entry points.
+  bool batches(int cell) const;
+  /// Adds a cell to the batch, running the batch first when it is full or of another kernel.
+  void batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                  CellBatch& batch, CellBuffers& buffers) const;
+  /// Runs the waiting cells' batched kernel and scatters them in cell order.
+  void run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness, CellBatch& batch,
+                 CellBuffers& buffers) const;
+  /// Adds one cell's gradient g (dofs) and Hessian k (dofs by dofs, or null) into the totals.
+  void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
+                    SparseMatrix* stiffness) const;
   void build_pattern();
   void build_colours();
   void assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
@@ -102,6 +129,7 @@ class Assembler {
   std::vector<int> colour_start_;             ///< colours+1, into coloured_chunks_
   std::vector<int> coloured_chunks_;          ///< chunk c holds cells [c*S, (c+1)*S)
   bool project_hessians_ = false;
+  bool batched_ = true;
   const Distribution* distribution_ = nullptr;
   mutable std::vector<int> changing_rows_;
   mutable long changing_revision_ = 0, changing_seen_folds_ = -1;

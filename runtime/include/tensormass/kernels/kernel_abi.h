@@ -26,6 +26,17 @@ typedef void (*tm_hessian_fn)(const double* u, const double* consts, double* hes
 typedef void (*tm_gradient_hessian_fn)(const double* u, const double* consts, double* gradient, double* hessian);
 typedef void (*tm_stress_fn)(const double* u, const double* consts, double* stress);
 
+/// Batched entry points: `batch_width` (W) elements at once. Inputs in
+/// structure-of-arrays layout, entry i of element l at [i*W + l] (so a loop
+/// over the elements vectorises); outputs element by element:
+///   u         dofs by W
+///   consts    consts by W (each element's `precompute` output, transposed)
+///   gradient  W by dofs (may be NULL in gradient_hessian_batch)
+///   hessian   W by dofs*dofs, each element's Hessian row-major as above
+/// A partial batch fills its unused lanes with a copy of a used one.
+typedef void (*tm_gradient_batch_fn)(const double* u, const double* consts, double* gradient);
+typedef void (*tm_gradient_hessian_batch_fn)(const double* u, const double* consts, double* gradient, double* hessian);
+
 /// Layout shared by every split: consts[0 .. derived_params) are the law's
 /// derived parameters (lam, mu, ...), then per quadrature point q the weight
 /// w_q * det(J_q) followed by the shape gradients dN_j/dX_c stored as
@@ -57,6 +68,14 @@ typedef struct tm_kernel {
   /// 1 when the law is defined and restoring for det F <= 0 (stable
   /// neo-Hookean): the runtime lets such elements invert instead of stopping.
   int invertible;
+  /// Elements per batched call (the SIMD width the kernels were built for:
+  /// 8 with AVX-512, 4 with AVX, else 2); 0 when the kernel has no batched
+  /// entry points and the two below are NULL. The `whole` split has them for
+  /// the elements where they are faster (tri3, quad4, tri6, quad8, tet4,
+  /// prism6, pyramid5; not hex8, tet10, hex20).
+  int batch_width;
+  tm_gradient_batch_fn gradient_batch;
+  tm_gradient_hessian_batch_fn gradient_hessian_batch;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).

@@ -1,0 +1,118 @@
+// Batched entry points (kernel_abi.h): for every kernel that has them, each
+// element of a batch gets the per-element kernel's results, full and partial
+// batches alike, with and without the gradient.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "kernel_test_support.hpp"
+
+namespace tmtest {
+namespace {
+
+/// The registry's per-element results differ from the batched ones by the
+/// order of a few roundings (contractions into FMAs may differ).
+constexpr double kTolerance = 1e-12;
+
+class KernelBatch : public testing::TestWithParam<const tm_kernel*> {};
+
+/// Width elements (or fewer, the rest of the lanes copies of the first) with
+/// their displacements, and the batch built from them.
+struct Batch {
+  std::vector<Element> elements;
+  std::vector<Vector> displacements;
+  Vector u, consts;  ///< dofs by W and consts by W
+};
+
+Batch make_batch(const tm_kernel& kernel, int used, double strain) {
+  const int width = kernel.batch_width;
+  Batch batch;
+  for (int lane = 0; lane < used; ++lane) {
+    batch.elements.push_back(make_element(kernel, 40 + lane));
+    batch.displacements.push_back(random_displacement(batch.elements.back(), 140 + lane, strain, strain / 5));
+  }
+  batch.u.assign(static_cast<std::size_t>(kernel.dofs) * width, 0.0);
+  batch.consts.assign(static_cast<std::size_t>(kernel.consts) * width, 0.0);
+  for (int lane = 0; lane < width; ++lane) {
+    const int source = lane < used ? lane : 0;
+    for (int i = 0; i < kernel.dofs; ++i) batch.u[i * width + lane] = batch.displacements[source][i];
+    for (int i = 0; i < kernel.consts; ++i) batch.consts[i * width + lane] = batch.elements[source].consts[i];
+  }
+  return batch;
+}
+
+/// Element `lane`'s output from a batched output (element by element).
+Vector lane_of(const Vector& batched, int width, int lane) {
+  const std::size_t size = batched.size() / width;
+  return Vector(batched.begin() + lane * size, batched.begin() + (lane + 1) * size);
+}
+
+/// Every lane of a full and of a one-element batch matches the per-element
+/// gradient_hessian, at small and large strains.
+TEST_P(KernelBatch, EveryLaneEqualsTheElementKernel) {
+  const tm_kernel& kernel = *GetParam();
+  const int width = kernel.batch_width;
+  const auto dofs = static_cast<std::size_t>(kernel.dofs);
+  for (const int used : {width, 1})
+    for (const double strain : {0.05, 0.2}) {
+      Batch batch = make_batch(kernel, used, strain);
+      for (const Element& e : batch.elements) ASSERT_EQ(e.status, 0);
+      Vector g(dofs * width), K(dofs * dofs * width), g_only(dofs * width);
+      kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), g.data(), K.data());
+      kernel.gradient_batch(batch.u.data(), batch.consts.data(), g_only.data());
+      for (int lane = 0; lane < width; ++lane) {
+        const int source = lane < used ? lane : 0;
+        const Element& e = batch.elements[source];
+        const Vector& u = batch.displacements[source];
+        Vector expected_g(dofs), expected_K(dofs * dofs);
+        kernel.gradient_hessian(u.data(), e.consts.data(), expected_g.data(), expected_K.data());
+        EXPECT_LE(relative_error(lane_of(g, width, lane), expected_g), kTolerance) << "lane " << lane;
+        EXPECT_LE(relative_error(lane_of(g_only, width, lane), expected_g), kTolerance) << "lane " << lane;
+        EXPECT_LE(relative_error(lane_of(K, width, lane), expected_K), kTolerance) << "lane " << lane;
+      }
+    }
+}
+
+/// A null gradient leaves the Hessian unchanged (the assembler's K-only path).
+TEST_P(KernelBatch, HessianDoesNotDependOnAskingForTheGradient) {
+  const tm_kernel& kernel = *GetParam();
+  const int width = kernel.batch_width;
+  const auto dofs = static_cast<std::size_t>(kernel.dofs);
+  const Batch batch = make_batch(kernel, width, 0.1);
+  Vector g(dofs * width), with_gradient(dofs * dofs * width), without(dofs * dofs * width);
+  kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), g.data(), with_gradient.data());
+  kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), nullptr, without.data());
+  EXPECT_EQ(0, std::memcmp(with_gradient.data(), without.data(), without.size() * sizeof(double)));
+}
+
+INSTANTIATE_TEST_SUITE_P(BatchedKernels, KernelBatch,
+                         testing::ValuesIn(kernels_where([](const tm_kernel& k) { return k.batch_width > 0; })),
+                         KernelParamName());
+
+/// The `whole` split is batched, with a SIMD width, where batches pay
+/// (generator/splits/whole.py): small elements under laws whose block has no
+/// library calls or rotation. Every other kernel says it is not batched.
+TEST(KernelBatch, BatchesWhereTheyPayAndTheOthersSayTheyDoNot) {
+  const std::set<std::string> batched_elements = {"tri3", "quad4", "tri6", "quad8", "tet4", "prism6", "pyramid5"};
+  const std::set<std::string> batched_laws = {"hooke", "stvk", "stable_neohookean"};
+  for (const tm_kernel* kernel : registry().kernels()) {
+    SCOPED_TRACE(kernel_name(*kernel));
+    if (std::string(kernel->split) == "whole" && batched_elements.count(kernel->element) &&
+        batched_laws.count(kernel->law)) {
+      EXPECT_TRUE(kernel->batch_width == 2 || kernel->batch_width == 4 || kernel->batch_width == 8);
+      EXPECT_NE(kernel->gradient_batch, nullptr);
+      EXPECT_NE(kernel->gradient_hessian_batch, nullptr);
+    } else {
+      EXPECT_EQ(kernel->batch_width, 0);
+      EXPECT_EQ(kernel->gradient_batch, nullptr);
+      EXPECT_EQ(kernel->gradient_hessian_batch, nullptr);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tmtest
