@@ -8,6 +8,7 @@
 #include "adaptive_bench.hpp"
 #include "kernel_bench.hpp"
 #include "paper_bench.hpp"
+#include "refine_bench.hpp"
 #include "runtime_bench.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/common/thread_defaults.hpp"
@@ -26,6 +27,8 @@ constexpr const char* kUsage =
     "                                   the origin report's Table 1 and Figure 12 (docs/results/paper.md)\n"
     "  adaptive [--quick] [--json FILE] [--only NAME]\n"
     "                                   the adaptive model against the pure laws (docs/results/adaptive.md)\n"
+    "  refine [--quick] [--json FILE]   local refinement by R_ZZ against uniform refinement, 2D plate with a\n"
+    "                                   probe (docs/results/refine.md)\n"
     "  help                             this text\n";
 
 }  // namespace
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
     if (benchmark == "runtime") return tensormass::bench::runtime_command(args);
     if (benchmark == "paper") return tensormass::bench::paper_command(args);
     if (benchmark == "adaptive") return tensormass::bench::adaptive_command(args);
+    if (benchmark == "refine") return tensormass::bench::refine_command(args);
   } catch (const tensormass::NumericalError& error) {
     std::fprintf(stderr, "tensormass bench: numerical failure: %s\n", error.what());
     return 3;
@@ -54,7 +58,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tensormass bench: error: %s\n", error.what());
     return 2;
   }
-  std::fprintf(stderr, "tensormass bench: unknown benchmark '%s' (expected kernels, runtime, paper or adaptive)\n\n%s",
+  std::fprintf(stderr,
+               "tensormass bench: unknown benchmark '%s' (expected kernels, runtime, paper, adaptive or refine)\n\n%s",
                benchmark.c_str(), kUsage);
   return 2;
 }
