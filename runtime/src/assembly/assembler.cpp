@@ -189,13 +189,13 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
         const int last = std::min(cells, first + kChunkCells);
         for (int cell = first; cell < last; ++cell) {
           if ((linear_ && linear_->folded(cell)) || (shared && !shared->assembles_cell(cell))) continue;
-          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, batch, buffers);
+          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, batch);
           else {
-            run_batch(u, gradient, stiffness, batch, buffers);  // keeps the cell order of the scatter
+            run_batch(u, gradient, stiffness, batch);  // keeps the cell order of the scatter
             assemble_cell(cell, u, gradient, stiffness, buffers);
           }
         }
-        run_batch(u, gradient, stiffness, batch, buffers);  // a chunk's cells are all in before the next chunk
+        run_batch(u, gradient, stiffness, batch);  // a chunk's cells are all in before the next chunk
       }
     }
   }
@@ -207,16 +207,16 @@ bool Assembler::batches(int cell) const {
 }
 
 void Assembler::batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                           CellBatch& batch, CellBuffers& buffers) const {
+                           CellBatch& batch) const {
   const tm_kernel& kernel = model_->kernel(cell);
   if (batch.size > 0 && (batch.kernel != &kernel || batch.size == kernel.batch_width))
-    run_batch(u, gradient, stiffness, batch, buffers);
+    run_batch(u, gradient, stiffness, batch);
   batch.kernel = &kernel;
   batch.cells[batch.size++] = cell;
 }
 
 void Assembler::run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                          CellBatch& batch, CellBuffers& buffers) const {
+                          CellBatch& batch) const {
   if (batch.size == 0) return;
   const Model& model = *model_;
   const tm_kernel& kernel = *batch.kernel;
@@ -225,12 +225,16 @@ void Assembler::run_batch(std::span<const double> u, std::span<double> gradient,
   batch.consts.resize(static_cast<std::size_t>(kernel.consts) * width);
   batch.g.resize(static_cast<std::size_t>(dofs) * width);
   // Unused lanes repeat the first cell: every lane then runs on valid data.
+  const int d = model.dim();
   for (int lane = 0; lane < width; ++lane) {
     const int cell = batch.cells[lane < batch.size ? lane : 0];
-    model.gather(cell, u, buffers.u);
+    const auto nodes = model.cell_nodes(cell);
+    double* lane_u = batch.u.data() + lane;
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      for (int a = 0; a < d; ++a) lane_u[(j * d + a) * width] = u[static_cast<std::size_t>(nodes[j]) * d + a];
     const double* consts = model.consts(cell);
-    for (int i = 0; i < dofs; ++i) batch.u[i * width + lane] = buffers.u[i];
-    for (int i = 0; i < kernel.consts; ++i) batch.consts[i * width + lane] = consts[i];
+    double* lane_consts = batch.consts.data() + lane;
+    for (int i = 0; i < kernel.consts; ++i) lane_consts[static_cast<std::size_t>(i) * width] = consts[i];
   }
   if (stiffness) {
     batch.k.resize(static_cast<std::size_t>(dofs) * dofs * width);

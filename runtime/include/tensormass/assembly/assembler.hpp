@@ -109,10 +109,10 @@ class Assembler {
   bool batches(int cell) const;
   /// Adds a cell to the batch, running the batch first when it is full or of another kernel.
   void batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                  CellBatch& batch, CellBuffers& buffers) const;
+                  CellBatch& batch) const;
   /// Runs the waiting cells' batched kernel and scatters them in cell order.
-  void run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness, CellBatch& batch,
-                 CellBuffers& buffers) const;
+  void run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                 CellBatch& batch) const;
   /// Adds one cell's gradient g (dofs) and Hessian k (dofs by dofs, or null) into the totals.
   void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                     SparseMatrix* stiffness) const;
