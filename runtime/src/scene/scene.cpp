@@ -42,9 +42,12 @@ const KeyTable& scene_keys() {
         "linear", "threads", "project_hessian", "backend"}},
       {"solver.damping", {"mass", "stiffness"}},
       {"solver.linear", {"type", "tolerance", "max_iterations", "reuse_iterations", "petsc_options"}},
-      {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade"}},
+      {"adaptivity", {"criteria", "ladder", "action", "every", "blend_steps", "downgrade", "refine"}},
       {"adaptivity.criteria[]", {"name", "threshold", "rung"}},
       {"adaptivity.downgrade", {"hysteresis", "calm_steps"}},
+      {"adaptivity.refine", {"criteria", "max_level", "every", "coarsen"}},
+      {"adaptivity.refine.criteria[]", {"name", "threshold"}},
+      {"adaptivity.refine.coarsen", {"hysteresis", "calm_steps"}},
       {"output", {"directory", "every", "track", "checkpoint_every"}},
   };
   return table;
@@ -390,8 +393,13 @@ AdaptivitySettings read_adaptivity(const Value& section) {
   AdaptivitySettings spec;
   if (!section.present()) return spec;
   section.expect_map();
+  const Value refine = section.child("refine");
+  if (refine.present() && !section.child("criteria").present()) return spec;  // refinement only
+  if (refine.present())
+    refine.fail(
+        "refinement together with law switching (adaptivity.criteria) is not supported yet: use one of the two");
   spec.enabled = true;
-  const Value criteria = section.required("criteria");
+  const Value criteria = section.required("criteria", "(or 'refine')");
   for (const Value& item : criteria.items()) {
     const CriterionSpec c = read_criterion(item);
     for (const CriterionSpec& before : spec.criteria)
@@ -407,6 +415,56 @@ AdaptivitySettings read_adaptivity(const Value& section) {
   read_optional(section, "every", spec.every, at_least(1));
   read_optional(section, "blend_steps", spec.blend_steps, at_least(0));
   read_downgrade(section.child("downgrade"), spec);
+  return spec;
+}
+
+/// The criteria of `adaptivity.refine`: R_ZZ, once, with a threshold in [0, 1].
+double read_refine_threshold(const Value& criteria) {
+  if (!criteria.is_list())
+    criteria.fail("expected a list of criteria [{name: R_ZZ, threshold: T}], got " + criteria.describe());
+  const std::vector<Value> items = criteria.items();
+  if (items.size() != 1) criteria.fail("needs exactly one criterion (R_ZZ), got " + std::to_string(items.size()));
+  items[0].expect_map();
+  one_of(items[0].required("name"), {"R_ZZ"}, "refinement criterion");
+  const Value threshold = items[0].required("threshold");
+  const double t = threshold.number();
+  if (!(t >= 0 && t <= 1))
+    threshold.fail("must be >= 0 and <= 1 (a fraction of the largest R_ZZ), got " + threshold.scalar());
+  return t;
+}
+
+/// coarsen: a map {hysteresis, calm_steps} or true/false.
+void read_coarsen(const Value& value, RefinementSettings& spec) {
+  if (!value.present()) return;
+  if (value.is_scalar() && (value.scalar() == "true" || value.scalar() == "false")) {
+    spec.coarsen = value.scalar() == "true";
+    return;
+  }
+  if (!value.is_map()) value.fail("expected a map {hysteresis, calm_steps} or true/false, got " + value.describe());
+  read_optional(value, "hysteresis", spec.hysteresis, open_fraction);
+  read_optional(value, "calm_steps", spec.calm_steps, at_least(1));
+}
+
+/// adaptivity.refine, with what it cannot run with yet (the checks that
+/// need the mesh are in scene_validation.cpp).
+RefinementSettings read_refinement(const Value& section, const Scene& scene) {
+  RefinementSettings spec;
+  if (!section.present()) return spec;
+  section.expect_map();
+  spec.enabled = true;
+  spec.line = section.line();
+  spec.threshold = read_refine_threshold(section.required("criteria"));
+  read_optional(section, "max_level", spec.max_level, at_least(0));
+  read_optional(section, "every", spec.every, at_least(1));
+  read_coarsen(section.child("coarsen"), spec);
+  if (scene.solver.linear.type == LinearSolverType::petsc)
+    section.fail(
+        "is not supported with PETSc (solver.backend: petsc or solver.linear.type: petsc) or MPI runs yet: "
+        "use the serial backend");
+  if (!scene.model.loads.nodal_forces.empty())
+    section.fail(
+        "is not supported with loads.nodal_forces (the same force on each node of a group: refinement adds "
+        "nodes to the group and would change the total force): use loads.pressure");
   return spec;
 }
 
@@ -451,6 +509,8 @@ Scene read_scene(const Value& root, const std::string& path) {
   scene.model.loads = read_loads(root.child("loads"));
   scene.solver = read_solver(root.required("solver"));
   scene.adaptivity = read_adaptivity(root.child("adaptivity"));
+  if (root.child("adaptivity").is_map())
+    scene.refinement = read_refinement(root.child("adaptivity").child("refine"), scene);
   scene.output = read_output(root.child("output"), directory);
   return scene;
 }

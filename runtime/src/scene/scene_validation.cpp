@@ -112,6 +112,21 @@ void check_ladder(const Scene& scene, const Mesh& mesh) {
                          "' on element '" + block.element->name + "' (see `tensormass kernels`)");
 }
 
+/// Refinement runs on 2D meshes of quad4 and tri3 cells only (hierarchical_mesh.hpp).
+void check_refinement(const Scene& scene, const Mesh& mesh) {
+  if (!scene.refinement.enabled) return;
+  const std::string where = place(scene, scene.refinement.line, "adaptivity.refine");
+  if (mesh.dim != 2)
+    throw InputError(where + "refinement runs on 2D meshes only so far; " + mesh_name(mesh) + " is " +
+                     std::to_string(mesh.dim) + "D");
+  for (const ElementBlock& block : mesh.blocks) {
+    const std::string name = block.element->name;
+    if (name != "quad4" && name != "tri3")
+      throw InputError(where + "refinement supports quad4 and tri3 cells only so far; " + mesh_name(mesh) + " has " +
+                       name + " cells");
+  }
+}
+
 /// Every facet of a pressure group can carry a load and is a face of a cell.
 void check_pressure_facets(const Scene& scene, const Mesh& mesh) {
   if (scene.model.loads.pressures.empty()) return;
@@ -154,6 +169,7 @@ void check_constraints(const Scene& scene, const Mesh& mesh) {
 
 void validate_against_mesh(const Scene& scene, const Mesh& mesh) {
   check_groups(scene, mesh);
+  check_refinement(scene, mesh);
   check_materials(scene, mesh);
   check_ladder(scene, mesh);
   check_pressure_facets(scene, mesh);

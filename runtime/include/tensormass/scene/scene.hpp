@@ -1,7 +1,7 @@
 /// \file scene.hpp
 /// A simulation scene read from YAML (docs/scene.md lists every key): the
 /// mesh file and the plain specifications the numerics take (ModelSpec,
-/// SolverSettings, AdaptivitySettings, OutputSettings). This folder is the
+/// SolverSettings, AdaptivitySettings, RefinementSettings, OutputSettings). This folder is the
 /// only one that reads YAML and the one place input is validated:
 /// `load_scene` checks keys, types, ranges and names without the mesh;
 /// `validate_against_mesh` checks what needs the mesh (groups, materials
@@ -16,6 +16,7 @@
 #include "tensormass/adaptivity/adaptivity_settings.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model_spec.hpp"
+#include "tensormass/refinement/refinement_settings.hpp"
 #include "tensormass/simulation/output_settings.hpp"
 #include "tensormass/solvers/solver_settings.hpp"
 
@@ -26,7 +27,8 @@ struct Scene {
   std::string mesh;  ///< mesh path, resolved relative to the scene file
   ModelSpec model;   ///< model.source == path
   SolverSettings solver;
-  AdaptivitySettings adaptivity;
+  AdaptivitySettings adaptivity;  ///< law switching (enabled: adaptivity.criteria given)
+  RefinementSettings refinement;  ///< adaptivity.refine
   OutputSettings output;
 };
 
