@@ -12,9 +12,11 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <span>
 
 #include "common/phase_timer.hpp"
 #include "simulation/progress.hpp"
+#include "simulation/run_refinement.hpp"
 #include "simulation/summary_json.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
@@ -41,7 +43,8 @@ struct StateFields {
   std::vector<io::Field> point_data, cell_data;
 };
 
-StateFields state_fields(const Model& model, const State& state, const Adaptivity* adaptivity) {
+StateFields state_fields(const Model& model, const State& state, std::span<const int> levels,
+                         const Adaptivity* adaptivity) {
   const Mesh& mesh = model.mesh();
   const int d = model.dim(), nodes = mesh.node_count();
   std::vector<double> displacement(3 * static_cast<std::size_t>(nodes), 0.0);
@@ -63,6 +66,7 @@ StateFields state_fields(const Model& model, const State& state, const Adaptivit
   // The deformed shape is displacement applied to the rest positions: keep
   // the points at rest so ParaView's "Warp By Vector" shows the motion.
   StateFields fields{{point_displacement, velocity}, {law, type, material}};
+  if (!levels.empty()) fields.cell_data.push_back({"level", 1, std::vector<double>(levels.begin(), levels.end())});
   if (adaptivity)
     for (io::Field& field : adaptivity->cell_fields()) fields.cell_data.push_back(std::move(field));
   return fields;
@@ -72,8 +76,8 @@ StateFields state_fields(const Model& model, const State& state, const Adaptivit
 /// `name`_p<rank>.vtu (its cells) and, from rank 0, `name`.pvtu. Returns
 /// the file to name in a series.
 std::string write_state(const std::string& directory, const std::string& name, const Model& model, const State& state,
-                        const Adaptivity* adaptivity, const Distribution* distribution) {
-  const StateFields fields = state_fields(model, state, adaptivity);
+                        std::span<const int> levels, const Adaptivity* adaptivity, const Distribution* distribution) {
+  const StateFields fields = state_fields(model, state, levels, adaptivity);
   const fs::path folder(directory);
   if (!distribution) {
     io::write_vtu((folder / (name + ".vtu")).string(), model.mesh(), {}, fields.point_data, fields.cell_data);
@@ -174,11 +178,54 @@ void time_loop(const Scene& scene, const State& state, double adaptivity_seconds
   for (double ms : report.statistics.step_ms) report.loop_seconds += ms / 1e3;
 }
 
+/// The mesh and everything built on it: replaced as a whole when
+/// refinement changes the mesh.
+struct Discretisation {
+  Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics)
+      : mesh(std::move(mesh_in)),
+        model(mesh, scene.model),
+        assembler(model),
+        linear(make_linear_solver(scene.solver.linear)),
+        integration{model, assembler, *linear, scene.solver, statistics} {}
+  /// What the solvers need before the first step (after any distribution).
+  void prepare(const Scene& scene) {
+    assembler.set_hessian_projection(scene.solver.project_hessian);
+    describe_free_nodes(*linear, model);
+  }
+
+  Mesh mesh;
+  Model model;
+  Assembler assembler;
+  std::unique_ptr<LinearSolver> linear;
+  Integration integration;
+  std::unique_ptr<Integrator> integrator;  // made at the first step (the explicit one estimates dt from the laws then)
+};
+
+/// The scene's mesh checked against the scene, and what refinement cannot
+/// run with that only the run knows (--resume, MPI).
+Mesh checked_mesh(const Scene& scene, Mesh mesh, const RunOptions& options) {
+  validate_against_mesh(scene, mesh);
+  if (!scene.refinement.enabled) return mesh;
+  if (options.resume)
+    throw InputError(scene.path +
+                     ": --resume is not supported with adaptivity.refine yet (checkpoints of a changing mesh are "
+                     "not supported): run it from the start");
+  if (parallel::world_size() > 1)
+    throw InputError(scene.path + ": adaptivity.refine is not supported on MPI runs yet: run it on one process");
+  return mesh;
+}
+
+RefinementRecord refinement_record(int step, const detail::RunRefinement& refinement) {
+  return {step, refinement.leaf_mesh().cell_count(), refinement.leaves_per_level()};
+}
+
 }  // namespace
 
 struct Simulation::Impl {
   Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options);
   bool observe(const State& state);
+  bool refine_load_step(const State& now);
+  void apply_refinement();
   void restore(const Checkpoint& checkpoint);
   void write_checkpoint_now(const State& state);
   std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
@@ -190,21 +237,20 @@ struct Simulation::Impl {
   /// Whether this process writes the files: the only one, or rank 0 of several.
   bool writes_files() const { return !distribution || distribution->rank() == 0; }
 
+  /// Per cell, its level when refinement is on (empty otherwise).
+  std::span<const int> levels() const { return refinement ? refinement->levels() : std::span<const int>(); }
+
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   Scene scene;
-  Mesh mesh;
-  Model model;
-  Assembler assembler;
-  std::unique_ptr<Distribution> distribution;  // null on one process
+  RunReport report;
+  std::unique_ptr<Discretisation> disc;
+  std::unique_ptr<detail::RunRefinement> refinement;  // null without adaptivity.refine
+  std::unique_ptr<Distribution> distribution;         // null on one process
   bool dynamic;
   std::unique_ptr<Adaptivity> adaptivity;
-  std::unique_ptr<LinearSolver> linear;
   std::vector<GroupTrack> tracks;
   std::string checkpoint_path;
   Checkpoint fingerprints;  // this run's; a checkpoint written starts from them
-  RunReport report;
-  Integration integration;
-  std::unique_ptr<Integrator> integrator;  // made at the first step (the explicit one estimates dt from the laws then)
   State state, last_good;
   std::vector<io::SeriesEntry> series;
   detail::Progress progress;
@@ -214,6 +260,22 @@ struct Simulation::Impl {
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;               // static: repeats of the current load step after switches
   static constexpr int kMaxResolves = 20;
+  // Refinement: the transfers from the mesh of the last step to the refined
+  // one, applied once the integrator has returned; a static load step is
+  // then solved again (`resolve`), its time and iterations carried over.
+  std::vector<LeafTransfer> pending;
+  bool resolve = false;
+  int refinement_passes = 0;  // static: re-solves of the current load step after refinements
+  static constexpr int kMaxRefinementPasses = 10;
+  double carried_ms = 0;
+  int carried_iterations = 0;
+  /// set_prescribed's holds, in order: applied again to a rebuilt model.
+  struct Hold {
+    std::string group;
+    std::array<double, 3> displacement;
+    std::array<bool, 3> components;
+  };
+  std::vector<Hold> holds;
   bool done = false;
 };
 
@@ -221,42 +283,40 @@ struct Simulation::Impl {
 /// of the adaptive model, the output directory.
 Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options)
     : scene(scene_in),
-      mesh(std::move(mesh_in)),
-      model((validate_against_mesh(scene, mesh), mesh), scene.model),
-      assembler(model),
+      disc(
+          std::make_unique<Discretisation>(checked_mesh(scene, std::move(mesh_in), options), scene, report.statistics)),
+      refinement(scene.refinement.enabled ? std::make_unique<detail::RunRefinement>(scene.refinement, disc->mesh)
+                                          : nullptr),
       dynamic(scene.solver.is_dynamic()),
-      linear(make_linear_solver(scene.solver.linear)),
-      tracks(make_tracks(scene, mesh)),
+      tracks(make_tracks(scene, disc->mesh)),
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
-      integration{model, assembler, *linear, scene.solver, report.statistics},
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
                options.progress && parallel::world_rank() == 0) {
   if (parallel::world_size() > 1) share_among_ranks();
-  assembler.set_hessian_projection(scene.solver.project_hessian);
-  describe_free_nodes(*linear, model);
+  disc->prepare(scene);
   if (scene.adaptivity.enabled) {
     AdaptivitySettings settings = scene.adaptivity;
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
-    adaptivity = std::make_unique<Adaptivity>(settings, model, assembler);
+    adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
   }
-  fingerprints.mesh_fingerprint = mesh_fingerprint(mesh);
+  fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
-  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, model);
+  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, disc->model);
 
   report.output_directory = scene.output.directory;
-  report.nodes = mesh.node_count();
-  report.cells = mesh.cell_count();
-  report.dofs = model.dof_count();
+  report.nodes = disc->mesh.node_count();
+  report.cells = disc->mesh.cell_count();
+  report.dofs = disc->model.dof_count();
   report.mpi_ranks = distribution ? distribution->size() : 1;
-  report.free_dofs = model.free_dof_count();
-  report.linear_solver = scene.solver.type == SolverType::explicit_euler ? "none (lumped mass)" : linear->name();
+  report.free_dofs = disc->model.free_dof_count();
+  report.linear_solver = scene.solver.type == SolverType::explicit_euler ? "none (lumped mass)" : disc->linear->name();
   std::error_code error;
   fs::create_directories(scene.output.directory, error);
   if (error) throw InputError("cannot create output directory " + scene.output.directory + ": " + error.message());
 
-  state.displacement.assign(model.dof_count(), 0.0);
-  state.velocity.assign(model.dof_count(), 0.0);
+  state.displacement.assign(disc->model.dof_count(), 0.0);
+  state.velocity.assign(disc->model.dof_count(), 0.0);
   last_good = state;
   if (checkpoint) {
     restore(*checkpoint);
@@ -267,6 +327,12 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     adaptivity->start(last_good.displacement);
   }
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+  if (refinement) {
+    report.refinement.push_back(refinement_record(0, *refinement));
+    if (scene.output.checkpoint_every > 0)
+      report.statistics.warnings.push_back(
+          "output.checkpoint_every: no checkpoints are written with adaptivity.refine (not supported yet)");
+  }
 }
 
 /// Every rank holds the whole model and state; each assembles the cells
@@ -275,11 +341,11 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
 void Simulation::Impl::share_among_ranks() {
   const int ranks = parallel::world_size(), rank = parallel::world_rank();
   std::vector<int> cell_owner =
-      rank == 0 ? parallel::partition_cells(model, ranks) : std::vector<int>(model.cell_count(), 0);
+      rank == 0 ? parallel::partition_cells(disc->model, ranks) : std::vector<int>(disc->model.cell_count(), 0);
   parallel::broadcast_from_root(cell_owner);
-  distribution = std::make_unique<Distribution>(model, std::move(cell_owner), rank, ranks);
-  assembler.distribute(distribution.get());
-  if (scene.solver.type != SolverType::explicit_euler) linear->distribute(*distribution);
+  distribution = std::make_unique<Distribution>(disc->model, std::move(cell_owner), rank, ranks);
+  disc->assembler.distribute(distribution.get());
+  if (scene.solver.type != SolverType::explicit_euler) disc->linear->distribute(*distribution);
 }
 
 /// Everything the steps so far left behind, as the killed run had it.
@@ -288,9 +354,9 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   state = checkpoint.state;
   last_good = state;
   if (adaptivity && !checkpoint.adaptive)
-    throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
-  if (adaptivity) restore_laws(checkpoint.laws, model, assembler, *adaptivity);
-  linear->restore_state(checkpoint.linear_solver, assembler.pattern());
+    throw InputError("checkpoint " + checkpoint_path + " holds no adaptive disc->model's state");
+  if (adaptivity) restore_laws(checkpoint.laws, disc->model, disc->assembler, *adaptivity);
+  disc->linear->restore_state(checkpoint.linear_solver, disc->assembler.pattern());
   statistics = checkpoint.statistics;
   report.step_assembly_ms = checkpoint.step_assembly_ms;
   report.step_solve_ms = checkpoint.step_solve_ms;
@@ -308,11 +374,11 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
 }
 
 void Simulation::Impl::write_checkpoint_now(const State& state_now) {
-  if (!writes_files()) return;
+  if (!writes_files() || refinement) return;
   detail::PhaseTimer timer(report.output_seconds);
   Checkpoint saved = fingerprints;
   saved.state = state_now;
-  saved.linear_solver = linear->save_state();
+  saved.linear_solver = disc->linear->save_state();
   saved.statistics = report.statistics;
   saved.step_assembly_ms = report.step_assembly_ms;
   saved.step_solve_ms = report.step_solve_ms;
@@ -320,7 +386,7 @@ void Simulation::Impl::write_checkpoint_now(const State& state_now) {
   saved.series = series;
   saved.statistics.warnings.clear();
   for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
-  if (adaptivity) saved.adaptive = true, saved.laws = save_laws(model, assembler, *adaptivity);
+  if (adaptivity) saved.adaptive = true, saved.laws = save_laws(disc->model, disc->assembler, *adaptivity);
   write_checkpoint(checkpoint_path, saved);
 }
 
@@ -329,6 +395,12 @@ void Simulation::Impl::write_checkpoint_now(const State& state_now) {
 /// phase times, frames, checkpoints and progress.
 bool Simulation::Impl::observe(const State& now) {
   SolveStatistics& statistics = report.statistics;
+  if (carried_ms > 0 || carried_iterations > 0) {  // the solves of this load step before a refinement
+    statistics.step_ms.back() += carried_ms;
+    statistics.newton_per_step.back() += carried_iterations;
+    carried_ms = 0, carried_iterations = 0;
+  }
+  if (refinement && !dynamic && refine_load_step(now)) return false;  // solved again on the refined mesh
   if (adaptivity) {
     int switches = 0;
     {
@@ -345,6 +417,7 @@ bool Simulation::Impl::observe(const State& now) {
                                     std::to_string(kMaxResolves) + " re-solves");
   }
   resolves = 0;
+  refinement_passes = 0;
   last_good = now;
   if (!tracks.empty()) {
     detail::PhaseTimer timer(report.output_seconds);
@@ -361,7 +434,7 @@ bool Simulation::Impl::observe(const State& now) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d", now.step);
     const std::string file =
-        write_state(scene.output.directory, name, model, now, adaptivity.get(), distribution.get());
+        write_state(scene.output.directory, name, disc->model, now, levels(), adaptivity.get(), distribution.get());
     series.push_back({now.time, file});
     if (writes_files()) io::write_pvd(output_path("series.pvd"), series);
   }
@@ -371,7 +444,58 @@ bool Simulation::Impl::observe(const State& now) {
   const int every = scene.output.checkpoint_every;
   if (every > 0 && now.step % every == 0) write_checkpoint_now(now);
   progress.update(now.step, counted_steps ? stepping_ms / counted_steps : 0.0);
+  if (refinement && dynamic && now.step % scene.refinement.every == 0) {
+    detail::PhaseTimer timer(adaptivity_seconds);
+    pending = refinement->adapt(disc->model, now.displacement);
+  }
   return false;
+}
+
+/// Static: refines after a converged load step; true when the mesh changed
+/// (the step is then solved again on it, see apply_refinement).
+bool Simulation::Impl::refine_load_step(const State& now) {
+  if (refinement_passes == kMaxRefinementPasses) {
+    report.statistics.warnings.push_back("load step " + std::to_string(now.step) + ": mesh still refining after " +
+                                         std::to_string(kMaxRefinementPasses) + " re-solves");
+    return false;
+  }
+  {
+    detail::PhaseTimer timer(adaptivity_seconds);
+    pending = refinement->refine(disc->model, now.displacement);
+  }
+  if (pending.empty()) return false;
+  ++refinement_passes;
+  return true;
+}
+
+/// Carries the state to the refined mesh and builds everything on it again;
+/// a static load step is then solved again from the carried displacement.
+void Simulation::Impl::apply_refinement() {
+  const int d = disc->model.dim();
+  for (const LeafTransfer& transfer : pending) {
+    state.displacement = transfer_nodal_field(transfer, state.displacement, d);
+    state.velocity = transfer_nodal_field(transfer, state.velocity, d);
+  }
+  pending.clear();
+  // The histories the solvers extrapolate from belong to the old mesh.
+  state.warm_start.clear();
+  state.previous_displacement.clear();
+  state.earlier_displacement.clear();
+  disc = std::make_unique<Discretisation>(refinement->leaf_mesh(), scene, report.statistics);
+  for (const Hold& hold : holds) disc->model.hold(hold.group, hold.displacement, hold.components);
+  disc->prepare(scene);
+  report.refinement.push_back(refinement_record(state.step, *refinement));
+  resolve = !dynamic;
+  if (resolve) {  // the load step again: its solves so far count with the next one
+    SolveStatistics& statistics = report.statistics;
+    carried_ms += statistics.step_ms.back();
+    carried_iterations += statistics.newton_per_step.back();
+    statistics.step_ms.pop_back();
+    statistics.newton_per_step.pop_back();
+    state.step -= 1;
+    state.time = static_cast<double>(state.step) / scene.solver.load_steps;
+  }
+  last_good = state;
 }
 
 /// One step, and the end of the run when it was the last (or when a
@@ -380,13 +504,19 @@ bool Simulation::Impl::step() {
   if (done) return false;
   bool stepped = false;
   try {
-    if (!integrator) integrator = make_integrator(integration);
-    if (!integrator->finished(state)) {
-      integrator->step(state, [this](const State& now) { return observe(now); });
+    if (!disc->integrator) disc->integrator = make_integrator(disc->integration);
+    if (!disc->integrator->finished(state)) {
+      do {
+        resolve = false;
+        if (!disc->integrator) disc->integrator = make_integrator(disc->integration);
+        disc->integrator->step(state, [this](const State& now) { return observe(now); });
+        if (!pending.empty()) apply_refinement();
+      } while (resolve);
       stepped = true;
     }
-    if (!integrator->finished(state)) return true;
-    integrator->finish(state);
+    if (!disc->integrator) disc->integrator = make_integrator(disc->integration);  // after a refinement
+    if (!disc->integrator->finished(state)) return true;
+    disc->integrator->finish(state);
   } catch (const NumericalError& failure) {
     fail(failure);
   }
@@ -397,8 +527,8 @@ bool Simulation::Impl::step() {
 void Simulation::Impl::fail(const NumericalError& failure) {
   done = true;
   progress.finish();
-  const std::string file =
-      write_state(scene.output.directory, "last_good", model, last_good, adaptivity.get(), distribution.get());
+  const std::string file = write_state(scene.output.directory, "last_good", disc->model, last_good, levels(),
+                                       adaptivity.get(), distribution.get());
   report.files.push_back(file);
   close_report(last_good, failure.what());
   throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
@@ -411,8 +541,8 @@ void Simulation::Impl::finish_run() {
   progress.finish();
   {
     detail::PhaseTimer timer(report.output_seconds);
-    report.files.push_back(
-        write_state(scene.output.directory, "final", model, state, adaptivity.get(), distribution.get()));
+    report.files.push_back(write_state(scene.output.directory, "final", disc->model, state, levels(), adaptivity.get(),
+                                       distribution.get()));
   }
   if (!series.empty()) report.files.push_back("series.pvd");
   close_report(state, "");
@@ -425,13 +555,18 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   if (failure.empty()) report.files.push_back("summary.json");
   report.state = end;
   time_loop(scene, end, adaptivity_seconds, report);
-  count_cells(model, report);
+  count_cells(disc->model, report);
+  report.nodes = disc->mesh.node_count();
+  report.cells = disc->mesh.cell_count();
+  report.dofs = disc->model.dof_count();
+  report.free_dofs = disc->model.free_dof_count();
   collect_adaptivity(adaptivity.get(), report);
-  locate_max_displacement(model, end, report);
-  if (scene.solver.type != SolverType::explicit_euler) report.linear_solver = linear->name();  // after any fallback
+  locate_max_displacement(disc->model, end, report);
+  if (scene.solver.type != SolverType::explicit_euler)
+    report.linear_solver = disc->linear->name();  // after any fallback
   report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
   report.wall_seconds = detail::seconds_since(start);
-  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, model, report, failure);
+  if (writes_files()) detail::write_summary(output_path("summary.json"), scene, disc->model, report, failure);
 }
 
 namespace {
@@ -469,11 +604,11 @@ bool Simulation::finished() const { return impl_->done; }
 const RunReport& Simulation::report() const { return impl_->report; }
 const Scene& Simulation::scene() const { return impl_->scene; }
 const State& Simulation::state() const { return impl_->state; }
-const Mesh& Simulation::mesh() const { return impl_->mesh; }
-const Model& Simulation::model() const { return impl_->model; }
+const Mesh& Simulation::mesh() const { return impl_->disc->mesh; }
+const Model& Simulation::model() const { return impl_->disc->model; }
 
 void Simulation::set_law(const std::vector<int>& cells, const std::string& law) {
-  Model& model = impl_->model;
+  Model& model = impl_->disc->model;
   for (int cell : cells) {  // all checked before any changes
     if (cell < 0 || cell >= model.cell_count())
       throw InputError("set_law: cell " + std::to_string(cell) + " is not in 0.." +
@@ -486,12 +621,13 @@ void Simulation::set_law(const std::vector<int>& cells, const std::string& law) 
 
 void Simulation::set_prescribed(const std::string& group, const std::array<double, 3>& displacement,
                                 const std::array<bool, 3>& components) {
-  impl_->model.hold(group, displacement, components);
+  impl_->disc->model.hold(group, displacement, components);
+  if (impl_->refinement) impl_->holds.push_back({group, displacement, components});
 }
 
 std::vector<double> Simulation::internal_force() const {
-  std::vector<double> force(impl_->model.dof_count(), 0.0);
-  impl_->assembler.assemble(impl_->state.displacement, force, nullptr);
+  std::vector<double> force(impl_->disc->model.dof_count(), 0.0);
+  impl_->disc->assembler.assemble(impl_->state.displacement, force, nullptr);
   return force;
 }
 

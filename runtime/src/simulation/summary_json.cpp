@@ -131,6 +131,20 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
     }
     j << "]},\n";
   }
+  if (scene.refinement.enabled) {
+    const RefinementSettings& r = scene.refinement;
+    j << "  \"refinement\": {\"criterion\": \"R_ZZ\", \"threshold\": " << number(r.threshold)
+      << ", \"max_level\": " << r.max_level << ", \"events\": [";
+    for (std::size_t i = 0; i < report.refinement.size(); ++i) {
+      const RefinementRecord& event = report.refinement[i];
+      j << (i ? ",\n    " : "\n    ") << "{\"step\": " << event.step << ", \"cells\": " << event.cells
+        << ", \"leaves_per_level\": [";
+      for (std::size_t level = 0; level < event.leaves_per_level.size(); ++level)
+        j << (level ? ", " : "") << event.leaves_per_level[level];
+      j << "]}";
+    }
+    j << "]},\n";
+  }
   j << "  \"law_ids\": {";
   for (std::size_t i = 0; i < model.law_names().size(); ++i)
     j << (i ? ", " : "") << quoted(std::to_string(i)) << ": " << quoted(model.law_names()[i]);

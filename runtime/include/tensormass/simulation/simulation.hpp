@@ -25,6 +25,13 @@ struct RunOptions {
   bool resume = false;
 };
 
+/// The mesh after a refinement event (adaptivity.refine).
+struct RefinementRecord {
+  int step = 0;                       ///< the (load) step it followed; 0 for the mesh the run starts with
+  int cells = 0;                      ///< cells of the mesh solved on (transition triangles included)
+  std::vector<int> leaves_per_level;  ///< hierarchy leaves per level, from level 0 (transition triangles not counted)
+};
+
 /// What a run produced, for the end-of-run summary and tests.
 struct RunReport {
   std::string output_directory;
@@ -60,6 +67,9 @@ struct RunReport {
   std::vector<double> criterion_seconds;  ///< per scene criterion
   int switches = 0;
   std::vector<AdaptivityRecord> adaptivity;
+  /// Refinement (empty without adaptivity.refine): the starting mesh, then
+  /// one record per change of the mesh.
+  std::vector<RefinementRecord> refinement;
   /// Per finished step: milliseconds in assembly, solve and criteria.
   std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
 };

@@ -1,0 +1,194 @@
+// Refinement during a run (adaptivity.refine, issue 15) through Simulation:
+// a static plate with a probe refines where R_ZZ is high and gets closer to
+// the uniformly refined mesh's solution, every frame is a conforming mesh
+// with its `level` field; a dynamic run refines as a probe goes in and
+// coarsens as it comes back out; --resume is refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "support/test_support.hpp"
+#include "tensormass/common/errors.hpp"
+#include "tensormass/io/read_mesh.hpp"
+#include "tensormass/mesh/mesh_conformity.hpp"
+#include "tensormass/meshing/beam.hpp"
+#include "tensormass/refinement/hierarchical_mesh.hpp"
+#include "tensormass/simulation/simulation.hpp"
+
+namespace tensormass {
+namespace {
+
+using test_support::expect_contains;
+using test_support::TempDir;
+
+constexpr double kWidth = 0.1, kHeight = 0.05;
+
+/// bench/refine_bench.cpp's plate: 10 x 5 cm, `cells` quads across, the
+/// bottom fixed, a 2 cm probe in the middle of the top.
+Mesh plate_mesh(int cells) {
+  BeamSpec spec;
+  spec.dim = 2;
+  spec.cells = {cells, cells / 2, 1};
+  spec.size = {kWidth, kHeight, 1.0};
+  spec.phases = {{"quad4", 1.0}};
+  Mesh mesh = make_beam(spec);
+  const double eps = 1e-9;
+  mesh.add_node_group("bottom", [&](double, double y, double) { return y < eps; });
+  mesh.add_node_group(
+      "probe", [&](double x, double y, double) { return y > kHeight - eps && std::abs(x - kWidth / 2) <= 0.01 + eps; });
+  return mesh;
+}
+
+/// Hooke, bottom fixed, the probe pushed 5 mm down; refinement off.
+Scene plate_scene(const TempDir& dir, const std::string& name) {
+  Scene scene;
+  scene.path = dir.file("plate.yaml");
+  scene.mesh = "plate.msh";
+  MaterialSpec material;
+  material.law = "hooke";
+  material.young = 5e3;
+  material.poisson = 0.45;
+  material.density = 1000;
+  scene.model.materials = {material};
+  scene.model.fixed = {"bottom"};
+  PrescribedSpec probe;
+  probe.region = "probe";
+  probe.displacement = {0.0, -0.005, 0.0};
+  probe.profile.kind = ProfileKind::ramp;
+  probe.profile.duration = 1.0;
+  scene.model.prescribed = {probe};
+  scene.solver.type = SolverType::static_newton;
+  scene.solver.load_steps = 1;
+  scene.output.directory = dir.file(name);
+  scene.output.every = 1;
+  return scene;
+}
+
+RefinementSettings refine(double threshold) {
+  RefinementSettings settings;
+  settings.enabled = true;
+  settings.threshold = threshold;
+  settings.max_level = 2;
+  return settings;
+}
+
+RunOptions quiet() { return RunOptions{false, false}; }
+
+/// Largest displacement difference at the first `nodes` nodes.
+double error_at(const std::vector<double>& u, const std::vector<double>& reference, int nodes) {
+  double worst = 0;
+  for (int node = 0; node < nodes; ++node)
+    worst = std::max(worst, std::hypot(u[2 * node] - reference[2 * node], u[2 * node + 1] - reference[2 * node + 1]));
+  return worst;
+}
+
+/// Conforming: no edge used by three cells, and every edge used by one
+/// cell lies on the plate's outline (a hanging node would leave one inside).
+void expect_conforming_plate(const Mesh& mesh, const std::string& what) {
+  const ConformityReport report = check_conformity(mesh);
+  EXPECT_EQ(report.overused_faces, 0) << what;
+  const auto on_outline = [&](int node) {
+    const double x = mesh.rest_positions[3 * node], y = mesh.rest_positions[3 * node + 1];
+    return std::min({std::abs(x), std::abs(x - kWidth), std::abs(y), std::abs(y - kHeight)}) < 1e-12;
+  };
+  for (const std::vector<int>& edge : report.boundary_faces)
+    EXPECT_TRUE(on_outline(edge[0]) && on_outline(edge[1]) &&
+                (std::abs(mesh.rest_positions[3 * edge[0]] - mesh.rest_positions[3 * edge[1]]) < 1e-12 ||
+                 std::abs(mesh.rest_positions[3 * edge[0] + 1] - mesh.rest_positions[3 * edge[1] + 1]) < 1e-12))
+        << what << ": edge " << edge[0] << "-" << edge[1] << " is used by one cell inside the plate";
+}
+
+TEST(RefinementRun, StaticPlateRefinesTowardTheUniformlyRefinedSolution) {
+  TempDir dir;
+  const Mesh coarse = plate_mesh(10);
+  // The reference: every cell refined twice.
+  HierarchicalMesh uniform(coarse);
+  for (int level = 0; level < 2; ++level) {
+    std::vector<int> every(uniform.leaf_mesh().cell_count());
+    for (std::size_t cell = 0; cell < every.size(); ++cell) every[cell] = static_cast<int>(cell);
+    uniform.refine(every);
+  }
+  const RunReport fine = Simulation(plate_scene(dir, "fine"), uniform.leaf_mesh(), quiet()).run();
+  const RunReport plain = Simulation(plate_scene(dir, "coarse"), coarse, quiet()).run();
+
+  Scene scene = plate_scene(dir, "refined");
+  scene.refinement = refine(0.3);
+  Simulation simulation(scene, coarse, quiet());
+  const RunReport& refined = simulation.run();
+
+  EXPECT_GT(refined.cells, coarse.cell_count());
+  EXPECT_LT(refined.cells, uniform.leaf_mesh().cell_count());
+  EXPECT_EQ(simulation.mesh().cell_count(), refined.cells);
+  EXPECT_EQ(static_cast<int>(refined.state.displacement.size()), 2 * simulation.mesh().node_count());
+  ASSERT_GE(refined.refinement.size(), 2u);  // the start and at least one refinement
+  EXPECT_EQ(refined.refinement.front().cells, coarse.cell_count());
+  EXPECT_EQ(refined.refinement.back().cells, refined.cells);
+  EXPECT_EQ(refined.statistics.newton_per_step.size(), 1u);  // re-solves count with their load step
+  EXPECT_TRUE(refined.statistics.warnings.empty());
+
+  const double coarse_error = error_at(plain.state.displacement, fine.state.displacement, coarse.node_count());
+  const double refined_error = error_at(refined.state.displacement, fine.state.displacement, coarse.node_count());
+  EXPECT_LT(refined_error, 0.4 * coarse_error) << "coarse " << coarse_error << ", refined " << refined_error;
+
+  // Every frame is its own conforming mesh with the levels; final.vtu too.
+  for (const std::string name : {"frame_000001.vtu", "final.vtu"}) {
+    const std::string path = (dir.path() / "refined" / name).string();
+    expect_conforming_plate(read_mesh(path), name);
+    EXPECT_NE(test_support::read_file(path).find("Name=\"level\""), std::string::npos) << name;
+  }
+  EXPECT_EQ(read_mesh((dir.path() / "refined" / "final.vtu").string()).cell_count(), refined.cells);
+  EXPECT_EQ(test_support::read_file(dir.path() / "coarse" / "final.vtu").find("Name=\"level\""), std::string::npos);
+  const std::string summary = test_support::read_file(dir.path() / "refined" / "summary.json");
+  expect_contains(summary, {"\"refinement\": {\"criterion\": \"R_ZZ\"", "\"leaves_per_level\": [50]"});
+}
+
+TEST(RefinementRun, DynamicProbeRefinesThenCoarsensBack) {
+  TempDir dir;
+  const Mesh coarse = plate_mesh(10);
+  Scene scene = plate_scene(dir, "dynamic");
+  scene.solver.load_steps = 1;
+  // The probe goes 5 mm in and comes back out (a sinusoid over 0.4 s), then
+  // the plate rests: 0.8 s in 40 implicit steps.
+  scene.model.prescribed[0].profile.kind = ProfileKind::sinusoid;
+  scene.model.prescribed[0].profile.period = 0.8;
+  scene.model.prescribed[0].profile.phase = 0;
+  scene.solver.type = SolverType::implicit_euler;
+  scene.solver.dt = 0.02;
+  scene.solver.steps = 40;
+  scene.solver.damping_mass = 20.0;
+  scene.output.every = 10;
+  scene.refinement = refine(0.3);
+  scene.refinement.every = 2;
+  scene.refinement.calm_steps = 2;
+  Simulation simulation(scene, coarse, quiet());
+  const RunReport& report = simulation.run();
+  EXPECT_TRUE(simulation.finished());
+  EXPECT_EQ(report.statistics.step_ms.size(), 40u);
+  int most = 0;
+  for (const RefinementRecord& event : report.refinement) most = std::max(most, event.cells);
+  ASSERT_GE(report.refinement.size(), 3u);
+  EXPECT_GT(most, coarse.cell_count());                            // cells were added
+  EXPECT_EQ(report.refinement.back().cells, coarse.cell_count());  // then removed, back to the original cells
+  EXPECT_EQ(report.cells, report.refinement.back().cells);
+  for (const std::string name : {"frame_000010.vtu", "frame_000020.vtu", "frame_000040.vtu", "final.vtu"})
+    expect_conforming_plate(read_mesh((dir.path() / "dynamic" / name).string()), name);
+}
+
+TEST(RefinementRun, ResumeIsRefused) {
+  TempDir dir;
+  Scene scene = plate_scene(dir, "resumed");
+  scene.refinement = refine(0.3);
+  try {
+    Simulation simulation(scene, plate_mesh(10), RunOptions{false, true});
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_contains(error.what(), {"plate.yaml", "--resume", "adaptivity.refine", "not supported"});
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "resumed"));  // a bad input writes nothing
+}
+
+}  // namespace
+}  // namespace tensormass
