@@ -70,7 +70,12 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   detail::assemble(run, u, g, &K);
   free_residual(model, g, f, r);
   detail::require_finite(r, "the residual " + where);
-  const double reference = std::max({norm(f_free), norm(r), 1e-300});
+  // The force scale the residual is measured against: the loads, or the
+  // internal forces (with the reactions at fixed and prescribed dofs) when
+  // those are larger. Without the latter, a load step whose start is
+  // already the solution (a linear law under prescribed displacements,
+  // extrapolated from the last steps) would compare round-off with itself.
+  const double reference = std::max({norm(f_free), norm(r), norm(g), 1e-300});
   double residual = norm(r);
   const bool debug = std::getenv("TENSORMASS_DEBUG_NEWTON") != nullptr;
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
