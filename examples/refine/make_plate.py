@@ -36,7 +36,9 @@ def main():
         number += 1
         text.append(f"{number} 3 2 3 3 {' '.join(map(str, q))}")
     text.append("$EndElements")
-    out.write_text("\n".join(text) + "\n")
+    partial = out.with_name(out.name + ".tmp")  # renamed once complete: never a half-written mesh
+    partial.write_text("\n".join(text) + "\n")
+    partial.replace(out)
     print(f"wrote {out}: {len(quads)} quads, groups bottom, probe, plate")
 
 
