@@ -8,6 +8,7 @@
 #include <map>
 #include <stdexcept>
 #include <string_view>
+#include <type_traits>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
@@ -48,18 +49,52 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
     quality_.push_back(criteria_.back()->is_quality());
     needs_force_ = needs_force_ || criteria_.back()->needs_force();
   }
-  for (const tm_kernel* kernel : Registry::instance().kernels())
-    for (std::size_t r = 0; r < settings.ladder.size(); ++r)
-      if (settings.ladder[r] == kernel->law)
-        for (const ElementBlock& block : model.mesh().blocks)
-          if (std::string_view(block.element->name) == kernel->element)
-            rungs_.emplace_back(kernel, static_cast<int>(r));
+  find_rungs();
   values_.assign(criteria_.size(), std::vector<double>(model.cell_count(), 0.0));
   initial_rungs_.resize(model.cell_count());
   for (int cell = 0; cell < model.cell_count(); ++cell)
     initial_rungs_[cell] = static_cast<signed char>(rung_of(model.initial_kernel(cell)));
   criterion_seconds_.assign(criteria_.size(), 0.0);
   calm_evaluations_.assign(model.cell_count(), 0);
+}
+
+void Adaptivity::find_rungs() {
+  rungs_.clear();
+  for (const tm_kernel* kernel : Registry::instance().kernels())
+    for (std::size_t r = 0; r < settings_.ladder.size(); ++r)
+      if (settings_.ladder[r] == kernel->law)
+        for (const ElementBlock& block : model_->mesh().blocks)
+          if (std::string_view(block.element->name) == kernel->element) {
+            rungs_.emplace_back(kernel, static_cast<int>(r));
+            break;
+          }
+}
+
+void Adaptivity::follow(Model& model, const Assembler& assembler, std::span<const int> origin) {
+  check_ladder(settings_.ladder, model.mesh());
+  if (origin.size() != static_cast<std::size_t>(model.cell_count()))
+    throw std::invalid_argument("Adaptivity::follow: " + std::to_string(origin.size()) + " origins for " +
+                                std::to_string(model.cell_count()) + " cells");
+  const int old_cells = static_cast<int>(calm_evaluations_.size());
+  for (int source : origin)
+    if (source < 0 || source >= old_cells)
+      throw std::invalid_argument("Adaptivity::follow: origin " + std::to_string(source) + " is not an old cell");
+  const auto carry = [&](auto& values) {
+    std::remove_reference_t<decltype(values)> carried;
+    carried.reserve(origin.size());
+    for (int source : origin) carried.push_back(values[static_cast<std::size_t>(source)]);
+    values = std::move(carried);
+  };
+  for (std::vector<double>& values : values_) carry(values);
+  carry(calm_evaluations_);
+  carry(initial_rungs_);
+  model_ = &model;
+  assembler_ = &assembler;
+  find_rungs();
+  nodal_forces_.clear();
+  moves_.clear();
+  cell_rungs_.clear();
+  rungs_revision_ = -1;  // read the rungs from the new model's kernels at the next evaluation
 }
 
 AdaptivityMemory Adaptivity::memory() const {

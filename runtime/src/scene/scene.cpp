@@ -393,11 +393,8 @@ AdaptivitySettings read_adaptivity(const Value& section) {
   AdaptivitySettings spec;
   if (!section.present()) return spec;
   section.expect_map();
-  const Value refine = section.child("refine");
-  if (refine.present() && !section.child("criteria").present()) return spec;  // refinement only
-  if (refine.present())
-    refine.fail(
-        "refinement together with law switching (adaptivity.criteria) is not supported yet: use one of the two");
+  // Refinement alone (no criteria) switches no laws; with criteria, both run.
+  if (section.child("refine").present() && !section.child("criteria").present()) return spec;
   spec.enabled = true;
   const Value criteria = section.required("criteria", "(or 'refine')");
   for (const Value& item : criteria.items()) {

@@ -102,14 +102,20 @@ void check_materials(const Scene& scene, const Mesh& mesh) {
   }
 }
 
-/// Every law of the adaptivity ladder has a kernel for every element type of the mesh.
+/// Every law of the adaptivity ladder has a kernel for every element type of
+/// the mesh, and for tri3 when refinement may add transition triangles.
 void check_ladder(const Scene& scene, const Mesh& mesh) {
   if (!scene.adaptivity.enabled) return;
+  std::vector<std::string> elements;
+  for (const ElementBlock& block : mesh.blocks) elements.push_back(block.element->name);
+  if (scene.refinement.enabled) elements.push_back("tri3");
   for (const std::string& law : scene.adaptivity.ladder)
-    for (const ElementBlock& block : mesh.blocks)
-      if (!Registry::instance().find(law, block.element->name, "whole"))
+    for (const std::string& element : elements)
+      if (!Registry::instance().find(law, element, "whole"))
         throw InputError(place(scene, scene.adaptivity.ladder_line, "adaptivity.ladder") + "no kernel for law '" + law +
-                         "' on element '" + block.element->name + "' (see `tensormass kernels`)");
+                         "' on element '" + element + "'" +
+                         (element == "tri3" && scene.refinement.enabled ? " (refinement adds tri3 cells)" : "") +
+                         " (see `tensormass kernels`)");
 }
 
 /// Refinement runs on 2D meshes of quad4 and tri3 cells only (hierarchical_mesh.hpp).

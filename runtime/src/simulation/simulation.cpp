@@ -215,6 +215,57 @@ Mesh checked_mesh(const Scene& scene, Mesh mesh, const RunOptions& options) {
   return mesh;
 }
 
+/// Per cell of a model: its kernel, and the kernel it blends from (nullptr
+/// when it does not blend) with the blend's weight. Kernels live in the
+/// registry: the pointers outlive the model.
+struct CellLaws {
+  std::vector<const tm_kernel*> kernels, blend_from;
+  std::vector<double> blend_weights;
+};
+
+CellLaws cell_laws(const Model& model) {
+  CellLaws laws;
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    laws.kernels.push_back(&model.kernel(cell));
+    laws.blend_from.push_back(model.blend_from(cell));
+    laws.blend_weights.push_back(model.blend_weight(cell));
+  }
+  return laws;
+}
+
+/// Per cell of the leaf mesh after `transfers` (applied in order): the cell
+/// of the mesh before them whose state it takes.
+std::vector<int> cell_origins(const std::vector<LeafTransfer>& transfers) {
+  std::vector<int> origin(static_cast<std::size_t>(transfers.front().old_cell_count));
+  std::iota(origin.begin(), origin.end(), 0);
+  for (const LeafTransfer& transfer : transfers) origin = transfer_cell_field<int>(transfer, origin);
+  return origin;
+}
+
+/// Gives each cell of `model` (just built on the new mesh, under its
+/// materials' laws) the law of the old cell it comes from, and its blend
+/// (the law blended from and the weight). Returns the cells that could not
+/// take the law (no kernel for their element): they keep their initial law.
+int carry_laws(const CellLaws& before, std::span<const int> origin, Model& model) {
+  int missed = 0;
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    const std::size_t source = static_cast<std::size_t>(origin[static_cast<std::size_t>(cell)]);
+    const tm_kernel* law = model.law_kernel(cell, before.kernels[source]->law);
+    if (!law) {
+      ++missed;
+      continue;
+    }
+    model.set_law(cell, law->law);
+    const tm_kernel* from = before.blend_from[source];
+    if (!from) continue;
+    const tm_kernel* blend = model.law_kernel(cell, from->law);
+    if (!blend || blend == &model.kernel(cell)) continue;
+    model.start_blend(cell, blend);
+    model.set_blend_weight(cell, before.blend_weights[source]);
+  }
+  return missed;
+}
+
 RefinementRecord refinement_record(int step, const detail::RunRefinement& refinement) {
   return {step, refinement.leaf_mesh().cell_count(), refinement.leaves_per_level()};
 }
@@ -454,9 +505,11 @@ bool Simulation::Impl::observe(const State& now) {
 /// Static: refines after a converged load step; true when the mesh changed
 /// (the step is then solved again on it, see apply_refinement).
 bool Simulation::Impl::refine_load_step(const State& now) {
-  if (refinement_passes == kMaxRefinementPasses) {
-    report.statistics.warnings.push_back("load step " + std::to_string(now.step) + ": mesh still refining after " +
-                                         std::to_string(kMaxRefinementPasses) + " re-solves");
+  if (refinement_passes >= kMaxRefinementPasses) {
+    if (refinement_passes == kMaxRefinementPasses)  // once, although law switches may solve the step again
+      report.statistics.warnings.push_back("load step " + std::to_string(now.step) + ": mesh still refining after " +
+                                           std::to_string(kMaxRefinementPasses) + " re-solves");
+    refinement_passes = kMaxRefinementPasses + 1;
     return false;
   }
   {
@@ -476,6 +529,8 @@ void Simulation::Impl::apply_refinement() {
     state.displacement = transfer_nodal_field(transfer, state.displacement, d);
     state.velocity = transfer_nodal_field(transfer, state.velocity, d);
   }
+  const std::vector<int> origin = cell_origins(pending);
+  const CellLaws laws = cell_laws(disc->model);
   pending.clear();
   // The histories the solvers extrapolate from belong to the old mesh.
   state.warm_start.clear();
@@ -483,6 +538,13 @@ void Simulation::Impl::apply_refinement() {
   state.earlier_displacement.clear();
   disc = std::make_unique<Discretisation>(refinement->leaf_mesh(), scene, report.statistics);
   for (const Hold& hold : holds) disc->model.hold(hold.group, hold.displacement, hold.components);
+  // Each new cell takes the law (and blend) of the cell it comes from,
+  // before the new assembler's first assembly folds the linear-law cells.
+  if (const int missed = carry_laws(laws, origin, disc->model); missed > 0)
+    report.statistics.warnings.push_back("step " + std::to_string(state.step) + ": " + std::to_string(missed) +
+                                         " refined cells have no kernel for their parent's law and keep their "
+                                         "material's law");
+  if (adaptivity) adaptivity->follow(disc->model, disc->assembler, origin);
   disc->prepare(scene);
   report.refinement.push_back(refinement_record(state.step, *refinement));
   resolve = !dynamic;

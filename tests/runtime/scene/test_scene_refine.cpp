@@ -85,10 +85,20 @@ TEST(SceneRefine, BadValuesNameLineAndKey) {
                   {"scene.yaml:11:", "unknown key 'adaptivity.refine.levels'", "max_level"});
 }
 
-TEST(SceneRefine, RefusesLawSwitchingAlongside) {
-  expect_contains(error_of(kBaseScene + "adaptivity:\n  criteria: [{name: R_NL, threshold: 0.01}]\n"
-                                        "  refine: {criteria: [{name: R_ZZ, threshold: 0.5}]}\n"),
-                  {"scene.yaml:10:", "adaptivity.refine", "law switching", "not supported yet"});
+TEST(SceneRefine, AcceptsLawSwitchingAlongside) {
+  TempDir dir;
+  const Scene scene = load(dir, kBaseScene +
+                                    "adaptivity:\n"
+                                    "  criteria: [{name: R_NL, threshold: 0.01}]\n"
+                                    "  ladder: [hooke, neohookean]\n"
+                                    "  refine: {criteria: [{name: R_ZZ, threshold: 0.5}], max_level: 1}\n");
+  EXPECT_TRUE(scene.adaptivity.enabled);
+  ASSERT_EQ(scene.adaptivity.criteria.size(), 1u);
+  EXPECT_EQ(scene.adaptivity.criteria[0].name, "R_NL");
+  EXPECT_EQ(scene.adaptivity.ladder, (std::vector<std::string>{"hooke", "neohookean"}));
+  EXPECT_TRUE(scene.refinement.enabled);
+  EXPECT_EQ(scene.refinement.threshold, 0.5);
+  EXPECT_EQ(scene.refinement.max_level, 1);
 }
 
 TEST(SceneRefine, RefusesNodalForces) {

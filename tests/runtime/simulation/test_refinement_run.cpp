@@ -2,15 +2,20 @@
 // a static plate with a probe refines where R_ZZ is high and gets closer to
 // the uniformly refined mesh's solution, every frame is a conforming mesh
 // with its `level` field; a dynamic run refines as a probe goes in and
-// coarsens as it comes back out; --resume is refused.
+// coarsens as it comes back out; --resume is refused. With law switching
+// on as well (ladder hooke -> neohookean), the children of an upgraded cell
+// have the upgraded law right after the change, the folded assembly follows
+// the carried laws, and a static run refines, switches and converges.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "support/test_support.hpp"
+#include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/mesh/mesh_conformity.hpp"
@@ -175,6 +180,156 @@ TEST(RefinementRun, DynamicProbeRefinesThenCoarsensBack) {
   EXPECT_EQ(report.cells, report.refinement.back().cells);
   for (const std::string name : {"frame_000010.vtu", "frame_000020.vtu", "frame_000040.vtu", "final.vtu"})
     expect_conforming_plate(read_mesh((dir.path() / "dynamic" / name).string()), name);
+}
+
+/// Law switching on R_NL, one rung from Hooke to neo-Hookean, no downgrade.
+AdaptivitySettings hooke_to_neohookean(double threshold) {
+  AdaptivitySettings settings;
+  settings.enabled = true;
+  CriterionSpec criterion;
+  criterion.name = "R_NL";
+  criterion.threshold = threshold;
+  settings.criteria = {criterion};
+  settings.ladder = {"hooke", "neohookean"};
+  return settings;
+}
+
+/// The rest corners of every cell of a 2D model.
+std::vector<std::vector<std::array<double, 2>>> cell_corners(const Model& model) {
+  std::vector<std::vector<std::array<double, 2>>> corners(static_cast<std::size_t>(model.cell_count()));
+  const std::vector<double>& x = model.mesh().rest_positions;
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    for (int node : model.cell_nodes(cell)) corners[cell].push_back({x[3 * node], x[3 * node + 1]});
+  return corners;
+}
+
+std::array<double, 2> centroid(const std::vector<std::array<double, 2>>& corners) {
+  std::array<double, 2> c{0, 0};
+  for (const auto& p : corners) c[0] += p[0] / corners.size(), c[1] += p[1] / corners.size();
+  return c;
+}
+
+/// Whether p lies inside the convex polygon (either orientation).
+bool inside(const std::vector<std::array<double, 2>>& polygon, const std::array<double, 2>& p) {
+  bool positive = false, negative = false;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const auto& a = polygon[i];
+    const auto& b = polygon[(i + 1) % polygon.size()];
+    const double cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    positive = positive || cross > 1e-15;
+    negative = negative || cross < -1e-15;
+  }
+  return !(positive && negative);
+}
+
+/// Largest |a - b| over the largest |b|.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0, size = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) diff = std::max(diff, std::abs(a[i] - b[i]));
+  for (double v : b) size = std::max(size, std::abs(v));
+  return size > 0 ? diff / size : diff;
+}
+
+int cells_under(const Model& model, const std::string& law) {
+  int count = 0;
+  for (int cell = 0; cell < model.cell_count(); ++cell) count += std::string(model.kernel(cell).law) == law;
+  return count;
+}
+
+TEST(RefinementRun, DynamicRefinementWithLawSwitchingCarriesLawsToChildren) {
+  TempDir dir;
+  const Mesh coarse = plate_mesh(10);
+  Scene scene = plate_scene(dir, "both");
+  // The probe goes 5 mm in over 0.2 s (a quarter of a sinusoid): 20 implicit steps.
+  scene.model.prescribed[0].profile.kind = ProfileKind::sinusoid;
+  scene.model.prescribed[0].profile.period = 0.8;
+  scene.model.prescribed[0].profile.phase = 0;
+  scene.solver.type = SolverType::implicit_euler;
+  scene.solver.dt = 0.01;
+  scene.solver.steps = 20;
+  scene.solver.damping_mass = 20.0;
+  scene.output.every = 5;
+  scene.refinement = refine(0.3);
+  scene.refinement.every = 5;
+  scene.refinement.coarsen = false;               // children lie inside the cell they come from (checked below)
+  scene.adaptivity = hooke_to_neohookean(0.002);  // cells climb from step 10, between the mesh changes
+  Simulation simulation(scene, coarse, quiet());
+  int changes = 0, children_checked = 0;
+  while (!simulation.finished()) {
+    const auto before = cell_corners(simulation.model());
+    std::vector<std::string> laws;
+    for (int cell = 0; cell < simulation.model().cell_count(); ++cell)
+      laws.emplace_back(simulation.model().kernel(cell).law);
+    const std::size_t events = simulation.report().refinement.size();
+    simulation.step();
+    if (simulation.report().refinement.size() == events) continue;
+    ++changes;
+    // Without downgrade, an upgraded cell stays upgraded through the step:
+    // every new cell inside an old neo-Hookean quad (a refined cell's
+    // children, or the quad itself) must be neo-Hookean. (A cell that
+    // replaces several transition triangles takes the first one's law.)
+    const Model& model = simulation.model();
+    const auto after = cell_corners(model);
+    for (int cell = 0; cell < model.cell_count(); ++cell) {
+      const std::array<double, 2> c = centroid(after[cell]);
+      const auto source = std::find_if(before.begin(), before.end(), [&](const auto& old) { return inside(old, c); });
+      ASSERT_NE(source, before.end()) << "cell " << cell << " lies in no old cell";
+      if (source->size() != 4 || laws[source - before.begin()] != "neohookean") continue;
+      ++children_checked;
+      EXPECT_STREQ(model.kernel(cell).law, "neohookean") << "step " << simulation.state().step << ", cell " << cell;
+    }
+    // The rebuilt assembler folds the Hooke cells under the carried laws:
+    // its forces are those of the per-cell assembly.
+    const Assembler per_cell(model, false);
+    std::vector<double> expected(model.dof_count(), 0.0);
+    per_cell.assemble(simulation.state().displacement, expected, nullptr);
+    EXPECT_LT(relative_difference(simulation.internal_force(), expected), 1e-10) << "step " << simulation.state().step;
+  }
+  const RunReport& report = simulation.report();
+  EXPECT_EQ(report.statistics.step_ms.size(), 20u);
+  EXPECT_GT(changes, 0);
+  EXPECT_GT(children_checked, 0) << "no cell had climbed before a mesh change";
+  EXPECT_GT(report.cells, coarse.cell_count());
+  EXPECT_GT(report.switches, 0);
+  EXPECT_GT(cells_under(simulation.model(), "neohookean"), 0);
+  EXPECT_GT(cells_under(simulation.model(), "hooke"), 0);
+  const std::string summary = test_support::read_file(dir.path() / "both" / "summary.json");
+  expect_contains(summary, {"\"adaptivity\": {\"criteria\": [{\"name\": \"R_NL\"", "\"per_step\": [\n",
+                            "\"refinement\": {\"criterion\": \"R_ZZ\"", "\"events\": [\n", "\"neohookean\": "});
+  // The frames hold the laws of their mesh: law_id on every cell of the last one.
+  const std::string frame = test_support::read_file(dir.path() / "both" / "frame_000020.vtu");
+  EXPECT_NE(frame.find("Name=\"law_id\""), std::string::npos);
+  EXPECT_EQ(read_mesh((dir.path() / "both" / "frame_000020.vtu").string()).cell_count(), report.cells);
+}
+
+TEST(RefinementRun, StaticPlateRefinesAndSwitchesLawsThenConverges) {
+  TempDir dir;
+  const Mesh coarse = plate_mesh(10);
+  Scene scene = plate_scene(dir, "static_both");
+  // Ten load steps: with two to five, Newton fails on the refined mesh near
+  // the probe's corners (as it does for pure neo-Hookean with two).
+  scene.solver.load_steps = 10;
+  scene.refinement = refine(0.3);
+  scene.adaptivity = hooke_to_neohookean(0.01);
+  Simulation simulation(scene, coarse, quiet());
+  const RunReport& report = simulation.run();
+  EXPECT_TRUE(simulation.finished());
+  EXPECT_EQ(report.statistics.newton_per_step.size(), 10u);  // re-solves count with their load step
+  EXPECT_TRUE(report.statistics.warnings.empty()) << report.statistics.warnings.front();
+  EXPECT_GT(report.cells, coarse.cell_count());
+  EXPECT_GE(report.refinement.size(), 2u);
+  EXPECT_GT(report.switches, 0);
+  const Model& model = simulation.model();
+  EXPECT_GT(cells_under(model, "neohookean"), 0);
+  EXPECT_GT(cells_under(model, "hooke"), 0);
+  // In equilibrium on the final mesh under the final laws: the forces at the
+  // free dofs are round-off next to the reactions.
+  const std::vector<double> force = simulation.internal_force();
+  double free = 0, all = 0;
+  for (int dof : model.free_dofs()) free = std::max(free, std::abs(force[dof]));
+  for (double f : force) all = std::max(all, std::abs(f));
+  EXPECT_GT(all, 0);
+  EXPECT_LT(free, 1e-6 * all);
 }
 
 TEST(RefinementRun, ResumeIsRefused) {

@@ -76,12 +76,22 @@ class Adaptivity {
   AdaptivityMemory memory() const;
   /// Takes a saved memory back (its sizes must fit: std::invalid_argument otherwise).
   void restore(AdaptivityMemory memory);
+  /// Follows a mesh change (refinement, issue 15): from now on works on
+  /// `model` and `assembler` (built on the new mesh, their laws already
+  /// carried over), cell c taking the per-cell state (last criteria values,
+  /// calm count, initial rung) of old cell origin[c]. The run-level counts
+  /// (switches, criteria seconds, records) are kept. std::invalid_argument
+  /// when a ladder law has no kernel for an element type of the new mesh,
+  /// or when origin does not have one entry per new cell, each an old cell.
+  void follow(Model& model, const Assembler& assembler, std::span<const int> origin);
 
  private:
   /// Evaluates the criteria at u, decides and switches every cell; adds
   /// the switches and the laws' counts to the record.
   void assess(std::span<const double> u, AdaptivityRecord& record);
   void refresh_rungs();
+  /// Lists rungs_ for the kernels of the model's element types.
+  void find_rungs();
   signed char decide(int cell, int rung);
   void record_laws(AdaptivityRecord& record);
   /// Index of the kernel's law on the ladder, or -1.
