@@ -2,7 +2,8 @@
 // a static plate with a probe refines where R_ZZ is high and gets closer to
 // the uniformly refined mesh's solution, every frame is a conforming mesh
 // with its `level` field; a dynamic run refines as a probe goes in and
-// coarsens as it comes back out; --resume is refused. With law switching
+// coarsens as it comes back out; an explicit run refines with its stable
+// step estimated again; --resume is refused. With law switching
 // on as well (ladder hooke -> neohookean), the children of an upgraded cell
 // have the upgraded law right after the change, the folded assembly follows
 // the carried laws, and a static run refines, switches and converges.
@@ -180,6 +181,35 @@ TEST(RefinementRun, DynamicProbeRefinesThenCoarsensBack) {
   EXPECT_EQ(report.cells, report.refinement.back().cells);
   for (const std::string name : {"frame_000010.vtu", "frame_000020.vtu", "frame_000040.vtu", "final.vtu"})
     expect_conforming_plate(read_mesh((dir.path() / "dynamic" / name).string()), name);
+}
+
+TEST(RefinementRun, ExplicitRunRefinesAndKeepsAStableStep) {
+  // The probe pressed 2 mm in over 0.1 s, symplectic Euler with a step
+  // below the refined cells' stable one: the integrator is rebuilt after
+  // each change (estimating the stable step again) and the run stays bounded.
+  TempDir dir;
+  const Mesh coarse = plate_mesh(10);
+  Scene scene = plate_scene(dir, "explicit");
+  scene.model.prescribed[0].displacement = {0.0, -0.002, 0.0};
+  scene.model.prescribed[0].profile.duration = 0.1;
+  scene.solver.type = SolverType::explicit_euler;
+  scene.solver.dt = 1e-4;
+  scene.solver.steps = 1000;
+  scene.solver.damping_mass = 20.0;
+  scene.output.every = 0;
+  scene.refinement = refine(0.3);
+  scene.refinement.every = 100;
+  Simulation simulation(scene, coarse, quiet());
+  const RunReport& report = simulation.run();
+  EXPECT_TRUE(simulation.finished());
+  ASSERT_GE(report.refinement.size(), 2u);
+  EXPECT_GT(report.refinement.back().cells, coarse.cell_count());
+  EXPECT_GT(report.statistics.stable_dt, scene.solver.dt);  // re-estimated on the final, refined mesh
+  for (const std::string& warning : report.statistics.warnings) EXPECT_EQ(warning.find("exceeds"), std::string::npos);
+  double largest = 0;
+  for (double u : simulation.state().displacement) largest = std::max(largest, std::abs(u));
+  EXPECT_LT(largest, 0.01);  // bounded: 2 mm pushed in, no blow-up
+  expect_conforming_plate(read_mesh((dir.path() / "explicit" / "final.vtu").string()), "final.vtu");
 }
 
 /// Law switching on R_NL, one rung from Hooke to neo-Hookean, no downgrade.
