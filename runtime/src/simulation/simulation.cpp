@@ -198,7 +198,13 @@ struct Discretisation {
   Assembler assembler;
   std::unique_ptr<LinearSolver> linear;
   Integration integration;
-  std::unique_ptr<Integrator> integrator;  // made at the first step (the explicit one estimates dt from the laws then)
+  /// The integrator, made at its first use: the explicit one estimates dt
+  /// from the laws then, and a refined mesh gets its own.
+  Integrator& stepper() {
+    if (!integrator) integrator = make_integrator(integration);
+    return *integrator;
+  }
+  std::unique_ptr<Integrator> integrator;
 };
 
 /// The scene's mesh checked against the scene, and what refinement cannot
@@ -405,7 +411,7 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   state = checkpoint.state;
   last_good = state;
   if (adaptivity && !checkpoint.adaptive)
-    throw InputError("checkpoint " + checkpoint_path + " holds no adaptive disc->model's state");
+    throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
   if (adaptivity) restore_laws(checkpoint.laws, disc->model, disc->assembler, *adaptivity);
   disc->linear->restore_state(checkpoint.linear_solver, disc->assembler.pattern());
   statistics = checkpoint.statistics;
@@ -566,19 +572,16 @@ bool Simulation::Impl::step() {
   if (done) return false;
   bool stepped = false;
   try {
-    if (!disc->integrator) disc->integrator = make_integrator(disc->integration);
-    if (!disc->integrator->finished(state)) {
+    if (!disc->stepper().finished(state)) {
       do {
         resolve = false;
-        if (!disc->integrator) disc->integrator = make_integrator(disc->integration);
-        disc->integrator->step(state, [this](const State& now) { return observe(now); });
-        if (!pending.empty()) apply_refinement();
+        disc->stepper().step(state, [this](const State& now) { return observe(now); });
+        if (!pending.empty()) apply_refinement();  // a new discretisation, a new integrator
       } while (resolve);
       stepped = true;
     }
-    if (!disc->integrator) disc->integrator = make_integrator(disc->integration);  // after a refinement
-    if (!disc->integrator->finished(state)) return true;
-    disc->integrator->finish(state);
+    if (!disc->stepper().finished(state)) return true;
+    disc->stepper().finish(state);
   } catch (const NumericalError& failure) {
     fail(failure);
   }
