@@ -1,5 +1,5 @@
-// Refinement, balance, coarsening and the leaf mesh of a 2D hierarchy
-// (see hierarchical_mesh.hpp).
+// Refinement, balance and coarsening of the hierarchy (see
+// hierarchical_mesh.hpp); the leaf mesh is built in hierarchical_leaf_mesh.cpp.
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh_conformity.hpp"
+#include "tensormass/refinement/split_patterns.hpp"
 #include "tensormass/refinement/transition_patterns.hpp"
 
 namespace tensormass {
@@ -17,13 +18,42 @@ std::uint64_t edge_key(int a, int b) {
   return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
 }
 
-/// Twice the signed area of the polygon `corners` (count nodes) in the x-y plane.
+/// A quad face's key: its lowest corner and the corner opposite it.
+std::uint64_t face_key(std::span<const int> face) {
+  const auto lowest = static_cast<std::size_t>(std::min_element(face.begin(), face.end()) - face.begin());
+  return edge_key(face[lowest], face[(lowest + 2) % 4]);
+}
+
+const double* at(std::span<const double> positions, int node) { return &positions[3 * static_cast<std::size_t>(node)]; }
+
+/// Twice the signed area of the polygon `corners` in the x-y plane.
 double twice_signed_area(std::span<const double> positions, std::span<const int> corners) {
   double sum = 0;
   for (std::size_t k = 0; k < corners.size(); ++k) {
-    const double* p = &positions[3 * static_cast<std::size_t>(corners[k])];
-    const double* q = &positions[3 * static_cast<std::size_t>(corners[(k + 1) % corners.size()])];
+    const double* p = at(positions, corners[k]);
+    const double* q = at(positions, corners[(k + 1) % corners.size()]);
     sum += p[0] * q[1] - q[0] * p[1];
+  }
+  return sum;
+}
+
+/// Six times the signed volume of a 3D cell: the sum, over its faces
+/// (outward), of the fan triangles around each face's mean point.
+double six_signed_volume(std::span<const double> positions, const tm_element_info& element,
+                         std::span<const int> nodes) {
+  double sum = 0;
+  for (int f = 0; f < element.face_count; ++f) {
+    const int size = element.face_sizes[f];
+    const int* face = element.faces + element.face_offsets[f];
+    double mean[3] = {0, 0, 0};
+    for (int k = 0; k < size; ++k)
+      for (int c = 0; c < 3; ++c) mean[c] += at(positions, nodes[face[k]])[c] / size;
+    for (int k = 0; k < size; ++k) {
+      const double* p = at(positions, nodes[face[k]]);
+      const double* q = at(positions, nodes[face[(k + 1) % size]]);
+      sum += mean[0] * (p[1] * q[2] - p[2] * q[1]) - mean[1] * (p[0] * q[2] - p[2] * q[0]) +
+             mean[2] * (p[0] * q[1] - p[1] * q[0]);
+    }
   }
   return sum;
 }
@@ -33,12 +63,20 @@ std::string mesh_name(const Mesh& mesh) { return mesh.source.empty() ? std::stri
 void check_cells(const Mesh& mesh) {
   for (const ElementBlock& block : mesh.blocks) {
     const std::string name = block.element->name;
-    if (name != "quad4" && name != "tri3")
-      throw InputError(mesh_name(mesh) + ": " + name + " cells cannot be refined (refinement supports quad4 and tri3)");
-    for (int local = 0; local < block.count(); ++local)
-      if (!(twice_signed_area(mesh.rest_positions, block.cell_nodes(local)) > 0))
+    if (!has_split_pattern(name))
+      throw InputError(mesh_name(mesh) + ": " + name +
+                       " cells cannot be refined (refinement supports quad4 and tri3 in 2D, hex8, tet4 and prism6 in "
+                       "3D)");
+    for (int local = 0; local < block.count(); ++local) {
+      const auto nodes = block.cell_nodes(local);
+      const double measure = mesh.dim == 2 ? twice_signed_area(mesh.rest_positions, nodes)
+                                           : six_signed_volume(mesh.rest_positions, *block.element, nodes);
+      if (!(measure > 0))
         throw InputError(mesh_name(mesh) + ": " + mesh.describe_cell(block.first_cell + local) +
-                         " is clockwise or flat; refinement needs counter-clockwise cells of positive area");
+                         (mesh.dim == 2
+                              ? " is clockwise or flat; refinement needs counter-clockwise cells of positive area"
+                              : " is inverted or flat; refinement needs cells of positive volume"));
+    }
   }
 }
 
@@ -46,33 +84,32 @@ void check_groups(const Mesh& mesh) {
   for (const Group& group : mesh.groups)
     for (int f = 0; f < group.facets.count(); ++f) {
       const int size = group.facets.offsets[f + 1] - group.facets.offsets[f];
-      if (size != 2)
+      const bool supported = mesh.dim == 2 ? size == 2 : (size == 3 || size == 4);
+      if (!supported)
         throw InputError(mesh_name(mesh) + ": group '" + group.name + "' has a facet of " + std::to_string(size) +
-                         " nodes; refinement supports line2 facets");
+                         " nodes; refinement supports " +
+                         (mesh.dim == 2 ? "line2 facets" : "tri3 and quad4 facets (first-order faces)"));
     }
 }
 
-/// Throws InputError unless `mesh` is a 2D mesh the hierarchy can wrap.
+/// Throws InputError unless `mesh` is a mesh the hierarchy can wrap.
 void check_refinable(const Mesh& mesh) {
   mesh.validate();
-  if (mesh.dim != 2)
-    throw InputError(mesh_name(mesh) + ": only 2D meshes can be refined, this one is " + std::to_string(mesh.dim) +
-                     "D");
   check_cells(mesh);
   check_groups(mesh);
   const ConformityReport conformity = check_conformity(mesh);
   if (conformity.overused_faces > 0)
-    throw InputError(mesh_name(mesh) + ": " + std::to_string(conformity.overused_faces) +
-                     " edges are shared by more than two cells; refinement needs a conforming mesh");
+    throw InputError(mesh_name(mesh) + ": " + std::to_string(conformity.overused_faces) + " " +
+                     (mesh.dim == 2 ? "edges" : "faces") +
+                     " are shared by more than two cells; refinement needs a conforming mesh");
 }
 
-/// The cells of one element type in the leaf mesh, in the order they are made.
-struct LeafList {
-  const tm_element_info* element = nullptr;
-  std::vector<int> connectivity;
-  std::vector<int> owners;
-  std::vector<char> transitions;
-};
+double squared_distance(std::span<const double> positions, int a, int b) {
+  double sum = 0;
+  for (int c = 0; c < 3; ++c)
+    sum += (at(positions, a)[c] - at(positions, b)[c]) * (at(positions, a)[c] - at(positions, b)[c]);
+  return sum;
+}
 
 }  // namespace
 
@@ -80,8 +117,8 @@ struct LeafList {
 
 HierarchicalMesh::HierarchicalMesh(Mesh original) : original_(std::move(original)) {
   check_refinable(original_);
-  quad4_ = Registry::instance().element("quad4");
-  tri3_ = Registry::instance().element("tri3");
+  for (const char* name : transition_element_names(original_.dim))
+    transition_elements_.push_back(Registry::instance().element(name));
   original_nodes_ = original_.node_count();
   positions_ = original_.rest_positions;
   node_parents_.assign(static_cast<std::size_t>(original_nodes_), NodeParents{});
@@ -123,13 +160,32 @@ int HierarchicalMesh::find_midpoint(int a, int b) const {
 
 int HierarchicalMesh::midpoint(int a, int b) {
   if (const int node = find_midpoint(a, b); node >= 0) return node;
-  const int node = add_node({{a, b, -1, -1}, 2});
+  const int node = add_node({{a, b, -1, -1, -1, -1, -1, -1}, 2});
   midpoints_.emplace(edge_key(a, b), node);
   return node;
 }
 
+int HierarchicalMesh::find_face_centre(std::span<const int> face) const {
+  const auto found = face_centres_.find(face_key(face));
+  return found == face_centres_.end() ? -1 : found->second;
+}
+
+int HierarchicalMesh::face_centre(std::span<const int> face) {
+  if (const int node = find_face_centre(face); node >= 0) return node;
+  NodeParents parents;
+  for (int corner : face) parents.nodes[parents.count++] = corner;
+  const int node = add_node(parents);
+  face_centres_.emplace(face_key(face), node);
+  return node;
+}
+
 int HierarchicalMesh::centre_node(int cell) {
-  if (cells_[cell].centre < 0) cells_[cell].centre = add_node({cells_[cell].corners, 4});
+  if (cells_[cell].centre < 0) {
+    NodeParents parents;
+    parents.nodes = cells_[cell].corners;
+    parents.count = cells_[cell].corner_count();
+    cells_[cell].centre = add_node(parents);
+  }
   return cells_[cell].centre;
 }
 
@@ -146,24 +202,52 @@ std::array<int, 4> HierarchicalMesh::hanging_midpoints(const HierarchyCell& leaf
   return midpoints;
 }
 
+bool HierarchicalMesh::has_hanging_nodes(const HierarchyCell& leaf) const {
+  const tm_element_info& element = *leaf.element;
+  for (int e = 0; e < element.edge_count; ++e) {
+    const int* edge = element.edges + e * element.edge_size;
+    if (find_midpoint(leaf.corners[edge[0]], leaf.corners[edge[1]]) >= 0) return true;
+  }
+  return false;
+}
+
+std::vector<int> HierarchicalMesh::face_corners(const HierarchyCell& cell, int f) const {
+  const tm_element_info& element = *cell.element;
+  const int* face = element.faces + element.face_offsets[f];
+  std::vector<int> corners;
+  for (int k = 0; k < element.face_sizes[f]; ++k) corners.push_back(cell.corners[face[k]]);
+  return corners;
+}
+
 // --- Refinement ---------------------------------------------------------------------
 
+/// tet4: the octahedron's shortest diagonal (ties: the first), so children stay well shaped.
+int HierarchicalMesh::tet_diagonal(const HierarchyCell& cell) {
+  const std::array<int, 8>& c = cell.corners;
+  const std::array<double, 3> lengths{squared_distance(positions_, midpoint(c[0], c[1]), midpoint(c[2], c[3])),
+                                      squared_distance(positions_, midpoint(c[0], c[2]), midpoint(c[1], c[3])),
+                                      squared_distance(positions_, midpoint(c[0], c[3]), midpoint(c[1], c[2]))};
+  return static_cast<int>(std::min_element(lengths.begin(), lengths.end()) - lengths.begin());
+}
+
 void HierarchicalMesh::split(int cell) {
-  const int n = cells_[cell].corner_count();
-  std::array<int, 4> m{-1, -1, -1, -1};
-  for (int k = 0; k < n; ++k) m[k] = midpoint(cells_[cell].corners[k], cells_[cell].corners[(k + 1) % n]);
-  const std::array<int, 4> c = cells_[cell].corners;
-  std::array<std::array<int, 4>, 4> children{};
-  if (n == 4) {
-    const int z = centre_node(cell);
-    children = {{{c[0], m[0], z, m[3]}, {m[0], c[1], m[1], z}, {z, m[1], c[2], m[2]}, {m[3], z, m[2], c[3]}}};
-  } else {
-    children = {{{c[0], m[0], m[2], -1}, {m[0], c[1], m[1], -1}, {m[2], m[1], c[2], -1}, {m[0], m[1], m[2], -1}}};
+  const std::string_view name = cells_[cell].element->name;
+  const SplitPattern& pattern = split_pattern(name, name == "tet4" ? tet_diagonal(cells_[cell]) : 0);
+  const std::array<int, 8> c = cells_[cell].corners;
+  std::vector<int> nodes;
+  for (const SplitNode& node : pattern.nodes) {
+    if (node.count == 1) nodes.push_back(c[node.corners[0]]);
+    else if (node.count == 2) nodes.push_back(midpoint(c[node.corners[0]], c[node.corners[1]]));
+    else if (node.count == 4 && original_.dim == 3) {
+      const std::array<int, 4> face{c[node.corners[0]], c[node.corners[1]], c[node.corners[2]], c[node.corners[3]]};
+      nodes.push_back(face_centre(face));
+    } else nodes.push_back(centre_node(cell));  // quad4's (2D) or hex8's centre
   }
-  for (int k = 0; k < 4; ++k) {
+  for (std::size_t k = 0; k < pattern.children.size(); ++k) {
     HierarchyCell child;
     child.element = cells_[cell].element;
-    child.corners = children[k];
+    for (std::size_t n = 0; n < pattern.children[k].size(); ++n)
+      child.corners[n] = nodes[static_cast<std::size_t>(pattern.children[k][n])];
     child.parent = cell;
     child.level = cells_[cell].level + 1;
     child.origin = cells_[cell].origin;
@@ -173,13 +257,24 @@ void HierarchicalMesh::split(int cell) {
   }
 }
 
-bool HierarchicalMesh::needs_balance(int leaf) const {
-  const HierarchyCell& cell = cells_[leaf];
-  const int n = cell.corner_count();
-  for (int k = 0; k < n; ++k) {
-    const int a = cell.corners[k], b = cell.corners[(k + 1) % n];
+/// Whether a neighbour has split an edge of `cell` twice (or, in 3D, the
+/// inner triangle of a red-cut triangular face): 2:1 balance broken.
+bool HierarchicalMesh::split_twice(const HierarchyCell& cell) const {
+  const tm_element_info& element = *cell.element;
+  for (int e = 0; e < element.edge_count; ++e) {
+    const int* edge = element.edges + e * element.edge_size;
+    const int a = cell.corners[edge[0]], b = cell.corners[edge[1]];
     const int m = find_midpoint(a, b);
     if (m >= 0 && (find_midpoint(a, m) >= 0 || find_midpoint(m, b) >= 0)) return true;
+  }
+  if (original_.dim == 2) return false;
+  for (int f = 0; f < element.face_count; ++f) {
+    if (element.face_sizes[f] != 3) continue;
+    const std::vector<int> face = face_corners(cell, f);
+    const int m0 = find_midpoint(face[0], face[1]), m1 = find_midpoint(face[1], face[2]),
+              m2 = find_midpoint(face[2], face[0]);
+    if (m0 < 0 || m1 < 0 || m2 < 0) continue;
+    if (find_midpoint(m0, m1) >= 0 || find_midpoint(m1, m2) >= 0 || find_midpoint(m2, m0) >= 0) return true;
   }
   return false;
 }
@@ -188,7 +283,7 @@ void HierarchicalMesh::balance() {
   for (bool changed = true; changed;) {
     changed = false;
     for (int cell = 0; cell < hierarchy_size(); ++cell)
-      if (cells_[cell].element && cells_[cell].is_leaf() && needs_balance(cell)) {
+      if (cells_[cell].element && cells_[cell].is_leaf() && split_twice(cells_[cell])) {
         split(cell);
         changed = true;
       }
@@ -222,30 +317,23 @@ LeafTransfer HierarchicalMesh::refine(std::span<const int> marked_cells, int max
 
 // --- Coarsening ---------------------------------------------------------------------
 
-bool HierarchicalMesh::can_merge(int parent) const {
-  const HierarchyCell& cell = cells_[parent];
-  const int n = cell.corner_count();
-  for (int k = 0; k < n; ++k) {
-    const int a = cell.corners[k], b = cell.corners[(k + 1) % n];
-    const int m = find_midpoint(a, b);
-    if (find_midpoint(a, m) >= 0 || find_midpoint(m, b) >= 0) return false;  // split twice by the neighbour
-  }
-  return true;
-}
-
 void HierarchicalMesh::merge(int parent) {
   HierarchyCell& cell = cells_[parent];
   cell_sources_[parent] = cell_sources_[cell.children[0]];
   for (int child : cell.children) {
+    if (child < 0) continue;
     HierarchyCell& removed = cells_[child];
     for (int k = 0; k < removed.corner_count(); ++k) --corner_uses_[removed.corners[k]];
     removed.element = nullptr;
   }
-  cell.children = {-1, -1, -1, -1};
-  const int n = cell.corner_count();
-  for (int k = 0; k < n; ++k) {
-    const std::uint64_t key = edge_key(cell.corners[k], cell.corners[(k + 1) % n]);
-    if (corner_uses_[midpoints_.at(key)] == 0) midpoints_.erase(key);  // the neighbour has not split it
+  cell.children.fill(-1);
+  // Midpoints the neighbours have not split go (a tet's inner edges have none).
+  const tm_element_info& element = *cell.element;
+  for (int e = 0; e < element.edge_count; ++e) {
+    const int* edge = element.edges + e * element.edge_size;
+    const std::uint64_t key = edge_key(cell.corners[edge[0]], cell.corners[edge[1]]);
+    if (const auto found = midpoints_.find(key); found != midpoints_.end() && corner_uses_[found->second] == 0)
+      midpoints_.erase(found);
   }
 }
 
@@ -259,7 +347,8 @@ LeafTransfer HierarchicalMesh::coarsen(std::span<const int> marked_cells) {
   std::sort(parents.begin(), parents.end());
   parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
   const auto all_marked_leaves = [&](int parent) {
-    return std::all_of(cells_[parent].children.begin(), cells_[parent].children.end(), [&](int child) {
+    const HierarchyCell& cell = cells_[parent];
+    return std::all_of(cell.children.begin(), cell.children.begin() + cell.child_count(), [&](int child) {
       return cells_[child].is_leaf() && std::binary_search(owners.begin(), owners.end(), child);
     });
   };
@@ -268,7 +357,7 @@ LeafTransfer HierarchicalMesh::coarsen(std::span<const int> marked_cells) {
   // Deepest first, so that a neighbour merged in the same call no longer blocks.
   std::stable_sort(parents.begin(), parents.end(), [&](int p, int q) { return cells_[p].level > cells_[q].level; });
   for (int parent : parents)
-    if (can_merge(parent)) merge(parent);
+    if (!split_twice(cells_[parent])) merge(parent);
   return rebuild();
 }
 
@@ -280,221 +369,6 @@ std::vector<int> HierarchicalMesh::leaves_per_level() const {
     ++counts[cell.level];
   }
   return counts;
-}
-
-// --- Leaf mesh ----------------------------------------------------------------------
-
-LeafTransfer HierarchicalMesh::rebuild() {
-  LeafTransfer transfer;
-  transfer.old_node_count = old_node_count_;
-  transfer.old_cell_count = leaf_.cell_count();
-  for (int cell = 0; cell < hierarchy_size(); ++cell) {
-    const HierarchyCell& leaf = cells_[cell];
-    if (!leaf.element || !leaf.is_leaf() || leaf.corner_count() != 4) continue;
-    const std::array<int, 4> hanging = hanging_midpoints(leaf);
-    if (std::any_of(hanging.begin(), hanging.end(), [](int m) { return m >= 0; })) centre_node(cell);
-    else cells_[cell].centre = -1;  // its node, no longer used, goes below
-  }
-  compact_nodes(transfer);
-  compact_cells();
-  build_leaf_mesh();
-  for (int owner : leaf_owners_) transfer.cell_sources.push_back(cell_sources_[owner]);
-  return transfer;
-}
-
-void HierarchicalMesh::expand_node(int node, double weight, std::vector<std::pair<int, double>>& sources) const {
-  if (node < old_node_count_) {
-    sources.emplace_back(node, weight);
-    return;
-  }
-  const NodeParents& parents = node_parents_[node];
-  for (int k = 0; k < parents.count; ++k) expand_node(parents.nodes[k], weight / parents.count, sources);
-}
-
-void HierarchicalMesh::compact_nodes(LeafTransfer& transfer) {
-  const int count = static_cast<int>(node_parents_.size());
-  std::vector<char> keep(static_cast<std::size_t>(count), 0);
-  for (int node = 0; node < count; ++node) keep[node] = corner_uses_[node] > 0;
-  for (const HierarchyCell& cell : cells_)
-    if (cell.element && cell.centre >= 0) keep[cell.centre] = 1;
-  std::vector<int> new_index(static_cast<std::size_t>(count), -1);
-  int kept = 0;
-  for (int node = 0; node < count; ++node) {
-    if (!keep[node]) continue;
-    new_index[node] = kept++;
-    std::vector<std::pair<int, double>> sources;
-    expand_node(node, 1.0, sources);
-    for (const auto& [source, weight] : sources) {
-      transfer.node_sources.push_back(source);
-      transfer.node_weights.push_back(weight);
-    }
-    transfer.node_offsets.push_back(static_cast<int>(transfer.node_sources.size()));
-  }
-  for (int node = 0; node < count; ++node) {
-    const int target = new_index[node];
-    if (target < 0 || target == node) continue;
-    std::copy_n(positions_.begin() + 3 * static_cast<std::ptrdiff_t>(node), 3,
-                positions_.begin() + 3 * static_cast<std::ptrdiff_t>(target));
-    node_parents_[target] = node_parents_[node];
-    corner_uses_[target] = corner_uses_[node];
-  }
-  positions_.resize(3 * static_cast<std::size_t>(kept));
-  node_parents_.resize(kept);
-  corner_uses_.resize(kept);
-  const auto renumber = [&](int node) { return node < 0 ? -1 : new_index[node]; };
-  for (NodeParents& parents : node_parents_)
-    for (int k = 0; k < parents.count; ++k) parents.nodes[k] = renumber(parents.nodes[k]);
-  for (HierarchyCell& cell : cells_) {
-    for (int& corner : cell.corners) corner = renumber(corner);
-    cell.centre = renumber(cell.centre);
-  }
-  std::unordered_map<std::uint64_t, int> midpoints;
-  for (const auto& [key, node] : midpoints_) {
-    const int a = renumber(static_cast<int>(key >> 32)), b = renumber(static_cast<int>(key & 0xffffffffu));
-    if (a >= 0 && b >= 0 && renumber(node) >= 0) midpoints.emplace(edge_key(a, b), renumber(node));
-  }
-  midpoints_ = std::move(midpoints);
-}
-
-void HierarchicalMesh::compact_cells() {
-  std::vector<int> new_index(cells_.size(), -1);
-  int kept = 0;
-  for (std::size_t cell = 0; cell < cells_.size(); ++cell)
-    if (cells_[cell].element) new_index[cell] = kept++;
-  const auto renumber = [&](int cell) { return cell < 0 ? -1 : new_index[cell]; };
-  for (std::size_t cell = 0; cell < cells_.size(); ++cell) {
-    if (new_index[cell] < 0) continue;
-    HierarchyCell moved = cells_[cell];
-    moved.parent = renumber(moved.parent);
-    for (int& child : moved.children) child = renumber(child);
-    cells_[new_index[cell]] = moved;
-    cell_sources_[new_index[cell]] = cell_sources_[cell];
-  }
-  cells_.resize(kept);
-  cell_sources_.resize(kept);
-}
-
-void HierarchicalMesh::build_leaf_mesh() {
-  std::vector<LeafList> lists;
-  for (const ElementBlock& block : original_.blocks) lists.push_back({block.element, {}, {}, {}});
-  for (const tm_element_info* element : {quad4_, tri3_})
-    if (std::none_of(lists.begin(), lists.end(), [&](const LeafList& list) { return list.element == element; }))
-      lists.push_back({element, {}, {}, {}});
-  const auto list_of = [&](const tm_element_info* element) -> LeafList& {
-    return *std::find_if(lists.begin(), lists.end(), [&](const LeafList& list) { return list.element == element; });
-  };
-  const auto emit = [&](int cell) {
-    const HierarchyCell& leaf = cells_[cell];
-    const std::array<int, 4> hanging = hanging_midpoints(leaf);
-    const bool whole = std::none_of(hanging.begin(), hanging.end(), [](int m) { return m >= 0; });
-    if (whole) {
-      LeafList& list = list_of(leaf.element);
-      list.connectivity.insert(list.connectivity.end(), leaf.corners.begin(),
-                               leaf.corners.begin() + leaf.corner_count());
-      list.owners.push_back(cell);
-      list.transitions.push_back(0);
-      return;
-    }
-    const std::vector<Triangle> triangles =
-        leaf.corner_count() == 4
-            ? quad_transition(std::span<const int, 4>(leaf.corners), std::span<const int, 4>(hanging), leaf.centre)
-            : triangle_transition(std::span<const int, 3>(leaf.corners.data(), 3),
-                                  std::span<const int, 3>(hanging.data(), 3), positions_);
-    LeafList& list = list_of(tri3_);
-    for (const Triangle& triangle : triangles) {
-      list.connectivity.insert(list.connectivity.end(), triangle.begin(), triangle.end());
-      list.owners.push_back(cell);
-      list.transitions.push_back(1);
-    }
-  };
-  // Depth first from each original cell, children in order.
-  std::vector<int> stack;
-  const int original_cells = original_.cell_count();
-  for (int root = 0; root < original_cells; ++root) {
-    stack.push_back(root);
-    while (!stack.empty()) {
-      const int cell = stack.back();
-      stack.pop_back();
-      if (cells_[cell].is_leaf()) emit(cell);
-      else stack.insert(stack.end(), cells_[cell].children.rbegin(), cells_[cell].children.rend());
-    }
-  }
-  leaf_ = Mesh{};
-  leaf_.dim = 2;
-  leaf_.source = original_.source;
-  leaf_.rest_positions = positions_;
-  if (!original_.node_source_ids.empty()) {
-    leaf_.node_source_ids.assign(original_.node_source_ids.begin(), original_.node_source_ids.end());
-    const long first_new = 1 + *std::max_element(original_.node_source_ids.begin(), original_.node_source_ids.end());
-    for (int node = original_nodes_; node < leaf_.node_count(); ++node)
-      leaf_.node_source_ids.push_back(first_new + (node - original_nodes_));
-  }
-  const bool cell_ids = std::all_of(original_.blocks.begin(), original_.blocks.end(), [](const ElementBlock& block) {
-    return static_cast<int>(block.source_ids.size()) == block.count();
-  });
-  leaf_owners_.clear();
-  leaf_levels_.clear();
-  leaf_transitions_.clear();
-  first_leaf_cell_.assign(cells_.size(), -1);
-  for (LeafList& list : lists) {
-    if (list.owners.empty()) continue;
-    ElementBlock block{list.element, std::move(list.connectivity), {}, leaf_.cell_count()};
-    for (std::size_t local = 0; local < list.owners.size(); ++local) {
-      const int owner = list.owners[local];
-      if (cell_ids) {
-        const auto [b, origin_local] = original_.locate(cells_[owner].origin);
-        block.source_ids.push_back(original_.blocks[b].source_ids[origin_local]);
-      }
-      if (first_leaf_cell_[owner] < 0) first_leaf_cell_[owner] = block.first_cell + static_cast<int>(local);
-      leaf_owners_.push_back(owner);
-      leaf_levels_.push_back(cells_[owner].level);
-      leaf_transitions_.push_back(list.transitions[local]);
-    }
-    leaf_.blocks.push_back(std::move(block));
-  }
-  add_leaf_groups();
-  leaf_.validate();
-}
-
-void HierarchicalMesh::add_leaf_groups() {
-  const int node_count = leaf_.node_count();
-  for (const Group& group : original_.groups) {
-    Group leaf_group{group.name, group.dim, {}, {}, {}};
-    std::vector<char> member(static_cast<std::size_t>(node_count), 0);
-    for (int node : group.nodes) member[node] = 1;
-    for (int node = original_nodes_; node < node_count; ++node) {
-      const NodeParents& parents = node_parents_[node];
-      member[node] = parents.count == 2 && parents.nodes[0] >= 0 && parents.nodes[1] >= 0 && member[parents.nodes[0]] &&
-                     member[parents.nodes[1]];
-    }
-    for (int cell = 0; cell < static_cast<int>(leaf_owners_.size()); ++cell) {
-      if (!std::binary_search(group.cells.begin(), group.cells.end(), cells_[leaf_owners_[cell]].origin)) continue;
-      leaf_group.cells.push_back(cell);
-      const auto [b, local] = leaf_.locate(cell);
-      for (int node : leaf_.blocks[b].cell_nodes(local))
-        if (node >= original_nodes_) member[node] = 1;
-    }
-    for (int node = 0; node < node_count; ++node)
-      if (member[node]) leaf_group.nodes.push_back(node);
-    FacetSet& facets = leaf_group.facets;
-    const auto add_piece = [&](auto& self, int a, int b, int order) -> void {
-      if (const int m = find_midpoint(a, b); m >= 0) {
-        self(self, a, m, order);
-        self(self, m, b, order);
-        return;
-      }
-      facets.nodes.push_back(a);
-      facets.nodes.push_back(b);
-      facets.offsets.push_back(static_cast<int>(facets.nodes.size()));
-      facets.orders.push_back(order);
-    };
-    for (int f = 0; f < group.facets.count(); ++f) {
-      const int first = group.facets.offsets[f];
-      const int order = f < static_cast<int>(group.facets.orders.size()) ? group.facets.orders[f] : 1;
-      add_piece(add_piece, group.facets.nodes[first], group.facets.nodes[first + 1], order);
-    }
-    leaf_.groups.push_back(std::move(leaf_group));
-  }
 }
 
 }  // namespace tensormass

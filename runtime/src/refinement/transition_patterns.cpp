@@ -19,8 +19,10 @@ double squared_distance(std::span<const double> positions, int a, int b) {
 /// b = whole + 1), m1 splits edge b-c, m2 splits edge c-a.
 std::vector<Triangle> green_pattern(int a, int b, int c, int m1, int m2, std::span<const double> positions) {
   std::vector<Triangle> triangles{{m1, c, m2}};
-  // The trapezoid a, b, m1, m2 along its shorter diagonal.
-  if (squared_distance(positions, a, m1) <= squared_distance(positions, b, m2)) {
+  // The trapezoid a, b, m1, m2 along its shorter diagonal; a tie goes by node
+  // index, so that the cells on both sides of a 3D face choose alike.
+  const double from_a = squared_distance(positions, a, m1), from_b = squared_distance(positions, b, m2);
+  if (from_a < from_b || (from_a == from_b && a < b)) {
     triangles.push_back({a, b, m1});
     triangles.push_back({a, m1, m2});
   } else {
@@ -64,6 +66,16 @@ std::vector<Triangle> triangle_transition(std::span<const int, 3> corners, std::
       static_cast<int>(std::find(midpoints.begin(), midpoints.end(), -1) - midpoints.begin());  // split == 2
   return green_pattern(corner(whole), corner(whole + 1), corner(whole + 2), midpoint(whole + 1), midpoint(whole + 2),
                        positions);
+}
+
+std::vector<const char*> transition_element_names(int dim) {
+  if (dim == 2) return {"tri3"};
+  return {"tet4", "pyramid5"};
+}
+
+std::vector<int> cone(const FacePiece& piece, int apex) {
+  if (piece[3] < 0) return {piece[0], piece[2], piece[1], apex};
+  return {piece[0], piece[3], piece[2], piece[1], apex};
 }
 
 }  // namespace tensormass

@@ -9,6 +9,8 @@
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh_topology.hpp"
 #include "tensormass/model/model.hpp"
+#include "tensormass/refinement/split_patterns.hpp"
+#include "tensormass/refinement/transition_patterns.hpp"
 #include "tensormass/scene/scene.hpp"
 
 namespace tensormass {
@@ -103,33 +105,43 @@ void check_materials(const Scene& scene, const Mesh& mesh) {
 }
 
 /// Every law of the adaptivity ladder has a kernel for every element type of
-/// the mesh, and for tri3 when refinement may add transition triangles.
+/// the mesh, and for the transition cells refinement may add.
 void check_ladder(const Scene& scene, const Mesh& mesh) {
   if (!scene.adaptivity.enabled) return;
   std::vector<std::string> elements;
   for (const ElementBlock& block : mesh.blocks) elements.push_back(block.element->name);
-  if (scene.refinement.enabled) elements.push_back("tri3");
+  if (scene.refinement.enabled)
+    for (const char* name : transition_element_names(mesh.dim)) elements.emplace_back(name);
   for (const std::string& law : scene.adaptivity.ladder)
-    for (const std::string& element : elements)
-      if (!Registry::instance().find(law, element, "whole"))
+    for (std::size_t e = 0; e < elements.size(); ++e)
+      if (!Registry::instance().find(law, elements[e], "whole"))
         throw InputError(place(scene, scene.adaptivity.ladder_line, "adaptivity.ladder") + "no kernel for law '" + law +
-                         "' on element '" + element + "'" +
-                         (element == "tri3" && scene.refinement.enabled ? " (refinement adds tri3 cells)" : "") +
+                         "' on element '" + elements[e] + "'" +
+                         (e >= mesh.blocks.size() ? " (refinement adds " + elements[e] + " cells)" : std::string()) +
                          " (see `tensormass kernels`)");
 }
 
-/// Refinement runs on 2D meshes of quad4 and tri3 cells only (hierarchical_mesh.hpp).
+/// Refinement runs on 2D meshes of quad4 and tri3 cells and 3D meshes of
+/// hex8, tet4 and prism6 cells (hierarchical_mesh.hpp); every material has
+/// a kernel for the transition cells too.
 void check_refinement(const Scene& scene, const Mesh& mesh) {
   if (!scene.refinement.enabled) return;
   const std::string where = place(scene, scene.refinement.line, "adaptivity.refine");
-  if (mesh.dim != 2)
-    throw InputError(where + "refinement runs on 2D meshes only so far; " + mesh_name(mesh) + " is " +
-                     std::to_string(mesh.dim) + "D");
   for (const ElementBlock& block : mesh.blocks) {
     const std::string name = block.element->name;
-    if (name != "quad4" && name != "tri3")
-      throw InputError(where + "refinement supports quad4 and tri3 cells only so far; " + mesh_name(mesh) + " has " +
-                       name + " cells");
+    if (!has_split_pattern(name))
+      throw InputError(where + "refinement supports quad4 and tri3 cells in 2D, hex8, tet4 and prism6 cells in 3D; " +
+                       mesh_name(mesh) + " has " + name + " cells");
+  }
+  for (const char* name : transition_element_names(mesh.dim)) {
+    const tm_element_info& element = *Registry::instance().element(name);
+    for (std::size_t m = 0; m < scene.model.materials.size(); ++m) {
+      const MaterialSpec& material = scene.model.materials[m];
+      if (!material_kernel(material, element))
+        throw InputError(place(scene, material.line, "materials[" + std::to_string(m) + "]") + "no kernel for law '" +
+                         material.law + "', element '" + name + "', split '" + material_split(material, element) +
+                         "', which refinement's transition cells need (see `tensormass kernels`)");
+    }
   }
 }
 

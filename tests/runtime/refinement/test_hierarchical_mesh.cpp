@@ -248,11 +248,6 @@ TEST(HierarchicalMesh, BadInputIsAnInputErrorThatSaysWhy) {
       EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
     }
   };
-  tensormass::BeamSpec cube;
-  cube.dim = 3;
-  cube.cells = {2, 1, 1};
-  cube.phases = {{"hex8", 1.0}};
-  expect_error([&] { (void)HierarchicalMesh(tensormass::make_beam(cube)); }, "only 2D meshes");
   tensormass::BeamSpec quadratic;
   quadratic.cells = {2, 1, 1};
   quadratic.order = 2;

@@ -1,30 +1,41 @@
 /// \file hierarchical_mesh.hpp
-/// A 2D mesh of quad4 and tri3 cells that is refined and coarsened while a
-/// simulation runs, and the conforming mesh of its leaves to simulate.
+/// A mesh that is refined and coarsened while a simulation runs, and the
+/// conforming mesh of its leaves to simulate: 2D meshes of quad4 and tri3
+/// cells, 3D meshes of hex8, tet4 and prism6 cells.
 ///
 /// Glossary:
 ///   hierarchy cell  an original cell (level 0) or a child made by splitting
 ///                   a cell (level = parent's level + 1); it keeps its
-///                   parent and its four children
+///                   parent and its children
 ///   leaf            a hierarchy cell without children
-///   leaf mesh       the Mesh of the leaves: a leaf with no hanging midpoint
-///                   on its edges is one cell; a leaf with some is filled by
-///                   temporary transition triangles (transition_patterns.hpp),
-///                   dropped and rebuilt on the next change
-///   hanging midpoint the midpoint of a leaf's edge, made by the neighbour
-///                   across that edge when it was split
+///   leaf mesh       the Mesh of the leaves: a leaf with no hanging node is
+///                   one cell; a leaf with some is filled by temporary
+///                   transition cells (transition_patterns.hpp), dropped and
+///                   rebuilt on the next change
+///   hanging node    the midpoint of a leaf's edge, or the centre of its
+///                   face, made by a neighbour that was split
 ///
-/// Splitting (one level): quad -> 4 quads over the edge midpoints and the
-/// centre (the mean of the corners), child k holding the parent's corner k;
-/// tri -> 4 tris over the edge midpoints, child k (k < 3) holding corner k,
-/// child 3 in the middle. Cells stay counter-clockwise.
+/// Splitting (one level, split_patterns.hpp): tri3, quad4 -> 4 children;
+/// tet4, prism6, hex8 -> 8. A tet's inner octahedron is cut along its
+/// shortest diagonal (ties: the first). Children keep the parent's
+/// orientation.
+///
+/// Transitions: in 2D a quad with hanging midpoints is a fan of triangles
+/// around its centre, a triangle is cut red-green. In 3D a leaf with hanging
+/// nodes is filled by cones from its centre (the mean of its corners) to
+/// the pieces of its faces: a quad face split by the neighbour across gives
+/// its 4 quarters, one with some split edges a fan of triangles around its
+/// centre node (shared with the cell across), a triangle face its red-green
+/// pattern; the cones are tet4 over triangles and pyramid5 over quads. Both
+/// cells of a face cut it alike, so the leaf mesh conforms.
 ///
 /// 2:1 balance: leaves that share a stretch of edge differ by at most one
-/// level. Refining splits the marked leaves, then every leaf an edge of
-/// which has been split twice on the other side, until none is left.
-/// Coarsening merges the children of a parent back into it when all of
-/// them are marked leaves and the parent's edges are split at most once by
-/// its neighbours; one level per call.
+/// level (in 3D also across the inner triangle of a red-refined face).
+/// Refining splits the marked leaves, then every leaf an edge of which has
+/// been split twice on the other side, until none is left. Coarsening
+/// merges the children of a parent back into it when all of them are
+/// marked leaves and the parent's edges are split at most once by its
+/// neighbours; one level per call.
 ///
 /// Nodes: the original nodes first, in their order, then the nodes made by
 /// splitting (and transition centres), in the order they were made; a node
@@ -32,14 +43,15 @@
 /// everything back therefore restores the original mesh bit for bit:
 /// nodes, cells (original blocks and order), groups.
 ///
-/// Groups of the leaf mesh: a node group gains an edge midpoint when both
-/// ends of the edge belong to it (a fixed boundary stays fixed); a group
-/// with cells gains the children and transition triangles of its cells and
-/// their new nodes; a boundary facet (line2) is replaced by the pieces its
-/// edge is split into, in its direction.
+/// Groups of the leaf mesh: a node group gains a new node when all the
+/// nodes it is the mean of belong to it (a fixed boundary stays fixed); a
+/// group with cells gains the children and transition cells of its cells
+/// and their new nodes; a boundary facet (line2 in 2D, tri3 or quad4 in 3D)
+/// is replaced by the pieces the leaves cut it into, in its orientation.
 #ifndef TENSORMASS_REFINEMENT_HIERARCHICAL_MESH_HPP
 #define TENSORMASS_REFINEMENT_HIERARCHICAL_MESH_HPP
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -50,20 +62,29 @@
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/refinement/leaf_transfer.hpp"
+#include "tensormass/refinement/transition_patterns.hpp"
 
 namespace tensormass {
 
 /// One cell of the hierarchy.
 struct HierarchyCell {
-  const tm_element_info* element = nullptr;     ///< quad4 or tri3; nullptr for a removed cell (internal)
-  std::array<int, 4> corners{-1, -1, -1, -1};   ///< counter-clockwise node indices; corners[3] = -1 for tri3
-  int parent = -1;                              ///< -1 for an original cell
-  int level = 0;                                ///< 0 for an original cell
-  std::array<int, 4> children{-1, -1, -1, -1};  ///< all -1 for a leaf
-  int origin = 0;   ///< the original cell (mesh-wide index in the wrapped mesh) this cell lies in
-  int centre = -1;  ///< quad4: its centre node while it has children or a transition, else -1
+  const tm_element_info* element = nullptr;  ///< nullptr for a removed cell (internal)
+  /// Node indices in the element's order (2D: counter-clockwise), -1 after the last.
+  std::array<int, 8> corners{-1, -1, -1, -1, -1, -1, -1, -1};
+  int parent = -1;                                              ///< -1 for an original cell
+  int level = 0;                                                ///< 0 for an original cell
+  std::array<int, 8> children{-1, -1, -1, -1, -1, -1, -1, -1};  ///< all -1 for a leaf
+  int origin = 0;  ///< the original cell (mesh-wide index in the wrapped mesh) this cell lies in
+  /// Its centre node while a transition fills it or (quad4, hex8) its
+  /// children use it, else -1.
+  int centre = -1;
 
-  int corner_count() const { return corners[3] < 0 ? 3 : 4; }
+  int corner_count() const {
+    return static_cast<int>(std::count_if(corners.begin(), corners.end(), [](int n) { return n >= 0; }));
+  }
+  int child_count() const {
+    return static_cast<int>(std::count_if(children.begin(), children.end(), [](int c) { return c >= 0; }));
+  }
   bool is_leaf() const { return children[0] < 0; }
 };
 
@@ -71,19 +92,20 @@ class HierarchicalMesh {
  public:
   static constexpr int kUnlimited = std::numeric_limits<int>::max();
 
-  /// Wraps `original`: a valid 2D mesh of quad4 and tri3 cells, each with a
-  /// positive area, every edge shared by at most two cells, group facets of
-  /// two nodes (line2). Throws InputError otherwise.
+  /// Wraps `original`: a valid 2D mesh of quad4 and tri3 cells or 3D mesh
+  /// of hex8, tet4 and prism6 cells, each of positive area (volume), every
+  /// edge (face) shared by at most two cells, group facets of the mesh's
+  /// facet kinds (line2; tri3, quad4). Throws InputError otherwise.
   explicit HierarchicalMesh(Mesh original);
 
   /// The conforming mesh of the leaves (see the file comment).
   const Mesh& leaf_mesh() const { return leaf_; }
   /// leaf_mesh().cell_count(): the hierarchy cell each leaf-mesh cell is,
-  /// or fills (a transition triangle).
+  /// or fills (a transition cell).
   std::span<const int> leaf_owners() const { return leaf_owners_; }
   /// leaf_mesh().cell_count(): the level of each leaf-mesh cell's owner.
   std::span<const int> leaf_levels() const { return leaf_levels_; }
-  /// leaf_mesh().cell_count(): 1 for a transition triangle, 0 for a whole leaf.
+  /// leaf_mesh().cell_count(): 1 for a transition cell, 0 for a whole leaf.
   std::span<const char> leaf_transitions() const { return leaf_transitions_; }
 
   /// Splits the owners of the marked leaf-mesh cells (indices into
@@ -107,41 +129,54 @@ class HierarchicalMesh {
  private:
   /// How a node was made: its value is the mean of these nodes' values.
   struct NodeParents {
-    std::array<int, 4> nodes{-1, -1, -1, -1};
-    int count = 0;  ///< 0 original node, 2 edge midpoint, 4 quad centre
+    std::array<int, 8> nodes{-1, -1, -1, -1, -1, -1, -1, -1};
+    int count = 0;  ///< 0 original node, 2 edge midpoint, 4 face (quad) centre, up to 8 cell centre
   };
 
-  // Hierarchy edits.
+  // Hierarchy edits (hierarchical_mesh.cpp).
   void add_original_cells();
   int add_node(const NodeParents& parents);
   int find_midpoint(int a, int b) const;
   int midpoint(int a, int b);
+  int find_face_centre(std::span<const int> face) const;
+  int face_centre(std::span<const int> face);
   int centre_node(int cell);
   void add_cell(const HierarchyCell& cell);
+  int tet_diagonal(const HierarchyCell& cell);
   void split(int cell);
   void merge(int parent);
-  bool needs_balance(int leaf) const;
-  bool can_merge(int parent) const;
+  bool split_twice(const HierarchyCell& cell) const;
   void balance();
   std::vector<int> marked_owners(std::span<const int> marked_cells, const char* operation) const;
   std::array<int, 4> hanging_midpoints(const HierarchyCell& leaf) const;
+  bool has_hanging_nodes(const HierarchyCell& leaf) const;
+  /// Corners of face f of a cell (3 or 4, counter-clockwise seen from outside).
+  std::vector<int> face_corners(const HierarchyCell& cell, int f) const;
 
-  // Leaf mesh and transfer.
+  // Leaf mesh and transfer (hierarchical_leaf_mesh.cpp).
   LeafTransfer rebuild();
+  void make_transition_nodes();
+  /// The pieces a 3D face (3 or 4 corners) is cut into by the leaves on
+  /// both sides; with `make_centres`, makes missing fan centres and lists them.
+  void face_pieces(std::span<const int> face, std::vector<FacePiece>& pieces, bool make_centres);
   void compact_nodes(LeafTransfer& transfer);
   void compact_cells();
   void build_leaf_mesh();
   void add_leaf_groups();
+  void add_facet_pieces(const Group& group, FacetSet& facets);
   void expand_node(int node, double weight, std::vector<std::pair<int, double>>& sources) const;
 
   Mesh original_;
-  const tm_element_info* quad4_ = nullptr;
-  const tm_element_info* tri3_ = nullptr;
+  /// Element types transition cells are made of (2D: tri3; 3D: tet4, pyramid5).
+  std::vector<const tm_element_info*> transition_elements_;
   int original_nodes_ = 0;
   std::vector<double> positions_;                     ///< node count by 3
   std::vector<NodeParents> node_parents_;             ///< node count
   std::vector<int> corner_uses_;                      ///< node count: live hierarchy cells with the node as a corner
   std::unordered_map<std::uint64_t, int> midpoints_;  ///< edge (low, high node) -> its midpoint node
+  /// 3D quad face (its lowest corner, the corner opposite) -> its centre node.
+  std::unordered_map<std::uint64_t, int> face_centres_;
+  std::vector<int> fan_centres_;  ///< during a rebuild: face centres the transitions need
   std::vector<HierarchyCell> cells_;
   std::vector<int> cell_sources_;  ///< hierarchy size: first leaf-mesh cell of the old mesh covering it
 
