@@ -234,7 +234,9 @@ void HierarchicalMesh::build_leaf_mesh() {
       stack.pop_back();
       const HierarchyCell& at = cells_[cell];
       if (at.is_leaf()) emit(cell);
-      else stack.insert(stack.end(), at.children.rbegin() + (8 - at.child_count()), at.children.rend());
+      else
+        stack.insert(stack.end(), at.children.rbegin() + static_cast<long>(at.children.size()) - at.child_count(),
+                     at.children.rend());
     }
   }
   leaf_ = Mesh{};

@@ -65,8 +65,8 @@ void check_cells(const Mesh& mesh) {
     const std::string name = block.element->name;
     if (!has_split_pattern(name))
       throw InputError(mesh_name(mesh) + ": " + name +
-                       " cells cannot be refined (refinement supports quad4 and tri3 in 2D, hex8, tet4 and prism6 in "
-                       "3D)");
+                       " cells cannot be refined (refinement supports quad4 and tri3 in 2D, hex8, tet4, prism6 and "
+                       "pyramid5 in 3D)");
     for (int local = 0; local < block.count(); ++local) {
       const auto nodes = block.cell_nodes(local);
       const double measure = mesh.dim == 2 ? twice_signed_area(mesh.rest_positions, nodes)
@@ -245,7 +245,9 @@ void HierarchicalMesh::split(int cell) {
   }
   for (std::size_t k = 0; k < pattern.children.size(); ++k) {
     HierarchyCell child;
-    child.element = cells_[cell].element;
+    child.element = pattern.child_elements.empty()
+                        ? cells_[cell].element
+                        : Registry::instance().element(std::string(pattern.child_elements[k]));
     for (std::size_t n = 0; n < pattern.children[k].size(); ++n)
       child.corners[n] = nodes[static_cast<std::size_t>(pattern.children[k][n])];
     child.parent = cell;

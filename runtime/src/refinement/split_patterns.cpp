@@ -41,6 +41,24 @@ double orientation(const std::array<double, 3>& a, const std::array<double, 3>& 
   return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
+/// The mean of a pattern node's corners in reference coordinates `corner`.
+template <std::size_t N>
+std::array<double, 3> reference_point(const SplitNode& node, const std::array<std::array<double, 3>, N>& corner) {
+  std::array<double, 3> x{0, 0, 0};
+  for (int k = 0; k < node.count; ++k)
+    for (int c = 0; c < 3; ++c) x[c] += corner[node.corners[k]][c] / node.count;
+  return x;
+}
+
+/// Orders a tet child (indices into pattern.nodes) for a positive volume.
+template <std::size_t N>
+std::vector<int> oriented_tet(std::vector<int> tet, const SplitPattern& pattern,
+                              const std::array<std::array<double, 3>, N>& corner) {
+  const auto point = [&](int k) { return reference_point(pattern.nodes[static_cast<std::size_t>(tet[k])], corner); };
+  if (orientation(point(0), point(1), point(2), point(3)) < 0) std::swap(tet[2], tet[3]);
+  return tet;
+}
+
 SplitPattern tet4_pattern(int diagonal) {
   SplitPattern pattern;
   // Corners 0-3, then the midpoints of edges 0-1, 1-2, 2-0, 0-3, 1-3, 2-3 (nodes 4-9).
@@ -51,19 +69,29 @@ SplitPattern tet4_pattern(int diagonal) {
   constexpr std::array<std::array<int, 6>, 3> kCuts{{{4, 9, 6, 5, 8, 7}, {6, 8, 4, 5, 9, 7}, {7, 5, 4, 6, 9, 8}}};
   const std::array<int, 6>& cut = kCuts.at(static_cast<std::size_t>(diagonal));
   const std::array<std::array<double, 3>, 4> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  const auto reference = [&](int node) {
-    std::array<double, 3> x{0, 0, 0};
-    const SplitNode& n = pattern.nodes[static_cast<std::size_t>(node)];
-    for (int k = 0; k < n.count; ++k)
-      for (int c = 0; c < 3; ++c) x[c] += corner[n.corners[k]][c] / n.count;
-    return x;
-  };
-  for (int k = 0; k < 4; ++k) {
-    std::vector<int> child{cut[0], cut[1], cut[2 + k], cut[2 + (k + 1) % 4]};
-    if (orientation(reference(child[0]), reference(child[1]), reference(child[2]), reference(child[3])) < 0)
-      std::swap(child[2], child[3]);
-    pattern.children.push_back(child);
-  }
+  for (int k = 0; k < 4; ++k)
+    pattern.children.push_back(oriented_tet({cut[0], cut[1], cut[2 + k], cut[2 + (k + 1) % 4]}, pattern, corner));
+  return pattern;
+}
+
+SplitPattern pyramid5_pattern() {
+  // Corners 0-3 (base, counter-clockwise seen from the apex) and 4 (apex);
+  // base edge midpoints e_k (nodes 5-8), lateral edge midpoints l_k (9-12),
+  // the base's centre (13).
+  SplitPattern pattern;
+  pattern.nodes = {node_of({0}), node_of({1}), node_of({2}), node_of({3}), node_of({4})};
+  for (int k = 0; k < 4; ++k) pattern.nodes.push_back(node_of({k, (k + 1) % 4}));
+  for (int k = 0; k < 4; ++k) pattern.nodes.push_back(node_of({k, 4}));
+  pattern.nodes.push_back(node_of({0, 1, 2, 3}));
+  const auto e = [](int k) { return 5 + (k + 4) % 4; };
+  const auto l = [](int k) { return 9 + (k + 4) % 4; };
+  for (int k = 0; k < 4; ++k) pattern.children.push_back({k, e(k), 13, e(k - 1), l(k)});
+  pattern.children.push_back({l(0), l(1), l(2), l(3), 4});
+  pattern.children.push_back({l(0), l(3), l(2), l(1), 13});
+  const std::array<std::array<double, 3>, 5> corner{{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, 1}}};
+  for (int k = 0; k < 4; ++k) pattern.children.push_back(oriented_tet({e(k), l(k + 1), l(k), 13}, pattern, corner));
+  pattern.child_elements = {"pyramid5", "pyramid5", "pyramid5", "pyramid5", "pyramid5",
+                            "pyramid5", "tet4",     "tet4",     "tet4",     "tet4"};
   return pattern;
 }
 
@@ -134,17 +162,19 @@ SplitPattern hex8_pattern() {
 }  // namespace
 
 bool has_split_pattern(std::string_view element) {
-  return element == "tri3" || element == "quad4" || element == "tet4" || element == "prism6" || element == "hex8";
+  return element == "tri3" || element == "quad4" || element == "tet4" || element == "prism6" || element == "hex8" ||
+         element == "pyramid5";
 }
 
 const SplitPattern& split_pattern(std::string_view element, int tet_diagonal) {
   static const SplitPattern tri3 = tri3_pattern(), quad4 = quad4_pattern(), prism6 = prism6_pattern(),
-                            hex8 = hex8_pattern();
+                            hex8 = hex8_pattern(), pyramid5 = pyramid5_pattern();
   static const std::array<SplitPattern, 3> tet4{tet4_pattern(0), tet4_pattern(1), tet4_pattern(2)};
   if (element == "tri3") return tri3;
   if (element == "quad4") return quad4;
   if (element == "prism6") return prism6;
   if (element == "hex8") return hex8;
+  if (element == "pyramid5") return pyramid5;
   if (element == "tet4") {
     if (tet_diagonal < 0 || tet_diagonal > 2)
       throw std::invalid_argument("split_pattern: tet4 diagonal " + std::to_string(tet_diagonal) + " is not 0, 1 or 2");

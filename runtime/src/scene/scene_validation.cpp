@@ -122,7 +122,7 @@ void check_ladder(const Scene& scene, const Mesh& mesh) {
 }
 
 /// Refinement runs on 2D meshes of quad4 and tri3 cells and 3D meshes of
-/// hex8, tet4 and prism6 cells (hierarchical_mesh.hpp); every material has
+/// hex8, tet4, prism6 and pyramid5 cells (hierarchical_mesh.hpp); every material has
 /// a kernel for the transition cells too.
 void check_refinement(const Scene& scene, const Mesh& mesh) {
   if (!scene.refinement.enabled) return;
@@ -130,7 +130,8 @@ void check_refinement(const Scene& scene, const Mesh& mesh) {
   for (const ElementBlock& block : mesh.blocks) {
     const std::string name = block.element->name;
     if (!has_split_pattern(name))
-      throw InputError(where + "refinement supports quad4 and tri3 cells in 2D, hex8, tet4 and prism6 cells in 3D; " +
+      throw InputError(where +
+                       "refinement supports quad4 and tri3 cells in 2D, hex8, tet4, prism6 and pyramid5 cells in 3D; " +
                        mesh_name(mesh) + " has " + name + " cells");
   }
   for (const char* name : transition_element_names(mesh.dim)) {

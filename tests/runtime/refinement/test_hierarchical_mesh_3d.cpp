@@ -1,5 +1,5 @@
-// HierarchicalMesh on 3D blocks of hex8, prism6 and tet4 cells: children
-// of an eighth of the volume, conformity (every interior face shared by two
+// HierarchicalMesh on 3D blocks of hex8, prism6, tet4 and pyramid5 cells:
+// children that fill their parent, conformity (every interior face shared by two
 // cells with the same nodes), 2:1 balance and volume after random
 // refinements and coarsenings, bitwise restoration, linear fields carried
 // exactly, groups and facets, bad input.
@@ -44,6 +44,7 @@ Mesh block(std::vector<tensormass::BeamPhase> phases, std::array<int, 3> cells =
 Mesh hex_prism_block() { return block({{"hex8", 0.5}, {"prism6", 0.5}}); }
 Mesh tet_block() { return block({{"tet6", 1.0}}); }
 Mesh tet5_block() { return block({{"tet5", 1.0}}); }
+Mesh pyramid_block() { return block({{"pyramid5", 1.0}}); }
 
 std::array<double, 3> point(const Mesh& mesh, int node) {
   const double* p = position(mesh, node);
@@ -157,29 +158,40 @@ class HierarchicalMesh3d : public testing::TestWithParam<const char*> {
     const std::string name = GetParam();
     if (name == "hex8+prism6") return hex_prism_block();
     if (name == "tet6") return tet_block();
+    if (name == "pyramid5") return pyramid_block();
     return tet5_block();
   }
 };
 
-TEST_P(HierarchicalMesh3d, EveryCellSplitsIntoEightChildrenOfAnEighthOfItsVolume) {
+TEST_P(HierarchicalMesh3d, EveryCellSplitsIntoChildrenThatFillIt) {
+  // hex8, prism6, tet4: 8 children of an eighth of the volume; pyramid5: 6 pyramids and 4 tets.
   const Mesh mesh = original();
+  const bool pyramids = std::string(GetParam()) == "pyramid5";
+  const int children = pyramids ? 10 : 8;
   HierarchicalMesh hierarchy(mesh);
   expect_same_mesh(hierarchy.leaf_mesh(), mesh);
   hierarchy.refine(all_cells(hierarchy.leaf_mesh()));
   const Mesh& leaves = hierarchy.leaf_mesh();
-  ASSERT_EQ(leaves.cell_count(), 8 * mesh.cell_count());
+  ASSERT_EQ(leaves.cell_count(), children * mesh.cell_count());
+  std::vector<double> filled(static_cast<std::size_t>(mesh.cell_count()), 0.0);
   for (int cell = 0; cell < leaves.cell_count(); ++cell) {
     const int origin = hierarchy.hierarchy_cell(hierarchy.leaf_owners()[cell]).origin;
-    EXPECT_NEAR(cell_volume(leaves, cell), cell_volume(mesh, origin) / 8, 1e-14) << "cell " << cell;
+    filled[static_cast<std::size_t>(origin)] += cell_volume(leaves, cell);
+    if (!pyramids) EXPECT_NEAR(cell_volume(leaves, cell), cell_volume(mesh, origin) / 8, 1e-14) << "cell " << cell;
     EXPECT_EQ(hierarchy.leaf_levels()[cell], 1);
     EXPECT_EQ(hierarchy.leaf_transitions()[cell], 0);
   }
+  for (int cell = 0; cell < mesh.cell_count(); ++cell)
+    EXPECT_NEAR(filled[static_cast<std::size_t>(cell)], cell_volume(mesh, cell), 1e-14) << "cell " << cell;
   for (int parent = 0; parent < mesh.cell_count(); ++parent) {
     const tensormass::HierarchyCell& cell = hierarchy.hierarchy_cell(parent);
-    ASSERT_EQ(cell.child_count(), 8);
-    for (int k = 0; k < cell.corner_count(); ++k)  // a child holds the parent's corner k as its corner k
-      EXPECT_TRUE(std::any_of(cell.children.begin(), cell.children.end(),
-                              [&](int child) { return hierarchy.hierarchy_cell(child).corners[k] == cell.corners[k]; }))
+    ASSERT_EQ(cell.child_count(), children);
+    for (int k = 0; k < cell.corner_count(); ++k)  // some child holds the parent's corner k
+      EXPECT_TRUE(std::any_of(cell.children.begin(), cell.children.begin() + cell.child_count(),
+                              [&](int child) {
+                                const auto& corners = hierarchy.hierarchy_cell(child).corners;
+                                return std::find(corners.begin(), corners.end(), cell.corners[k]) != corners.end();
+                              }))
           << "cell " << parent << " corner " << k;
   }
   expect_valid_leaf_mesh_3d(hierarchy, "all refined");
@@ -298,7 +310,7 @@ TEST_P(HierarchicalMesh3d, NodeGroupsAndFacetsFollowTheLeaves) {
   EXPECT_NEAR(area, kHeight * kWidth, 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(Blocks, HierarchicalMesh3d, testing::Values("hex8+prism6", "tet6", "tet5"),
+INSTANTIATE_TEST_SUITE_P(Blocks, HierarchicalMesh3d, testing::Values("hex8+prism6", "tet6", "tet5", "pyramid5"),
                          [](const testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            std::replace(name.begin(), name.end(), '+', '_');
@@ -346,11 +358,12 @@ TEST(HierarchicalMesh3dInput, BadInputIsAnInputErrorThatSaysWhy) {
       EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
     }
   };
-  expect_error(
-      [] {
-        (void)HierarchicalMesh(block({{"pyramid5", 1.0}}, {1, 1, 1}));
-      },
-      "pyramid5 cells cannot be refined");
+  tensormass::BeamSpec tets;
+  tets.dim = 3;
+  tets.cells = {1, 1, 1};
+  tets.phases = {{"tet6", 1.0}};
+  tets.order = 2;
+  expect_error([&] { (void)HierarchicalMesh(tensormass::make_beam(tets)); }, "tet10 cells cannot be refined");
   tensormass::BeamSpec quadratic;
   quadratic.dim = 3;
   quadratic.cells = {2, 1, 1};

@@ -114,7 +114,7 @@ TEST(SceneRefine, RefusesPetsc) {
                   {"scene.yaml:10:", "adaptivity.refine", "PETSc", "not supported"});
 }
 
-/// validate_against_mesh: quad4 and tri3 in 2D; hex8, tet4 and prism6 in 3D.
+/// validate_against_mesh: quad4 and tri3 in 2D; hex8, tet4, prism6 and pyramid5 in 3D.
 std::string mesh_error(const tensormass::BeamSpec& spec) {
   TempDir dir;
   Scene scene = load(dir, kBaseScene + "adaptivity:\n  refine: {criteria: [{name: R_ZZ, threshold: 0.5}]}\n");
@@ -137,12 +137,14 @@ TEST(SceneRefine, RefusesMeshesItCannotRefine) {
   tensormass::BeamSpec solid;
   solid.dim = 3;
   solid.cells = {4, 2, 2};
-  for (const char* cut : {"hex8", "tet6", "prism6"}) {
+  for (const char* cut : {"hex8", "tet6", "prism6", "pyramid5"}) {
     solid.phases = {{cut, 1.0}};
     EXPECT_EQ(mesh_error(solid), "") << cut;
   }
-  solid.phases = {{"pyramid5", 1.0}};
-  expect_contains(mesh_error(solid), {"scene.yaml:9:", "adaptivity.refine", "hex8, tet4 and prism6", "pyramid5"});
+  solid.phases = {{"hex8", 1.0}};
+  solid.order = 2;
+  expect_contains(mesh_error(solid),
+                  {"scene.yaml:9:", "adaptivity.refine", "hex8, tet4, prism6 and pyramid5", "hex20"});
 }
 
 }  // namespace

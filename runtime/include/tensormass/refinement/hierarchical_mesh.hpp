@@ -1,7 +1,8 @@
 /// \file hierarchical_mesh.hpp
 /// A mesh that is refined and coarsened while a simulation runs, and the
 /// conforming mesh of its leaves to simulate: 2D meshes of quad4 and tri3
-/// cells, 3D meshes of hex8, tet4 and prism6 cells.
+/// cells, 3D meshes of hex8, tet4, prism6 and pyramid5 cells (the beam
+/// generator's grids and the meshes of `tensormass mesh`).
 ///
 /// Glossary:
 ///   hierarchy cell  an original cell (level 0) or a child made by splitting
@@ -16,7 +17,7 @@
 ///                   face, made by a neighbour that was split
 ///
 /// Splitting (one level, split_patterns.hpp): tri3, quad4 -> 4 children;
-/// tet4, prism6, hex8 -> 8. A tet's inner octahedron is cut along its
+/// tet4, prism6, hex8 -> 8; pyramid5 -> 6 pyramids and 4 tets. A tet's inner octahedron is cut along its
 /// shortest diagonal (ties: the first). Children keep the parent's
 /// orientation.
 ///
@@ -71,9 +72,10 @@ struct HierarchyCell {
   const tm_element_info* element = nullptr;  ///< nullptr for a removed cell (internal)
   /// Node indices in the element's order (2D: counter-clockwise), -1 after the last.
   std::array<int, 8> corners{-1, -1, -1, -1, -1, -1, -1, -1};
-  int parent = -1;                                              ///< -1 for an original cell
-  int level = 0;                                                ///< 0 for an original cell
-  std::array<int, 8> children{-1, -1, -1, -1, -1, -1, -1, -1};  ///< all -1 for a leaf
+  int parent = -1;  ///< -1 for an original cell
+  int level = 0;    ///< 0 for an original cell
+  /// All -1 for a leaf; up to 10 (a pyramid5's), -1 after the last.
+  std::array<int, 10> children{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   int origin = 0;  ///< the original cell (mesh-wide index in the wrapped mesh) this cell lies in
   /// Its centre node while a transition fills it or (quad4, hex8) its
   /// children use it, else -1.
@@ -93,7 +95,7 @@ class HierarchicalMesh {
   static constexpr int kUnlimited = std::numeric_limits<int>::max();
 
   /// Wraps `original`: a valid 2D mesh of quad4 and tri3 cells or 3D mesh
-  /// of hex8, tet4 and prism6 cells, each of positive area (volume), every
+  /// of hex8, tet4, prism6 and pyramid5 cells, each of positive area (volume), every
   /// edge (face) shared by at most two cells, group facets of the mesh's
   /// facet kinds (line2; tri3, quad4). Throws InputError otherwise.
   explicit HierarchicalMesh(Mesh original);

@@ -13,6 +13,10 @@
 ///   prism6  8 children: the triangles red-refined, in two layers
 ///   hex8    8 children over the 3 x 3 x 3 grid of corners, edge midpoints,
 ///           face centres and the centre
+///   pyramid5  6 pyramid5 and 4 tet4: a pyramid on each quarter of the
+///           base under its lateral edge's midpoint, one at the apex, one
+///           upside down from the base's centre, and a tet under the middle
+///           triangle of each red-cut side
 #ifndef TENSORMASS_REFINEMENT_SPLIT_PATTERNS_HPP
 #define TENSORMASS_REFINEMENT_SPLIT_PATTERNS_HPP
 
@@ -33,11 +37,13 @@ struct SplitNode {
 
 struct SplitPattern {
   std::vector<SplitNode> nodes;
-  /// Per child: indices into nodes, as many as the element has corners.
+  /// Per child: indices into nodes, as many as its element has corners.
   std::vector<std::vector<int>> children;
+  /// Per child: its element type; empty when every child is of the parent's type.
+  std::vector<std::string_view> child_elements;
 };
 
-/// The pattern of a first-order element (tri3, quad4, tet4, prism6, hex8);
+/// The pattern of a first-order element (tri3, quad4, tet4, prism6, hex8, pyramid5);
 /// `tet_diagonal` (0, 1 or 2) picks the octahedron's cut for tet4. Throws
 /// std::invalid_argument for another element.
 const SplitPattern& split_pattern(std::string_view element, int tet_diagonal = 0);
