@@ -39,13 +39,19 @@ class RunRefinement {
   bool changed(int nodes, int cells, const std::vector<int>& levels) const;
   /// Carries the calm counters through `transfer`.
   void carry_calm(const LeafTransfer& transfer);
+  /// Replaces each cell's R_ZZ by its hierarchy leaf's (the norm over the
+  /// leaf's transition cells); fills owner_squares_.
+  void indicator_per_leaf();
+  /// R_ZZ expected of the cell's parent once its children merge back (0 for an original cell).
+  double merged_estimate(int cell) const;
 
   RefinementSettings settings_;
   HierarchicalMesh hierarchy_;
   ZzIndicator zz_;
   std::vector<double> indicator_;
-  std::vector<int> calm_;  ///< per leaf-mesh cell: evaluations in a row it was calm
-  double peak_ = 0;        ///< dynamic: the largest R_ZZ so far
+  std::vector<double> owner_squares_;  ///< hierarchy size: sum of R_ZZ^2 over each leaf's cells
+  std::vector<int> calm_;              ///< per leaf-mesh cell: evaluations in a row it was calm
+  double peak_ = 0;                    ///< dynamic: the largest R_ZZ so far
 };
 
 }  // namespace tensormass::detail
