@@ -454,10 +454,6 @@ RefinementSettings read_refinement(const Value& section, const Scene& scene) {
   read_optional(section, "max_level", spec.max_level, at_least(0));
   read_optional(section, "every", spec.every, at_least(1));
   read_coarsen(section.child("coarsen"), spec);
-  if (scene.solver.linear.type == LinearSolverType::petsc)
-    section.fail(
-        "is not supported with PETSc (solver.backend: petsc or solver.linear.type: petsc) or MPI runs yet: "
-        "use the serial backend");
   if (!scene.model.loads.nodal_forces.empty())
     section.fail(
         "is not supported with loads.nodal_forces (the same force on each node of a group: refinement adds "

@@ -208,7 +208,7 @@ struct Discretisation {
 };
 
 /// The scene's mesh checked against the scene, and what refinement cannot
-/// run with that only the run knows (--resume, MPI).
+/// run with that only the run knows (--resume).
 Mesh checked_mesh(const Scene& scene, Mesh mesh, const RunOptions& options) {
   validate_against_mesh(scene, mesh);
   if (!scene.refinement.enabled) return mesh;
@@ -216,8 +216,6 @@ Mesh checked_mesh(const Scene& scene, Mesh mesh, const RunOptions& options) {
     throw InputError(scene.path +
                      ": --resume is not supported with adaptivity.refine yet (checkpoints of a changing mesh are "
                      "not supported): run it from the start");
-  if (parallel::world_size() > 1)
-    throw InputError(scene.path + ": adaptivity.refine is not supported on MPI runs yet: run it on one process");
   return mesh;
 }
 
@@ -543,6 +541,8 @@ void Simulation::Impl::apply_refinement() {
   state.previous_displacement.clear();
   state.earlier_displacement.clear();
   disc = std::make_unique<Discretisation>(refinement->leaf_mesh(), scene, report.statistics);
+  // Every rank refined alike (the state is the same bits everywhere): the new mesh is cut again.
+  if (distribution) share_among_ranks();
   for (const Hold& hold : holds) disc->model.hold(hold.group, hold.displacement, hold.components);
   // Each new cell takes the law (and blend) of the cell it comes from,
   // before the new assembler's first assembly folds the linear-law cells.

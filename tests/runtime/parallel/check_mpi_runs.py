@@ -1,7 +1,7 @@
 """`mpirun -n 1/2/3 tensormass run ... --set solver.backend=petsc` against the
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
-whose cells switch laws, an explicit run; the .pvtu pieces hold every cell
+whose cells switch laws, an explicit run, a run that refines its mesh; the .pvtu pieces hold every cell
 once; a bad scene and a numerical failure exit non-zero on every rank with
 one message and no hang.
 
@@ -57,6 +57,11 @@ adaptivity:
   ladder: [hooke, neohookean]
 """, law="hooke"),
     "explicit": clamped_beam("solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}\n"),
+    "implicit_refining": clamped_beam("""solver: {type: implicit, dt: 0.01, steps: 12, linear: {tolerance: 1.0e-12}}
+adaptivity:
+  refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1, every: 4}
+output: {every: 4}
+""", law="hooke"),
 }
 
 
@@ -119,6 +124,12 @@ def check_scene(binary, work, name):
             failures.append(f"{name}, {ranks} ranks: differs from serial by {difference:.3e} (> {TOLERANCE})")
         if not np.array_equal(laws, reference_laws):
             failures.append(f"{name}, {ranks} ranks: cells ended under other laws than in the serial run")
+        if "refinement" in summary:
+            cells = [event["cells"] for event in summary["refinement"]["events"]]
+            serial_summary = json.load(open(os.path.join(work, f"out-{name}-serial", "summary.json")))
+            serial_cells = [event["cells"] for event in serial_summary["refinement"]["events"]]
+            if cells != serial_cells or len(cells) < 2:
+                failures.append(f"{name}, {ranks} ranks: meshes {cells}, serial {serial_cells} (refined alike?)")
         if summary["mpi_ranks"] != ranks:
             failures.append(f"{name}, {ranks} ranks: summary.json says mpi_ranks {summary['mpi_ranks']}")
     return failures
