@@ -4,7 +4,9 @@
 # tracks, series), for each integrator: implicit (CHOLMOD, whose factor is
 # restored), static (load-step extrapolation history) and explicit, and for
 # the adaptive model (laws switching up and down with blends, the folded
-# linear part's sums, the counters).
+# linear part's sums, the counters), and for runs that refine their mesh
+# (dynamic with coarsening, and static; the mesh is replayed from the
+# checkpoint's history, the refinement events in summary.json match too).
 set -euo pipefail
 binary=$1
 work=$(mktemp -d)
@@ -33,6 +35,11 @@ write_scene adaptive "  {type: implicit, dt: 0.01, steps: 120, newton_iterations
   "adaptivity: {criteria: [{name: R_NL, threshold: 0.002}], ladder: [hooke, stvk], blend_steps: 3,
   downgrade: {hysteresis: 0.5, calm_steps: 2}}"
 sed -i 's/law: stvk/law: hooke/' adaptive.yaml  # the adaptive run starts under Hooke
+write_scene refining "  {type: implicit, dt: 0.01, steps: 50, newton_iterations: 2, damping: {mass: 2}}" 10 7 \
+  "adaptivity: {refine: {criteria: [{name: R_ZZ, threshold: 0.5}], max_level: 1, every: 3,
+  coarsen: {hysteresis: 0.7, calm_steps: 2}}}"
+write_scene refining_static "  {type: static, load_steps: 16, tolerance: 1.0e-10}" 4 3 \
+  "adaptivity: {refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1}}"
 
 kill_and_resume() {  # name, frame to wait for
   local name=$1 frame=$2
@@ -60,3 +67,14 @@ kill_and_resume static frame_000020.vtu
 kill_and_resume explicit frame_001000.vtu
 kill_and_resume adaptive frame_000050.vtu
 grep -q '"switches": [1-9]' out-adaptive/summary.json || { echo "adaptive: no law switched"; exit 1; }
+for name in refining:frame_000020.vtu refining_static:frame_000008.vtu; do
+  kill_and_resume "${name%%:*}" "${name#*:}"
+  name=${name%%:*}
+  /usr/bin/python3 - reference-$name/summary.json out-$name/summary.json <<'PY'
+import json, sys
+reference, resumed = (json.load(open(path))["refinement"]["events"] for path in sys.argv[1:])
+assert resumed == reference, (reference, resumed)
+assert len(reference) > 1, "the mesh never changed"
+print("refinement events equal:", [event["cells"] for event in reference])
+PY
+done

@@ -18,7 +18,7 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 1;
+constexpr std::uint64_t kVersion = 2;  // 2: refinement
 
 /// FNV-1a, 64 bits.
 class Fingerprint {
@@ -330,6 +330,34 @@ void restore_laws(const SavedLaws& l, Model& model, const Assembler& assembler, 
   }
 }
 
+void put_refinement(Writer& w, const SavedRefinement& s) {
+  w.put(s.coarsens), w.put(s.max_levels), w.put(s.offsets), w.put(s.cells), w.put(s.calm), w.put(s.peak);
+  w.put(s.event_steps), w.put(s.event_cells), w.put(s.event_level_offsets), w.put(s.event_levels);
+}
+
+SavedRefinement get_refinement(Reader& r) {
+  SavedRefinement s;
+  s.coarsens = r.get_vector<int>();
+  s.max_levels = r.get_vector<int>();
+  s.offsets = r.get_vector<int>();
+  s.cells = r.get_vector<int>();
+  s.calm = r.get_vector<int>();
+  s.peak = r.get<double>();
+  s.event_steps = r.get_vector<int>();
+  s.event_cells = r.get_vector<int>();
+  s.event_level_offsets = r.get_vector<int>();
+  s.event_levels = r.get_vector<int>();
+  const std::size_t operations = s.coarsens.size();
+  if (s.max_levels.size() != operations || s.offsets.size() != operations + 1 || s.offsets.front() != 0 ||
+      static_cast<std::size_t>(s.offsets.back()) != s.cells.size() ||
+      !std::is_sorted(s.offsets.begin(), s.offsets.end()) || s.event_cells.size() != s.event_steps.size() ||
+      s.event_level_offsets.size() != s.event_steps.size() + 1 || s.event_level_offsets.front() != 0 ||
+      static_cast<std::size_t>(s.event_level_offsets.back()) != s.event_levels.size() ||
+      !std::is_sorted(s.event_level_offsets.begin(), s.event_level_offsets.end()))
+    r.fail("inconsistent refinement history");
+  return s;
+}
+
 std::uint64_t mesh_fingerprint(const Mesh& mesh) {
   Fingerprint f;
   f.add(mesh.dim);
@@ -349,6 +377,12 @@ std::uint64_t scene_fingerprint(const Scene& scene) {
     for (const CriterionSpec& c : a.criteria) f.add(c.name), f.add(c.threshold), f.add(c.rung);
     f.add(a.ladder), f.add(static_cast<int>(a.action)), f.add(a.every), f.add(a.blend_steps);
     f.add(a.downgrade), f.add(a.hysteresis), f.add(a.calm_steps);
+  }
+  const RefinementSettings& refine = scene.refinement;
+  f.add(refine.enabled);
+  if (refine.enabled) {
+    f.add(refine.threshold), f.add(refine.max_level), f.add(refine.every), f.add(refine.coarsen);
+    f.add(refine.hysteresis), f.add(refine.calm_steps);
   }
   f.add(scene.output.every), f.add(scene.output.track);
   return f.value();
@@ -379,6 +413,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
         for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
         w.put(static_cast<std::int64_t>(c.adaptive));
         if (c.adaptive) put_laws(w, c.laws);
+        w.put(static_cast<std::int64_t>(c.refining));
+        if (c.refining) put_refinement(w, c.refinement);
       },
       /*durable=*/true);
 }
@@ -422,6 +458,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   }
   c.adaptive = r.get<std::int64_t>() != 0;
   if (c.adaptive) c.laws = get_laws(r);
+  c.refining = r.get<std::int64_t>() != 0;
+  if (c.refining) c.refinement = get_refinement(r);
   if (!r.at_end()) r.fail("bytes after the last field");
   return c;
 }

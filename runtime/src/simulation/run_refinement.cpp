@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail {
 
@@ -15,6 +19,42 @@ bool RunRefinement::changed(int nodes, int cells, const std::vector<int>& levels
 }
 
 void RunRefinement::carry_calm(const LeafTransfer& transfer) { calm_ = transfer_cell_field<int>(transfer, calm_); }
+
+LeafTransfer RunRefinement::apply(bool coarsen, std::span<const int> cells, int max_level) {
+  const int nodes = leaf_mesh().node_count(), count = leaf_mesh().cell_count();
+  const std::vector<int> levels(hierarchy_.leaf_levels().begin(), hierarchy_.leaf_levels().end());
+  LeafTransfer transfer = coarsen ? hierarchy_.coarsen(cells) : hierarchy_.refine(cells, max_level);
+  carry_calm(transfer);
+  if (changed(nodes, count, levels)) {
+    history_.coarsens.push_back(coarsen ? 1 : 0);
+    history_.max_levels.push_back(max_level);
+    history_.cells.insert(history_.cells.end(), cells.begin(), cells.end());
+    history_.offsets.push_back(static_cast<int>(history_.cells.size()));
+  }
+  return transfer;
+}
+
+SavedRefinement RunRefinement::save() const {
+  SavedRefinement saved = history_;
+  saved.calm = calm_;
+  saved.peak = peak_;
+  return saved;
+}
+
+void RunRefinement::restore(const SavedRefinement& saved) {
+  if (!history_.coarsens.empty()) throw std::logic_error("RunRefinement::restore: the mesh has changed already");
+  for (std::size_t k = 0; k < saved.coarsens.size(); ++k) {
+    const std::span<const int> cells(saved.cells.data() + saved.offsets[k],
+                                     static_cast<std::size_t>(saved.offsets[k + 1] - saved.offsets[k]));
+    apply(saved.coarsens[k] != 0, cells, saved.max_levels[k]);
+  }
+  if (saved.calm.size() != static_cast<std::size_t>(leaf_mesh().cell_count()) ||
+      history_.coarsens.size() != saved.coarsens.size())
+    throw InputError("checkpoint: its refinement history does not give back a mesh of " +
+                     std::to_string(saved.calm.size()) + " cells");
+  calm_ = saved.calm;
+  peak_ = saved.peak;
+}
 
 void RunRefinement::indicator_per_leaf() {
   // A leaf filled by transition cells gets the energy norm over all of
@@ -43,11 +83,9 @@ std::vector<LeafTransfer> RunRefinement::refine(const Model& model, std::span<co
   zz_.compute(model, u, indicator_);
   indicator_per_leaf();
   const std::vector<int> marked = select_cells_at_threshold(indicator_, settings_.threshold);
-  const int nodes = leaf_mesh().node_count(), cells = leaf_mesh().cell_count();
-  const std::vector<int> levels(hierarchy_.leaf_levels().begin(), hierarchy_.leaf_levels().end());
-  LeafTransfer transfer = hierarchy_.refine(marked, settings_.max_level);
-  carry_calm(transfer);
-  if (!changed(nodes, cells, levels)) return {};
+  const std::size_t operations = history_.coarsens.size();
+  LeafTransfer transfer = apply(false, marked, settings_.max_level);
+  if (history_.coarsens.size() == operations) return {};
   return {std::move(transfer)};
 }
 
@@ -67,19 +105,16 @@ std::vector<LeafTransfer> RunRefinement::adapt(const Model& model, std::span<con
     int& count = calm_[static_cast<std::size_t>(cell)];
     count = peak_ == 0 || (r < calm_level && merged_estimate(cell) < calm_level) ? count + 1 : 0;
   }
-  const int nodes = leaf_mesh().node_count(), cells = leaf_mesh().cell_count();
-  const std::vector<int> levels(hierarchy_.leaf_levels().begin(), hierarchy_.leaf_levels().end());
+  const std::size_t operations = history_.coarsens.size();
   std::vector<LeafTransfer> transfers;
-  transfers.push_back(hierarchy_.refine(hot, settings_.max_level));
-  carry_calm(transfers.back());
+  transfers.push_back(apply(false, hot, settings_.max_level));
   if (settings_.coarsen) {
     std::vector<int> still_calm;
     for (int cell = 0; cell < leaf_mesh().cell_count(); ++cell)
       if (calm_[static_cast<std::size_t>(cell)] >= settings_.calm_steps) still_calm.push_back(cell);
-    transfers.push_back(hierarchy_.coarsen(still_calm));
-    carry_calm(transfers.back());
+    transfers.push_back(apply(true, still_calm, 0));
   }
-  if (!changed(nodes, cells, levels)) return {};
+  if (history_.coarsens.size() == operations) return {};
   return transfers;
 }
 

@@ -11,6 +11,7 @@
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 #include "tensormass/refinement/refinement_settings.hpp"
 #include "tensormass/refinement/zz_indicator.hpp"
+#include "tensormass/simulation/checkpoint.hpp"
 
 namespace tensormass::detail {
 
@@ -34,9 +35,20 @@ class RunRefinement {
   /// sibling sets are merged back (settings.coarsen).
   std::vector<LeafTransfer> adapt(const Model& model, std::span<const double> u);
 
+  const Mesh& original_mesh() const { return hierarchy_.original_mesh(); }
+  /// The operations that changed the mesh and the coarsening memory, for a
+  /// checkpoint (the caller adds the mesh events).
+  SavedRefinement save() const;
+  /// Replays `saved`'s operations on this (not yet changed) hierarchy and
+  /// takes its coarsening memory. InputError when it does not fit.
+  void restore(const SavedRefinement& saved);
+
  private:
   /// Whether the leaf mesh differs from one with these node, cell counts and levels.
   bool changed(int nodes, int cells, const std::vector<int>& levels) const;
+  /// Refines (or coarsens) the marked cells; records the operation when the
+  /// mesh changed.
+  LeafTransfer apply(bool coarsen, std::span<const int> cells, int max_level);
   /// Carries the calm counters through `transfer`.
   void carry_calm(const LeafTransfer& transfer);
   /// Replaces each cell's R_ZZ by its hierarchy leaf's (the norm over the
@@ -52,6 +64,7 @@ class RunRefinement {
   std::vector<double> owner_squares_;  ///< hierarchy size: sum of R_ZZ^2 over each leaf's cells
   std::vector<int> calm_;              ///< per leaf-mesh cell: evaluations in a row it was calm
   double peak_ = 0;                    ///< dynamic: the largest R_ZZ so far
+  SavedRefinement history_;            ///< the operations that changed the mesh (save() adds calm and peak)
 };
 
 }  // namespace tensormass::detail

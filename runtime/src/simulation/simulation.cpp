@@ -207,15 +207,9 @@ struct Discretisation {
   std::unique_ptr<Integrator> integrator;
 };
 
-/// The scene's mesh checked against the scene, and what refinement cannot
-/// run with that only the run knows (--resume).
-Mesh checked_mesh(const Scene& scene, Mesh mesh, const RunOptions& options) {
+/// The scene's mesh checked against the scene.
+Mesh checked_mesh(const Scene& scene, Mesh mesh) {
   validate_against_mesh(scene, mesh);
-  if (!scene.refinement.enabled) return mesh;
-  if (options.resume)
-    throw InputError(scene.path +
-                     ": --resume is not supported with adaptivity.refine yet (checkpoints of a changing mesh are "
-                     "not supported): run it from the start");
   return mesh;
 }
 
@@ -281,6 +275,9 @@ struct Simulation::Impl {
   bool observe(const State& state);
   bool refine_load_step(const State& now);
   void apply_refinement();
+  void replay_refinement();
+  void restore_refinement(const SavedRefinement& saved);
+  SavedRefinement save_refinement() const;
   void restore(const Checkpoint& checkpoint);
   void write_checkpoint_now(const State& state);
   std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
@@ -338,8 +335,7 @@ struct Simulation::Impl {
 /// of the adaptive model, the output directory.
 Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options)
     : scene(scene_in),
-      disc(
-          std::make_unique<Discretisation>(checked_mesh(scene, std::move(mesh_in), options), scene, report.statistics)),
+      disc(std::make_unique<Discretisation>(checked_mesh(scene, std::move(mesh_in)), scene, report.statistics)),
       refinement(scene.refinement.enabled ? std::make_unique<detail::RunRefinement>(scene.refinement, disc->mesh)
                                           : nullptr),
       dynamic(scene.solver.is_dynamic()),
@@ -347,6 +343,9 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
                options.progress && parallel::world_rank() == 0) {
+  fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);  // the scene's mesh, before any refinement
+  fingerprints.scene_fingerprint = scene_fingerprint(scene);
+  if (refinement && options.resume) replay_refinement();
   if (parallel::world_size() > 1) share_among_ranks();
   disc->prepare(scene);
   if (scene.adaptivity.enabled) {
@@ -354,8 +353,6 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
     adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
   }
-  fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);
-  fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
   if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, disc->model);
 
@@ -382,12 +379,19 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     adaptivity->start(last_good.displacement);
   }
   for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
-  if (refinement) {
-    report.refinement.push_back(refinement_record(0, *refinement));
-    if (scene.output.checkpoint_every > 0)
-      report.statistics.warnings.push_back(
-          "output.checkpoint_every: no checkpoints are written with adaptivity.refine (not supported yet)");
-  }
+  if (refinement) report.refinement.push_back(refinement_record(0, *refinement));
+}
+
+/// A resumed refining run: the mesh of the checkpoint, by replaying its
+/// history from the scene's mesh (the checkpoint itself is checked later).
+void Simulation::Impl::replay_refinement() {
+  if (!fs::exists(checkpoint_path)) return;
+  const Checkpoint checkpoint = read_checkpoint(checkpoint_path);
+  if (checkpoint.mesh_fingerprint != fingerprints.mesh_fingerprint ||
+      checkpoint.scene_fingerprint != fingerprints.scene_fingerprint || !checkpoint.refining)
+    return;  // matching_checkpoint says why
+  refinement->restore(checkpoint.refinement);
+  disc = std::make_unique<Discretisation>(refinement->leaf_mesh(), scene, report.statistics);
 }
 
 /// Every rank holds the whole model and state; each assembles the cells
@@ -423,13 +427,41 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
   phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
   report.resumed_from_step = state.step;
+  if (refinement) restore_refinement(checkpoint.refinement);
   if (writes_files())
     std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
                  state.time);
 }
 
+/// The mesh events of a resumed refining run; a dynamic run then adapts the
+/// mesh as the killed run did right after writing the checkpoint.
+void Simulation::Impl::restore_refinement(const SavedRefinement& saved) {
+  report.refinement.clear();
+  for (std::size_t e = 0; e < saved.event_steps.size(); ++e)
+    report.refinement.push_back({saved.event_steps[e], saved.event_cells[e],
+                                 std::vector<int>(saved.event_levels.begin() + saved.event_level_offsets[e],
+                                                  saved.event_levels.begin() + saved.event_level_offsets[e + 1])});
+  if (!dynamic || state.step % scene.refinement.every != 0) return;
+  {
+    detail::PhaseTimer timer(adaptivity_seconds);
+    pending = refinement->adapt(disc->model, state.displacement);
+  }
+  if (!pending.empty()) apply_refinement();
+}
+
+SavedRefinement Simulation::Impl::save_refinement() const {
+  SavedRefinement saved = refinement->save();
+  for (const RefinementRecord& event : report.refinement) {
+    saved.event_steps.push_back(event.step);
+    saved.event_cells.push_back(event.cells);
+    saved.event_levels.insert(saved.event_levels.end(), event.leaves_per_level.begin(), event.leaves_per_level.end());
+    saved.event_level_offsets.push_back(static_cast<int>(saved.event_levels.size()));
+  }
+  return saved;
+}
+
 void Simulation::Impl::write_checkpoint_now(const State& state_now) {
-  if (!writes_files() || refinement) return;
+  if (!writes_files()) return;
   detail::PhaseTimer timer(report.output_seconds);
   Checkpoint saved = fingerprints;
   saved.state = state_now;
@@ -442,6 +474,7 @@ void Simulation::Impl::write_checkpoint_now(const State& state_now) {
   saved.statistics.warnings.clear();
   for (const GroupTrack& track : tracks) saved.tracks.push_back({track.rows(), track.first_shift()});
   if (adaptivity) saved.adaptive = true, saved.laws = save_laws(disc->model, disc->assembler, *adaptivity);
+  if (refinement) saved.refining = true, saved.refinement = save_refinement();
   write_checkpoint(checkpoint_path, saved);
 }
 

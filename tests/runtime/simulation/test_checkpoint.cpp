@@ -34,6 +34,18 @@ Checkpoint sample() {
   c.step_solve_ms = {0.5};
   c.tracks = {{{{0.0, {1, 2, 3}, {0, 0, 0}}, {0.1, {1, 2, 2.5}, {0, 0, -0.5}}}, {0.0, 0.0, 1e-9}}};
   c.series = {{0.05, "frame_000005.vtu"}, {0.1, "frame_000010.vtu"}};
+  c.refining = true;
+  SavedRefinement& r = c.refinement;
+  r.coarsens = {0, 0, 1};
+  r.max_levels = {2, 2, 0};
+  r.offsets = {0, 2, 3, 5};
+  r.cells = {4, 7, 1, 0, 9};
+  r.calm = {0, 3, 1};
+  r.peak = 0.125;
+  r.event_steps = {0, 4};
+  r.event_cells = {50, 86};
+  r.event_level_offsets = {0, 1, 3};
+  r.event_levels = {50, 44, 24};
   return c;
 }
 
@@ -67,6 +79,33 @@ TEST(Checkpoint, RoundTripsEveryField) {
   ASSERT_EQ(r.series.size(), 2u);
   EXPECT_EQ(r.series[1].file, "frame_000010.vtu");
   EXPECT_EQ(r.series[1].time, 0.1);
+  ASSERT_TRUE(r.refining);
+  const SavedRefinement& a = r.refinement;
+  const SavedRefinement& b = c.refinement;
+  EXPECT_EQ(a.coarsens, b.coarsens);
+  EXPECT_EQ(a.max_levels, b.max_levels);
+  EXPECT_EQ(a.offsets, b.offsets);
+  EXPECT_EQ(a.cells, b.cells);
+  EXPECT_EQ(a.calm, b.calm);
+  EXPECT_EQ(a.peak, b.peak);
+  EXPECT_EQ(a.event_steps, b.event_steps);
+  EXPECT_EQ(a.event_cells, b.event_cells);
+  EXPECT_EQ(a.event_level_offsets, b.event_level_offsets);
+  EXPECT_EQ(a.event_levels, b.event_levels);
+}
+
+TEST(Checkpoint, AnInconsistentRefinementHistoryIsRefused) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  Checkpoint c = sample();
+  c.refinement.offsets.back() = 4;  // one marked cell short
+  write_checkpoint(path, c);
+  try {
+    read_checkpoint(path);
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"checkpoint " + path, "inconsistent refinement history"});
+  }
 }
 
 TEST(Checkpoint, EveryTruncationIsAnInputErrorNamingTheFile) {
@@ -106,6 +145,11 @@ TEST(Checkpoint, SceneFingerprintFollowsWhatChangesTheRun) {
   EXPECT_TRUE(differs([](Scene& s) { s.solver.dt = 0.02; }));
   EXPECT_TRUE(differs([](Scene& s) { s.solver.predictor = StepPredictor::none; }));
   EXPECT_TRUE(differs([](Scene& s) { s.output.every = 3; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.refinement.enabled = true; }));
+  EXPECT_TRUE(differs([](Scene& s) {
+    s.refinement.enabled = true;
+    s.refinement.calm_steps = 7;
+  }));
   EXPECT_TRUE(differs([](Scene& s) {
     PrescribedSpec turn;
     turn.region = "tip";

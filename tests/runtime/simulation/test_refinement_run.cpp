@@ -3,7 +3,7 @@
 // the uniformly refined mesh's solution, every frame is a conforming mesh
 // with its `level` field; a dynamic run refines as a probe goes in and
 // coarsens as it comes back out; an explicit run refines with its stable
-// step estimated again; --resume is refused. With law switching
+// step estimated again. With law switching
 // on as well (ladder hooke -> neohookean), the children of an upgraded cell
 // have the upgraded law right after the change, the folded assembly follows
 // the carried laws, and a static run refines, switches and converges.
@@ -365,19 +365,6 @@ TEST(RefinementRun, StaticPlateRefinesAndSwitchesLawsThenConverges) {
   for (double f : force) all = std::max(all, std::abs(f));
   EXPECT_GT(all, 0);
   EXPECT_LT(free, 1e-6 * all);
-}
-
-TEST(RefinementRun, ResumeIsRefused) {
-  TempDir dir;
-  Scene scene = plate_scene(dir, "resumed");
-  scene.refinement = refine(0.3);
-  try {
-    Simulation simulation(scene, plate_mesh(10), RunOptions{false, true});
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& error) {
-    expect_contains(error.what(), {"plate.yaml", "--resume", "adaptivity.refine", "not supported"});
-  }
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "resumed"));  // a bad input writes nothing
 }
 
 }  // namespace

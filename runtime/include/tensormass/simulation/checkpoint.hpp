@@ -10,7 +10,8 @@
 ///
 /// With adaptivity it also holds every cell's law and blend, the folded
 /// linear part's sums (which depend on the order of past switches) and the
-/// adaptive model's counters.
+/// adaptive model's counters. With refinement it holds the mesh's history
+/// (replayed from the scene's mesh on resume) and the coarsening memory.
 #ifndef TENSORMASS_SIMULATION_CHECKPOINT_HPP
 #define TENSORMASS_SIMULATION_CHECKPOINT_HPP
 
@@ -58,6 +59,20 @@ struct SavedLaws {
 SavedLaws save_laws(const Model& model, const Assembler& assembler, const Adaptivity& adaptivity);
 void restore_laws(const SavedLaws& saved, Model& model, const Assembler& assembler, Adaptivity& adaptivity);
 
+/// A refining run (adaptivity.refine): the hierarchy's refine and coarsen
+/// operations that changed the mesh, in order, each with its marked
+/// leaf-mesh cells; the coarsening memory; the mesh events so far.
+struct SavedRefinement {
+  std::vector<int> coarsens;    ///< per operation: 0 refine, 1 coarsen
+  std::vector<int> max_levels;  ///< per operation (refine's max_level)
+  std::vector<int> offsets{0};  ///< operation k marked cells[offsets[k] .. offsets[k+1])
+  std::vector<int> cells;
+  std::vector<int> calm;  ///< per cell of the current mesh: calm checks in a row
+  double peak = 0;        ///< the largest R_ZZ so far (dynamic runs)
+  /// The run's mesh events (RefinementRecord): step, cells, leaves per level.
+  std::vector<int> event_steps, event_cells, event_level_offsets{0}, event_levels;
+};
+
 struct Checkpoint {
   std::uint64_t mesh_fingerprint = 0;
   std::uint64_t scene_fingerprint = 0;
@@ -69,6 +84,8 @@ struct Checkpoint {
   std::vector<io::SeriesEntry> series;  ///< frames written so far
   bool adaptive = false;                ///< the run has adaptivity: `laws` holds its state
   SavedLaws laws;
+  bool refining = false;  ///< the run has adaptivity.refine: `refinement` holds its state
+  SavedRefinement refinement;
 };
 
 /// A fingerprint of what the mesh holds: dimension, rest positions, every
