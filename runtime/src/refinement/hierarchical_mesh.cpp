@@ -3,7 +3,9 @@
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 
 #include <algorithm>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
@@ -80,7 +82,33 @@ void check_cells(const Mesh& mesh) {
   }
 }
 
+/// Every face (edge in 2D) of every cell, by its sorted corner nodes.
+std::set<std::vector<int>> cell_faces(const Mesh& mesh) {
+  std::set<std::vector<int>> faces;
+  for (const ElementBlock& block : mesh.blocks) {
+    const tm_element_info& element = *block.element;
+    for (int local = 0; local < block.count(); ++local) {
+      const auto nodes = block.cell_nodes(local);
+      const int count = mesh.dim == 2 ? element.edge_count : element.face_count;
+      for (int f = 0; f < count; ++f) {
+        std::vector<int> face;
+        if (mesh.dim == 2) {
+          for (int k = 0; k < 2; ++k) face.push_back(nodes[element.edges[f * element.edge_size + k]]);
+        } else {
+          for (int k = 0; k < element.face_sizes[f]; ++k)
+            face.push_back(nodes[element.faces[element.face_offsets[f] + k]]);
+        }
+        std::sort(face.begin(), face.end());
+        faces.insert(std::move(face));
+      }
+    }
+  }
+  return faces;
+}
+
+/// Group facets are first-order faces of cells: refinement cuts them as it cuts those faces.
 void check_groups(const Mesh& mesh) {
+  const std::set<std::vector<int>> faces = cell_faces(mesh);
   for (const Group& group : mesh.groups)
     for (int f = 0; f < group.facets.count(); ++f) {
       const int size = group.facets.offsets[f + 1] - group.facets.offsets[f];
@@ -89,6 +117,13 @@ void check_groups(const Mesh& mesh) {
         throw InputError(mesh_name(mesh) + ": group '" + group.name + "' has a facet of " + std::to_string(size) +
                          " nodes; refinement supports " +
                          (mesh.dim == 2 ? "line2 facets" : "tri3 and quad4 facets (first-order faces)"));
+      std::vector<int> facet(group.facets.nodes.begin() + group.facets.offsets[f],
+                             group.facets.nodes.begin() + group.facets.offsets[f + 1]);
+      std::sort(facet.begin(), facet.end());
+      if (!faces.count(facet))
+        throw InputError(mesh_name(mesh) + ": facet " + std::to_string(f) + " of group '" + group.name + "' is not a " +
+                         (mesh.dim == 2 ? "edge" : "face") +
+                         " of any cell; refinement cuts facets as it cuts the faces of the cells");
     }
 }
 

@@ -376,6 +376,9 @@ TEST(HierarchicalMesh3dInput, BadInputIsAnInputErrorThatSaysWhy) {
   std::swap(inverted.blocks[0].connectivity[2], inverted.blocks[0].connectivity[6]);
   std::swap(inverted.blocks[0].connectivity[3], inverted.blocks[0].connectivity[7]);
   expect_error([&] { (void)HierarchicalMesh(inverted); }, "inverted or flat");
+  Mesh loose_facet = hex_prism_block();
+  loose_facet.groups.front().facets.nodes[1] = loose_facet.groups.front().facets.nodes[3];  // not a cell's face
+  expect_error([&] { (void)HierarchicalMesh(loose_facet); }, "is not a face of any cell");
 }
 
 }  // namespace
