@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "machine_info.hpp"
+#include "refine_indentation.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
@@ -181,7 +182,7 @@ void print_run(const RefineRun& run) {
               1e3 * run.indicator_seconds, 1e3 * run.refine_seconds);
 }
 
-std::string json_of(const std::vector<RefineRun>& runs, const Mesh& coarse) {
+std::string json_of(const std::vector<RefineRun>& runs, const Mesh& coarse, const std::string& indentation) {
   std::ostringstream out;
   out << "{\"machine\": \"" << cpu_model() << "\", \"threads\": " << omp_get_max_threads()
       << ", \"coarse_cells\": " << coarse.cell_count() << ", \"max_level\": " << kMaxLevel << ", \"runs\": [";
@@ -194,7 +195,7 @@ std::string json_of(const std::vector<RefineRun>& runs, const Mesh& coarse) {
         << ", \"passes\": " << r.passes << ", \"error\": " << r.error << ", \"solve_seconds\": " << r.solve_seconds
         << ", \"indicator_seconds\": " << r.indicator_seconds << ", \"refine_seconds\": " << r.refine_seconds << "}";
   }
-  out << "]}\n";
+  out << "], \"indentation\": " << indentation << "}\n";
   return out.str();
 }
 
@@ -270,16 +271,17 @@ int refine_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "tensormass bench refine: %s\n", error.what());
     return 1;
   }
-  std::printf("\nnot measured yet: the 3D indentation (refinement is 2D only so far)\n");
+  std::fflush(stdout);
+  const IndentationResult indentation = refine_indentation(options.quick);
   if (!options.json.empty()) {
     try {
-      io::write_atomically(options.json, [&](std::ostream& out) { out << json_of(runs, coarse); });
+      io::write_atomically(options.json, [&](std::ostream& out) { out << json_of(runs, coarse, indentation.json); });
     } catch (const std::exception& error) {
       std::fprintf(stderr, "tensormass bench refine: %s\n", error.what());
       return 1;
     }
   }
-  return 0;
+  return indentation.failed ? 1 : 0;
 }
 
 }  // namespace tensormass::bench
