@@ -27,8 +27,8 @@ constexpr const char* kUsage =
     "                                   the origin report's Table 1 and Figure 12 (docs/results/paper.md)\n"
     "  adaptive [--quick] [--json FILE] [--only NAME]\n"
     "                                   the adaptive model against the pure laws (docs/results/adaptive.md)\n"
-    "  refine [--quick] [--json FILE]   local refinement by R_ZZ against uniform refinement, 2D plate with a\n"
-    "                                   probe (docs/results/refine.md)\n"
+    "  refine [--quick] [--json FILE]   local refinement by R_ZZ against uniform refinement: 2D plate with a\n"
+    "                                   probe, 3D tool indentation with law switching (docs/results/refine.md)\n"
     "  help                             this text\n";
 
 }  // namespace

@@ -31,7 +31,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kUsage =
     "usage: tensormass bench refine [--quick] [--json FILE]\n"
-    "  --quick        a coarser plate and fewer thresholds (CI smoke test, a few seconds)\n"
+    "  --quick        a coarser plate, a 3D block refined one level, fewer runs (CI smoke test, a few seconds)\n"
     "  --json FILE    also write the results as JSON to FILE (atomically)\n";
 
 constexpr int kMaxLevel = 2;

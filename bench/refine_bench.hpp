@@ -9,7 +9,9 @@
 /// largest indicator (max_level 2) and solve again until nothing changes.
 /// Per run: cells per level, the largest displacement difference at the
 /// coarse mesh's nodes against the reference over the reference's largest
-/// displacement, and the solve time. Targets (issue 15) beside the figures
+/// displacement, and the solve time. Then the 3D tool indentation from a
+/// coarse hex mesh, dynamic, with and without law switching
+/// (refine_indentation.hpp). Targets (issue 15) beside the figures
 /// (docs/results/refine.md).
 #ifndef TENSORMASS_BENCH_REFINE_BENCH_HPP
 #define TENSORMASS_BENCH_REFINE_BENCH_HPP
@@ -20,8 +22,9 @@
 namespace tensormass::bench {
 
 /// Runs the benchmark with the arguments after `bench refine`. Returns 0
-/// (targets may be missed), 1 when a solve failed or the JSON file cannot be
-/// written, 2 for bad arguments.
+/// (targets may be missed), 1 when a solve failed (in 3D: see
+/// IndentationResult::failed) or the JSON file cannot be written, 2 for bad
+/// arguments.
 int refine_command(const std::vector<std::string>& args);
 
 }  // namespace tensormass::bench

@@ -37,8 +37,10 @@ namespace tensormass::bench {
 
 /// What the 3D indentation gives back to refine_command.
 struct IndentationResult {
-  std::string json;     ///< a JSON object (the "indentation" member of --json)
-  bool failed = false;  ///< a reference or uniform run failed (adaptive failures are reported, not fatal)
+  std::string json;  ///< a JSON object (the "indentation" member of --json)
+  /// A uniform run failed, a scene was refused, or (quick) any run failed;
+  /// an adaptive run's numerical failure is reported, not fatal, in a full run.
+  bool failed = false;
 };
 
 /// Runs the 3D indentation (quick: a smaller reference and fewer steps, a
