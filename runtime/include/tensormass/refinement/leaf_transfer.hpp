@@ -6,11 +6,13 @@
 /// velocity): a node of the new mesh that was a node of the old one keeps
 /// its value bit for bit; a new node takes the parent cell's shape
 /// functions' value in the reference configuration: the mean of its
-/// edge's two ends (edge midpoint) or of the quad's four corners (quad
-/// centre: the bilinear value there). Linear fields are transferred exactly.
+/// edge's two ends (edge midpoint), of a quad's (or quad face's) four
+/// corners (the bilinear value at its centre) or of a cell's corners (a
+/// hex8's centre: the trilinear value; a transition's centre node). Linear
+/// fields are transferred exactly.
 ///
 /// Cell fields (cell_count values: law index, blend weight): each new cell
-/// takes the value of one old cell. Children and transition triangles take
+/// takes the value of one old cell. Children and transition cells take
 /// their parent's (the first old cell that covered it); a parent restored by
 /// coarsening takes its first child's.
 #ifndef TENSORMASS_REFINEMENT_LEAF_TRANSFER_HPP
