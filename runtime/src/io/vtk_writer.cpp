@@ -38,22 +38,40 @@ std::string exact(double value) {
   return std::string(buffer, result.ptr);
 }
 
-/// The appended-data section: each array is a UInt64 byte count then its bytes.
+/// The appended-data section: each array is a UInt64 byte count then its
+/// bytes. The arrays are written last first: meshio 5.0 (Debian 12) reads
+/// them in data order, finding each one's DataArray tag by its offset and
+/// rewriting that offset as it goes; a rewritten offset can equal a later
+/// array's, and meshio then took the wrong tag (a piece's global_cell read
+/// as its law_id). Written last first, each array's tag comes before every
+/// tag already rewritten, so meshio's first match is the right one. VTK and
+/// ParaView follow the offsets and do not mind the order.
 class AppendedData {
  public:
-  /// Appends `values` and returns the array's offset (for the DataArray tag).
+  /// Adds `values`; returns the array's index, for offset().
   template <class T>
-  std::size_t add(const std::vector<T>& values) {
-    const std::size_t offset = bytes_.size();
+  int add(const std::vector<T>& values) {
     const std::uint64_t size = values.size() * sizeof(T);
-    bytes_.append(reinterpret_cast<const char*>(&size), sizeof size);
-    bytes_.append(reinterpret_cast<const char*>(values.data()), size);
+    std::string blob(reinterpret_cast<const char*>(&size), sizeof size);
+    blob.append(reinterpret_cast<const char*>(values.data()), size);
+    blobs_.push_back(std::move(blob));
+    return static_cast<int>(blobs_.size()) - 1;
+  }
+  /// Where array `index` starts in bytes().
+  std::size_t offset(int index) const {
+    std::size_t offset = 0;
+    for (std::size_t later = static_cast<std::size_t>(index) + 1; later < blobs_.size(); ++later)
+      offset += blobs_[later].size();
     return offset;
   }
-  const std::string& bytes() const { return bytes_; }
+  std::string bytes() const {
+    std::string all;
+    for (auto blob = blobs_.rbegin(); blob != blobs_.rend(); ++blob) all += *blob;
+    return all;
+  }
 
  private:
-  std::string bytes_;
+  std::vector<std::string> blobs_;
 };
 
 void data_array(std::ostream& xml, const char* type, const std::string& name, int components, std::size_t offset) {
@@ -69,9 +87,18 @@ void check_field(const Field& field, int count, const std::string& path, const c
                                 " by " + std::to_string(field.components));
 }
 
-void write_fields(std::ostream& xml, AppendedData& data, const char* section, const std::vector<Field>& fields) {
+/// Adds the fields' values to `data`; returns their indices.
+std::vector<int> add_fields(AppendedData& data, const std::vector<Field>& fields) {
+  std::vector<int> indices;
+  for (const Field& field : fields) indices.push_back(data.add(field.values));
+  return indices;
+}
+
+void write_fields(std::ostream& xml, const AppendedData& data, const char* section, const std::vector<Field>& fields,
+                  const std::vector<int>& indices) {
   xml << "      <" << section << ">\n";
-  for (const Field& field : fields) data_array(xml, "Float64", field.name, field.components, data.add(field.values));
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    data_array(xml, "Float64", fields[f].name, fields[f].components, data.offset(indices[f]));
   xml << "      </" << section << ">\n";
 }
 
@@ -125,25 +152,29 @@ std::vector<double> kept(const std::vector<double>& values, int components, cons
 /// One piece: points (by 3), cells, point and cell data (already cut to them).
 void write_piece(const std::string& path, const std::vector<double>& points, const CellArrays& cells,
                  const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
-  AppendedData data;
+  AppendedData data;  // in the order of the tags below
+  const std::vector<int> point_fields = add_fields(data, point_data), cell_fields = add_fields(data, cell_data);
+  const int points_array = data.add(points), connectivity_array = data.add(cells.connectivity),
+            offsets_array = data.add(cells.offsets), types_array = data.add(cells.types);
   std::ostringstream xml;
   xml << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
       << "\" header_type=\"UInt64\">\n"
       << "  <UnstructuredGrid>\n"
       << "    <Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfCells=\"" << cells.types.size() << "\">\n";
-  write_fields(xml, data, "PointData", point_data);
-  write_fields(xml, data, "CellData", cell_data);
+  write_fields(xml, data, "PointData", point_data, point_fields);
+  write_fields(xml, data, "CellData", cell_data, cell_fields);
   xml << "      <Points>\n";
-  data_array(xml, "Float64", "Points", 3, data.add(points));
+  data_array(xml, "Float64", "Points", 3, data.offset(points_array));
   xml << "      </Points>\n      <Cells>\n";
-  data_array(xml, "Int64", "connectivity", 0, data.add(cells.connectivity));
-  data_array(xml, "Int64", "offsets", 0, data.add(cells.offsets));
-  data_array(xml, "UInt8", "types", 0, data.add(cells.types));
+  data_array(xml, "Int64", "connectivity", 0, data.offset(connectivity_array));
+  data_array(xml, "Int64", "offsets", 0, data.offset(offsets_array));
+  data_array(xml, "UInt8", "types", 0, data.offset(types_array));
   xml << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  const std::string bytes = data.bytes();
   write_atomically(path, [&](std::ostream& out) {
     out << xml.str();
-    out.write(data.bytes().data(), static_cast<std::streamsize>(data.bytes().size()));
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out << "\n  </AppendedData>\n</VTKFile>\n";
   });
 }

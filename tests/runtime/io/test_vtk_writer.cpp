@@ -92,6 +92,20 @@ TEST(VtuWriter, MeshioReadsBack2DMixes) {
   expect_meshio_reads_back(beam(2, "tri3:0.5,quad4:0.5", 2, {4, 2, 1}), true);
 }
 
+TEST(VtuWriter, MeshioReadsArraysWhoseRewrittenOffsetsWouldCollide) {
+  // meshio 5.0 rewrites each array's offset as it reads the data in order
+  // and finds the next array by its offset. Two cells with cell fields of 4,
+  // 1 and 1 components stored in tag order: the second field's rewritten
+  // offset (96) is the third's raw offset, and meshio read the wrong arrays.
+  const test_support::TempDir dir;
+  const Mesh mesh = beam(2, "quad4:1", 1, {2, 1, 1});
+  const std::vector<Field> cell_data{
+      {"wide", 4, awkward_values(8, 0.5)}, {"global_cell", 1, {0.0, 1.0}}, {"law_id", 1, {2.0, 2.0}}};
+  tensormass::io::write_vtu(dir.file("mesh.vtu"), mesh, {}, {}, cell_data);
+  dir.write("expected.json", vtu_expectation(mesh, {}, {}, cell_data));
+  EXPECT_EQ(tmtest::run_check("check_vtu.py", dir.file("mesh.vtu"), dir.file("expected.json")), 0);
+}
+
 TEST(VtuWriter, RejectsFieldsOfTheWrongSizeWithoutWriting) {
   const test_support::TempDir dir;
   const Mesh mesh = beam(2, "quad4:1", 1, {2, 1, 1});

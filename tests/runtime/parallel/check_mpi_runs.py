@@ -1,7 +1,8 @@
 """`mpirun -n 1/2/3 tensormass run ... --set solver.backend=petsc` against the
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
-whose cells switch laws, an explicit run, a run that refines its mesh; the .pvtu pieces hold every cell
+whose cells switch laws, an explicit run, runs that refine their mesh (a
+tet beam, and the mixed beam with its pyramids); the .pvtu pieces hold every cell
 once; a bad scene and a numerical failure exit non-zero on every rank with
 one message and no hang.
 
@@ -62,6 +63,10 @@ adaptivity:
   refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1, every: 4}
 output: {every: 4}
 """, law="hooke"),
+    "static_refining_mixed": clamped_beam("""solver: {type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
+adaptivity:
+  refine: {criteria: [{name: R_ZZ, threshold: 0.5}], max_level: 1}
+""", law="neohookean", mesh="mixed.msh"),
 }
 
 
