@@ -5,15 +5,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "refinement/node_pairs.hpp"
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 #include "tensormass/refinement/transition_patterns.hpp"
 
 namespace tensormass {
 namespace {
 
-std::uint64_t edge_key(int a, int b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
-}
+using detail::edge_key;
 
 /// The cells of one element type in the leaf mesh, in the order they are made.
 struct LeafList {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "refinement/node_pairs.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh_conformity.hpp"
@@ -16,9 +17,8 @@
 namespace tensormass {
 namespace {
 
-std::uint64_t edge_key(int a, int b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
-}
+using detail::edge_key;
+using detail::squared_distance;
 
 /// A quad face's key: its lowest corner and the corner opposite it.
 std::uint64_t face_key(std::span<const int> face) {
@@ -137,13 +137,6 @@ void check_refinable(const Mesh& mesh) {
     throw InputError(mesh_name(mesh) + ": " + std::to_string(conformity.overused_faces) + " " +
                      (mesh.dim == 2 ? "edges" : "faces") +
                      " are shared by more than two cells; refinement needs a conforming mesh");
-}
-
-double squared_distance(std::span<const double> positions, int a, int b) {
-  double sum = 0;
-  for (int c = 0; c < 3; ++c)
-    sum += (at(positions, a)[c] - at(positions, b)[c]) * (at(positions, a)[c] - at(positions, b)[c]);
-  return sum;
 }
 
 }  // namespace

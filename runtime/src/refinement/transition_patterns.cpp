@@ -3,17 +3,12 @@
 
 #include <algorithm>
 
+#include "refinement/node_pairs.hpp"
+
 namespace tensormass {
 namespace {
 
-double squared_distance(std::span<const double> positions, int a, int b) {
-  double sum = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double d = positions[3 * static_cast<std::size_t>(a) + c] - positions[3 * static_cast<std::size_t>(b) + c];
-    sum += d * d;
-  }
-  return sum;
-}
+using detail::squared_distance;
 
 /// Two split edges: `whole` is the edge without a midpoint (corners a = whole,
 /// b = whole + 1), m1 splits edge b-c, m2 splits edge c-a.

@@ -152,9 +152,8 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
 }
 
 /// The output directory's checkpoint when there is one, checked against
-/// this run's fingerprints (`run`) and model; InputError when it belongs to another run.
-std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Checkpoint& run,
-                                              const Model& model) {
+/// this run's fingerprints (`run`); InputError when it belongs to another run.
+std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Checkpoint& run) {
   if (!fs::exists(path)) return std::nullopt;
   Checkpoint checkpoint = read_checkpoint(path);
   if (checkpoint.mesh_fingerprint != run.mesh_fingerprint)
@@ -164,10 +163,14 @@ std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Sce
     throw InputError("checkpoint " + path + " was written for another version of " + scene.path +
                      " (materials, constraints, loads, solver, adaptivity or output.every/track differ; remove it, "
                      "or give another output.directory, to start afresh)");
+  return checkpoint;
+}
+
+/// InputError unless the checkpoint's state fits the model's dofs.
+void check_checkpoint_state(const Checkpoint& checkpoint, const std::string& path, const Model& model) {
   const std::size_t dofs = model.dof_count();
   if (checkpoint.state.displacement.size() != dofs || checkpoint.state.velocity.size() != dofs)
     throw InputError("checkpoint " + path + ": its state does not fit the model's " + std::to_string(dofs) + " dofs");
-  return checkpoint;
 }
 
 /// Simulated and time-loop seconds of a dynamic run (see RunReport::loop_seconds).
@@ -275,7 +278,7 @@ struct Simulation::Impl {
   bool observe(const State& state);
   bool refine_load_step(const State& now);
   void apply_refinement();
-  void replay_refinement();
+  void replay_refinement(const Checkpoint& checkpoint);
   void restore_refinement(const SavedRefinement& saved);
   SavedRefinement save_refinement() const;
   void restore(const Checkpoint& checkpoint);
@@ -345,7 +348,9 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
                options.progress && parallel::world_rank() == 0) {
   fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);  // the scene's mesh, before any refinement
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
-  if (refinement && options.resume) replay_refinement();
+  std::optional<Checkpoint> checkpoint;
+  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints);
+  if (checkpoint && refinement) replay_refinement(*checkpoint);
   if (parallel::world_size() > 1) share_among_ranks();
   disc->prepare(scene);
   if (scene.adaptivity.enabled) {
@@ -353,8 +358,7 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
     adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
   }
-  std::optional<Checkpoint> checkpoint;
-  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints, disc->model);
+  if (checkpoint) check_checkpoint_state(*checkpoint, checkpoint_path, disc->model);
 
   report.output_directory = scene.output.directory;
   report.nodes = disc->mesh.node_count();
@@ -383,13 +387,9 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
 }
 
 /// A resumed refining run: the mesh of the checkpoint, by replaying its
-/// history from the scene's mesh (the checkpoint itself is checked later).
-void Simulation::Impl::replay_refinement() {
-  if (!fs::exists(checkpoint_path)) return;
-  const Checkpoint checkpoint = read_checkpoint(checkpoint_path);
-  if (checkpoint.mesh_fingerprint != fingerprints.mesh_fingerprint ||
-      checkpoint.scene_fingerprint != fingerprints.scene_fingerprint || !checkpoint.refining)
-    return;  // matching_checkpoint says why
+/// history from the scene's mesh.
+void Simulation::Impl::replay_refinement(const Checkpoint& checkpoint) {
+  if (!checkpoint.refining) return;  // the scene fingerprint covers adaptivity.refine: not reached
   refinement->restore(checkpoint.refinement);
   disc = std::make_unique<Discretisation>(refinement->leaf_mesh(), scene, report.statistics);
 }

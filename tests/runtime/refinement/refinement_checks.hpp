@@ -9,9 +9,11 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "tensormass/common/errors.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/mesh/mesh_conformity.hpp"
 #include "tensormass/meshing/beam.hpp"
@@ -131,6 +133,17 @@ inline void expect_same_mesh(const Mesh& actual, const Mesh& expected) {
     EXPECT_EQ(a.facets.orders, e.facets.orders) << e.name;
   }
   EXPECT_EQ(actual.source, expected.source);
+}
+
+/// `action` throws an InputError whose message contains `words`.
+template <typename Action>
+void expect_input_error(Action action, const std::string& words) {
+  try {
+    action();
+    ADD_FAILURE() << "no error, expected one mentioning '" << words << "'";
+  } catch (const tensormass::InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+  }
 }
 
 /// Every leaf-mesh cell, for marking all.
