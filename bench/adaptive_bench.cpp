@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "usage: tensormass bench adaptive [--quick] [--json FILE] [--only NAME]\n"
     "  --quick        smaller meshes and fewer steps (a smoke run; figures are not the targets')\n"
     "  --json FILE    also write the results as JSON to FILE (atomically)\n"
-    "  --only NAME    one scene: indentation, needle, cantilever or quad-beam\n";
+    "  --only NAME    one scene: indentation, needle, cantilever or quad-beam, each implicit (as\n"
+    "                 named) or explicit (NAME-explicit); all eight by default\n";
 
 struct Options {
   bool quick = false;
@@ -60,6 +61,7 @@ struct Case {
   std::vector<std::string> other_laws = {"corotational"};
   double error_target = 0.01;  // adaptive error at most this ...
   double cost_target = 0.5;    // ... at at most this fraction of the rich law's step
+  int every = 1;               // adaptivity.every of the adaptive runs
 };
 
 /// What one run gives.
@@ -147,6 +149,26 @@ Case needle(bool quick) {
   return c;
 }
 
+/// The same scene integrated explicitly (symplectic Euler, no linear
+/// solve), as interactive surgical simulators run: dt is half the stable
+/// step estimated for the linear law at rest, the criteria run every
+/// `every` steps (a step moves the tissue little).
+Case explicit_variant(Case c, int every) {
+  c.name += "-explicit";
+  Scene& s = c.scene;
+  s.solver.type = SolverType::explicit_euler;
+  Model model(c.mesh, s.model);
+  const Assembler assembler(model);
+  const double duration = s.solver.dt * s.solver.steps;
+  s.solver.dt = 0.5 * estimate_stable_time_step(model, assembler);
+  s.solver.steps = static_cast<int>(std::ceil(duration / s.solver.dt));
+  s.solver.dt = duration / s.solver.steps;
+  c.every = every;
+  c.what += ", explicit dt " + std::to_string(s.solver.dt * 1e3).substr(0, 5) + " ms, criteria every " +
+            std::to_string(every) + " steps";
+  return c;
+}
+
 /// A beam clamped at x = 0 sagging under gravity (implicit, dt 0.01), ladder hooke -> stvk.
 Case gravity_beam(const std::string& name, int dim, std::array<int, 3> cells, std::array<double, 3> size,
                   const std::string& cut, double young, int steps) {
@@ -199,6 +221,7 @@ Scene run_scene_of(const Case& c, const std::string& law, std::optional<double> 
     s.adaptivity.enabled = true;
     s.adaptivity.criteria = {{c.criterion, *threshold, 0, ""}};
     s.adaptivity.ladder = c.ladder;
+    s.adaptivity.every = c.every;
   }
   return s;
 }
@@ -209,6 +232,7 @@ Scene corotational_scene_of(const Case& c, double nonlinear, double strain) {
   s.adaptivity.enabled = true;
   s.adaptivity.criteria = {{"R_NL", nonlinear, 0, "corotational"}, {"R_E", strain, 0, ""}};
   s.adaptivity.ladder = {c.ladder.front(), "corotational", c.ladder.back()};
+  s.adaptivity.every = c.every;
   return s;
 }
 
@@ -238,7 +262,8 @@ Run simulate(const Case& c, const std::string& label, const Scene& scene, std::o
     return false;
   };
   try {
-    solve_implicit(integration, state, observer);
+    if (scene.solver.type == SolverType::explicit_euler) solve_explicit(integration, state, observer);
+    else solve_implicit(integration, state, observer);
   } catch (const NumericalError& failure) {
     run.failure = failure.what();
   }
@@ -415,8 +440,10 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       return false;
     }
   }
-  if (!options.only.empty() && options.only != "indentation" && options.only != "needle" &&
-      options.only != "cantilever" && options.only != "quad-beam") {
+  const std::vector<std::string> names = {"indentation", "needle", "cantilever", "quad-beam"};
+  if (!options.only.empty() && std::none_of(names.begin(), names.end(), [&](const std::string& name) {
+        return options.only == name || options.only == name + "-explicit";
+      })) {
     std::fprintf(stderr, "tensormass bench adaptive: unknown scene '%s'\n%s", options.only.c_str(), kUsage);
     exit_code = 2;
     return false;
@@ -436,10 +463,12 @@ int adaptive_command(const std::vector<std::string>& args) {
       "ms/step: wall time of the whole step (assembly, solve, criteria, rest); error: largest nodal\n"
       "distance to the pure rich law over all steps / its largest displacement.\n");
   std::vector<Case> cases;
-  if (options.only.empty() || options.only == "indentation") cases.push_back(indentation(options.quick));
-  if (options.only.empty() || options.only == "needle") cases.push_back(needle(options.quick));
-  if (options.only.empty() || options.only == "cantilever") cases.push_back(cantilever(options.quick));
-  if (options.only.empty() || options.only == "quad-beam") cases.push_back(quad_beam(options.quick));
+  const auto wanted = [&](const std::string& name) { return options.only.empty() || options.only == name; };
+  for (Case base : {indentation(options.quick), needle(options.quick), cantilever(options.quick),
+                    quad_beam(options.quick)}) {
+    if (wanted(base.name + "-explicit")) cases.push_back(explicit_variant(base, 10));
+    if (wanted(base.name)) cases.push_back(std::move(base));
+  }
   std::vector<CaseResult> results;
   bool failed = false;
   for (const Case& c : cases) {

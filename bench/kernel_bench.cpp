@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "handwritten_stvk.hpp"
+#include "polar_bench.hpp"
 #include "machine_info.hpp"
 #include "tensormass/kernels/registry.hpp"
 
@@ -751,6 +752,10 @@ int kernels_command(const std::vector<std::string>& args) {
   }
   print_table(ordered);
   print_targets(ordered, registry);
+  if (!print_polar_rotation_timings(options.quick ? 2000 : 100000, options.quick ? 3 : 7)) {
+    std::fprintf(stderr, "tensormass bench: FAILED: the polar rotation disagrees with its previous iteration\n");
+    return 1;
+  }
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   std::printf("\n%zu rows in %.1f s (checksum %.6e)\n", ordered.size(), seconds, static_cast<double>(g_sink));
   if (!options.json.empty()) {
