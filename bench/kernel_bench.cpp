@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "handwritten_stvk.hpp"
-#include "polar_bench.hpp"
 #include "machine_info.hpp"
+#include "polar_bench.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
