@@ -70,20 +70,30 @@ void Assembler::build_pattern() {
   }
   m.values.assign(m.columns.size(), 0.0);
   // Scatter map: each entry of each cell's dense Hessian -> index in values.
+  // Free indices grow with the dof, so a node's free columns sit side by
+  // side in a sorted row: one search per row and node finds them all.
   scatter_offsets_.assign(1, 0);
+  scatter_offsets_.reserve(static_cast<std::size_t>(model.cell_count()) + 1);
+  std::size_t entries = 0;
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    entries += model.cell_nodes(cell).size() * model.cell_nodes(cell).size() * static_cast<std::size_t>(d * d);
+  scatter_.clear();
+  scatter_.reserve(entries);
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const auto cn = model.cell_nodes(cell);
     const int dofs = static_cast<int>(cn.size()) * d;
     for (int i = 0; i < dofs; ++i) {
       const int row = free_index[cn[i / d] * d + i % d];
-      for (int j = 0; j < dofs; ++j) {
-        const int column = free_index[cn[j / d] * d + j % d];
-        int position = -1;
-        if (row >= 0 && column >= 0) {
-          const auto begin = m.columns.begin() + m.row_start[row], end = m.columns.begin() + m.row_start[row + 1];
-          position = static_cast<int>(std::lower_bound(begin, end, column) - m.columns.begin());
+      for (int node : cn) {
+        const int* columns = &free_index[node * d];
+        const int* first_free = std::find_if(columns, columns + d, [](int c) { return c >= 0; });
+        if (row < 0 || first_free == columns + d) {
+          scatter_.insert(scatter_.end(), d, -1);
+          continue;
         }
-        scatter_.push_back(position);
+        const auto begin = m.columns.begin() + m.row_start[row], end = m.columns.begin() + m.row_start[row + 1];
+        int position = static_cast<int>(std::lower_bound(begin, end, *first_free) - m.columns.begin());
+        for (int c = 0; c < d; ++c) scatter_.push_back(columns[c] >= 0 ? position++ : -1);
       }
     }
     scatter_offsets_.push_back(scatter_.size());
