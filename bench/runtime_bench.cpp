@@ -51,7 +51,7 @@ constexpr const char* kUsage =
     "                                [--scaling]\n"
     "  --quick        smaller problems and fewer repetitions (CI smoke test, well under a minute)\n"
     "  --json FILE    also write the results as JSON to FILE (atomically)\n"
-    "  --only NAME    run one part: ccx, threads, implicit, quad or batch\n"
+    "  --only NAME    run one part: ccx, threads, implicit, quad, batch or spmv\n"
     "  --threads N    threads of tensormass AND ccx (OMP_NUM_THREADS) in the ccx comparison (default: the\n"
     "                 OpenMP default a user gets, all cores)\n"
     "  --ccx PATH     the CalculiX executable (default: $TENSORMASS_CCX, else ccx in PATH)\n"
@@ -826,6 +826,75 @@ bool run_batched_assembly(const Options& options, std::vector<JsonObject>& json,
   return true;
 }
 
+// --- 6. The tangent product by node blocks -----------------------------------
+
+/// Median ms of K x by rows (column indices, the baseline) and by node
+/// blocks (SparseMatrix::multiply), alternated; `difference`: their largest
+/// difference over the largest entry.
+std::array<double, 2> time_products(const SparseMatrix& K, int repetitions, double& difference) {
+  std::vector<double> x(K.rows), by_rows(K.rows), by_blocks(K.rows);
+  for (int i = 0; i < K.rows; ++i) x[i] = std::sin(0.37 * i);
+  std::vector<double> samples[2];
+  for (int rep = 0; rep < repetitions + 1; ++rep) {
+    auto start = Clock::now();
+    K.multiply_by_rows(x, by_rows);
+    if (rep > 0) samples[0].push_back(1e3 * since(start));  // the first is a warm-up
+    start = Clock::now();
+    K.multiply(x, by_blocks);
+    if (rep > 0) samples[1].push_back(1e3 * since(start));
+  }
+  double worst = 0.0, scale = 0.0;
+  for (int i = 0; i < K.rows; ++i) {
+    worst = std::max(worst, std::abs(by_rows[i] - by_blocks[i]));
+    scale = std::max(scale, std::abs(by_rows[i]));
+  }
+  difference = worst / std::max(scale, 1e-300);
+  return {median(samples[0]), median(samples[1])};
+}
+
+bool run_block_products(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+  const int repetitions = options.quick ? 5 : 41;
+  const int defaults = omp_get_max_threads();
+  std::printf("\n== 6. The tangent product K x: by node blocks (the default) vs row by row ==\n");
+  std::printf(
+      "StVK tet6 beams, the tangent at rest; runs alternate, median of %d; GB/s: 12 bytes per non-zero and 20 per "
+      "row over the row-by-row time\n",
+      repetitions);
+  std::printf("%-8s %9s %10s %7s | %9s %9s %6s %6s %9s\n", "mesh", "rows", "non-zeros", "threads", "by rows", "blocks",
+              "ratio", "GB/s", "rel. diff");
+  bool agree = true;
+  const std::vector<std::array<int, 3>> sizes =
+      options.quick ? std::vector<std::array<int, 3>>{{10, 4, 4}}
+                    : std::vector<std::array<int, 3>>{{28, 6, 10}, {70, 12, 20}};  // 10k and 100k tets
+  for (const auto& cells : sizes) {
+    const Mesh mesh = beam_mesh(3, "tet6", cells, {0.1 * cells[0], 0.1 * cells[1], 0.1 * cells[2]});
+    const Scene scene = cantilever("stvk", 1.0e6, 9.81, SolverType::implicit_euler);
+    const Model model(mesh, scene.model);
+    const Assembler assembler(model);
+    std::vector<double> u(model.dof_count(), 0.0), g(model.dof_count());
+    SparseMatrix K = assembler.pattern();
+    assembler.assemble(u, g, &K);
+    for (const int threads : {1, defaults}) {
+      const Threads scope(threads);
+      double difference = 0.0;
+      const auto t = time_products(K, repetitions, difference);
+      agree = agree && difference <= 1e-13;
+      const double gbs = (12.0 * K.nonzeros() + 20.0 * K.rows) / (t[0] * 1e-3) / 1e9;
+      std::printf("%-8s %9d %10d %7d | %9.3f %9.3f %6.2f %6.1f %9.1e\n",
+                  (std::to_string(model.cell_count() / 1000) + "k").c_str(), K.rows, K.nonzeros(), threads, t[0], t[1],
+                  t[1] / t[0], gbs, difference);
+      JsonObject row;
+      row.add("tets", model.cell_count()).add("rows", K.rows).add("nonzeros", K.nonzeros()).add("threads", threads);
+      row.add("by_rows_ms", t[0]).add("by_blocks_ms", t[1]).add("relative_difference", difference);
+      json.push_back(row);
+      if (threads == defaults && &cells == &sizes.back())
+        targets.push_back({"K x by node blocks / by rows, largest beam", t[1] / t[0], "<=", 1.0, true});
+    }
+  }
+  if (!agree) std::printf("FAILED: the block product differs from the row product by more than rounding\n");
+  return agree;
+}
+
 bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
   auto value = [&](std::size_t& i, const char* what) -> const std::string* {
     if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1].rfind("--", 0) == 0) {
@@ -851,10 +920,11 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       if (a == "--json") options.json = *v;
       if (a == "--ccx") options.ccx = *v;
       if (a == "--only") {
-        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad" && *v != "batch") {
-          std::fprintf(stderr,
-                       "tensormass bench runtime: --only expects ccx, threads, implicit, quad or batch, not '%s'\n%s",
-                       v->c_str(), kUsage);
+        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad" && *v != "batch" && *v != "spmv") {
+          std::fprintf(
+              stderr,
+              "tensormass bench runtime: --only expects ccx, threads, implicit, quad, batch or spmv, not '%s'\n%s",
+              v->c_str(), kUsage);
           exit_code = 2;
           return false;
         }
@@ -926,17 +996,19 @@ int runtime_command(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   JsonObject ccx_json, threads_json, quad_json;
-  std::vector<JsonObject> implicit_json, batch_json;
+  std::vector<JsonObject> implicit_json, batch_json, spmv_json;
   guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
   guarded("threads", [&] { return run_thread_defaults(options, threads_json, targets); });
   guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
   guarded("quad", [&] { return run_quad_beam(options, quad_json, targets); });
   guarded("batch", [&] { return run_batched_assembly(options, batch_json, targets); });
+  guarded("spmv", [&] { return run_block_products(options, spmv_json, targets); });
   if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
   if (options.only.empty() || options.only == "threads") report.add("threads", threads_json);
   if (options.only.empty() || options.only == "implicit") report.add("implicit", implicit_json);
   if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
   if (options.only.empty() || options.only == "batch") report.add("batched_assembly", batch_json);
+  if (options.only.empty() || options.only == "spmv") report.add("block_products", spmv_json);
 
   std::printf("\ntargets\n");
   int pass = 0, miss = 0;

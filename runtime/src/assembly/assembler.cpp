@@ -47,6 +47,43 @@ Assembler::Assembler(const Model& model, bool fold_linear_cells) : model_(&model
   if (fold_linear_cells) linear_ = std::make_unique<LinearPart>(model, graph_, pattern_);
 }
 
+namespace {
+
+/// The node blocks of the pattern build_pattern() makes: per node its free
+/// rows, and per neighbour with free dofs one run of consecutive columns.
+NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, int d) {
+  NodeRuns runs;
+  const int nodes = static_cast<int>(graph.row_start.size()) - 1;
+  const auto free_count = [&](int node) {
+    return static_cast<int>(
+        std::count_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; }));
+  };
+  const auto first_free = [&](int node) {
+    return *std::find_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; });
+  };
+  runs.node_row_start.assign(1, 0);
+  runs.run_start.assign(1, 0);
+  for (int node = 0; node < nodes; ++node) {
+    const int rows = free_count(node);
+    runs.node_row_start.push_back(runs.node_row_start.back() + rows);
+    if (rows > 0)
+      for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
+        const int neighbour = graph.columns[k];
+        if (const int columns = free_count(neighbour); columns > 0) {
+          runs.run_column.push_back(first_free(neighbour));
+          runs.run_length.push_back(static_cast<unsigned char>(columns));
+        }
+      }
+    runs.run_start.push_back(static_cast<int>(runs.run_column.size()));
+    const auto first = runs.run_length.begin() + runs.run_start[node];
+    const bool full = std::all_of(first, runs.run_length.end(), [&](unsigned char c) { return c == d; });
+    runs.full.push_back(static_cast<unsigned char>(full ? d : 0));
+  }
+  return runs;
+}
+
+}  // namespace
+
 void Assembler::build_pattern() {
   const Model& model = *model_;
   const int d = model.dim();
@@ -69,6 +106,7 @@ void Assembler::build_pattern() {
     m.row_start.push_back(static_cast<int>(m.columns.size()));
   }
   m.values.assign(m.columns.size(), 0.0);
+  m.node_runs = std::make_shared<const NodeRuns>(node_runs(graph_, free_index, d));
   // Scatter map: each entry of each cell's dense Hessian -> index in values.
   // Free indices grow with the dof, so a node's free columns sit side by
   // side in a sorted row: one search per row and node finds them all.
