@@ -57,8 +57,10 @@ class SerialBlas {
     }
   }
   ~SerialBlas() {
-    omp_set_num_threads(previous_);
+    // OpenBLAS first: its openmp variant sets OpenMP's count to its own
+    // (the cores), which would undo the run's solver.threads.
     if (openblas_.set) openblas_.set(previous_blas_);
+    omp_set_num_threads(previous_);
   }
   SerialBlas(const SerialBlas&) = delete;
   SerialBlas& operator=(const SerialBlas&) = delete;

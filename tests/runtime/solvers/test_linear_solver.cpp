@@ -4,6 +4,7 @@
 // the block that changed when it is told which rows change, and factorises
 // afresh when that stops paying or does not converge.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <memory>
@@ -166,6 +167,25 @@ TEST(LinearSolver, CholmodRefactorisesOnceReuseCostsMoreThanTheMeanSolve) {
     factorizations = solver->factorizations();
   }
   EXPECT_EQ(factorizations, 2);
+}
+
+TEST(LinearSolver, CholmodLeavesTheCallersThreadCountAsItWas) {
+  // CHOLMOD runs its BLAS on one thread; the OpenMP thread count the run
+  // chose (solver.threads) must be the same afterwards. (OpenBLAS's
+  // openmp variant sets OpenMP's count when its own is set back.)
+  constexpr int n = 200;
+  const int threads = omp_get_max_threads();
+  const std::vector<double> b = right_hand_side(n);
+  const SparseMatrix first = laplacian(n, 0.01), drifted = laplacian(n, 0.02);  // the solver keeps them
+  for (const int requested : {1, 3, 2}) {
+    omp_set_num_threads(requested);
+    auto solver = cholmod_after_one_solve(first, b);
+    std::vector<double> x(n, 0.0);
+    solver->factorize(drifted);  // a lagged solve, then maybe a new factor
+    solver->solve(b, x, 1e-10);
+    EXPECT_EQ(omp_get_max_threads(), requested);
+  }
+  omp_set_num_threads(threads);
 }
 
 TEST(LinearSolver, ConjugateGradientsReachTheRequestedTolerance) {
