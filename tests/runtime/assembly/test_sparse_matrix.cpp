@@ -1,8 +1,6 @@
 // The tangent's product by node blocks (SparseMatrix::node_runs) equals the
 // row-by-row product to rounding, on nodes with all, some and none of their
 // dofs free, in 2D and 3D, with the same bits on one and two threads.
-#include "tensormass/assembly/sparse_matrix.hpp"
-
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -12,6 +10,7 @@
 
 #include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/model/model.hpp"
 
 namespace tensormass {
