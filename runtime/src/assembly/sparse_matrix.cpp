@@ -34,7 +34,7 @@ namespace {
 /// dozen bytes) read again from cache for each row. A row sums into R
 /// partial sums, one per column of a run, so that R products are in flight
 /// rather than one chain of additions (a sum in column order was 0.88 to
-/// 0.91x the row product; this is 0.67 to 0.84x, bench runtime --only
+/// 0.91x the row product; this is 0.59 to 0.84x, bench runtime --only
 /// spmv). The order is fixed, so the bits do not depend on the threads.
 template <int R>
 inline void multiply_node(const SparseMatrix& A, const NodeRuns& runs, int n, const double* x, double* y) {
