@@ -50,7 +50,8 @@ Assembler::Assembler(const Model& model, bool fold_linear_cells) : model_(&model
 namespace {
 
 /// The node blocks of the pattern build_pattern() makes: per node its free
-/// rows, and per neighbour with free dofs one run of consecutive columns.
+/// rows, and per neighbour with free dofs one run of consecutive columns
+/// (its first column; whether all the node's runs have d is kept per node).
 NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, int d) {
   NodeRuns runs;
   const int nodes = static_cast<int>(graph.row_start.size()) - 1;
@@ -66,17 +67,16 @@ NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, i
   for (int node = 0; node < nodes; ++node) {
     const int rows = free_count(node);
     runs.node_row_start.push_back(runs.node_row_start.back() + rows);
+    bool full = true;
     if (rows > 0)
       for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
         const int neighbour = graph.columns[k];
         if (const int columns = free_count(neighbour); columns > 0) {
           runs.run_column.push_back(first_free(neighbour));
-          runs.run_length.push_back(static_cast<unsigned char>(columns));
+          full = full && columns == d;
         }
       }
     runs.run_start.push_back(static_cast<int>(runs.run_column.size()));
-    const auto first = runs.run_length.begin() + runs.run_start[node];
-    const bool full = std::all_of(first, runs.run_length.end(), [&](unsigned char c) { return c == d; });
     runs.full.push_back(static_cast<unsigned char>(full ? d : 0));
   }
   return runs;
@@ -111,12 +111,6 @@ void Assembler::build_pattern() {
   // Free indices grow with the dof, so a node's free columns sit side by
   // side in a sorted row: one search per row and node finds them all.
   scatter_offsets_.assign(1, 0);
-  scatter_offsets_.reserve(static_cast<std::size_t>(model.cell_count()) + 1);
-  std::size_t entries = 0;
-  for (int cell = 0; cell < model.cell_count(); ++cell)
-    entries += model.cell_nodes(cell).size() * model.cell_nodes(cell).size() * static_cast<std::size_t>(d * d);
-  scatter_.clear();
-  scatter_.reserve(entries);
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const auto cn = model.cell_nodes(cell);
     const int dofs = static_cast<int>(cn.size()) * d;

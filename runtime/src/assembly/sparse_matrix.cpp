@@ -9,9 +9,6 @@ namespace {
 // more on a machine whose cores are busy with other work).
 constexpr int kParallelRows = 20000;
 constexpr std::ptrdiff_t kParallelLength = 50000;
-}  // namespace
-
-namespace {
 
 /// Row i of A x from the column indices.
 inline double row_product(const SparseMatrix& A, int i, const double* x) {
@@ -19,15 +16,6 @@ inline double row_product(const SparseMatrix& A, int i, const double* x) {
   for (int k = A.row_start[i]; k < A.row_start[i + 1]; ++k) sum += A.values[k] * x[A.columns[k]];
   return sum;
 }
-
-}  // namespace
-
-void SparseMatrix::multiply_by_rows(std::span<const double> x, std::span<double> y) const {
-#pragma omp parallel for schedule(static) if (rows >= kParallelRows)
-  for (int i = 0; i < rows; ++i) y[i] = row_product(*this, i, x.data());
-}
-
-namespace {
 
 /// The rows of node n, every neighbour with all its R dofs free, one after
 /// the other: the values read once and in order, the node's runs (a few
@@ -54,6 +42,11 @@ inline void multiply_node(const SparseMatrix& A, const NodeRuns& runs, int n, co
 }
 
 }  // namespace
+
+void SparseMatrix::multiply_by_rows(std::span<const double> x, std::span<double> y) const {
+#pragma omp parallel for schedule(static) if (rows >= kParallelRows)
+  for (int i = 0; i < rows; ++i) y[i] = row_product(*this, i, x.data());
+}
 
 void SparseMatrix::multiply(std::span<const double> x, std::span<double> y) const {
   if (!node_runs) return multiply_by_rows(x, y);

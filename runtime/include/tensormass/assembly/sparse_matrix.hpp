@@ -19,12 +19,11 @@ namespace tensormass {
 /// column indices of d rows and up to d columns each: a product reads
 /// about 8.5 bytes per non-zero instead of 12.
 struct NodeRuns {
-  std::vector<int> node_row_start;        ///< nodes+1: the node's first free row (rows of a node are consecutive)
-  std::vector<int> run_start;             ///< nodes+1: the node's runs in run_column and run_length
-  std::vector<int> run_column;            ///< runs: first column
-  std::vector<unsigned char> run_length;  ///< runs: columns in the run (1 to d)
-  /// nodes: d when every run of the node has d columns (the usual case,
-  /// a product unrolled for it), else 0
+  std::vector<int> node_row_start;  ///< nodes+1: the node's first free row (rows of a node are consecutive)
+  std::vector<int> run_start;       ///< nodes+1: the node's runs in run_column
+  std::vector<int> run_column;      ///< runs: first column
+  /// nodes: d when every run of the node has d columns (the usual case, a
+  /// product unrolled for it), else 0 (the node's rows go row by row)
   std::vector<unsigned char> full;
 };
 
