@@ -51,7 +51,7 @@ constexpr const char* kUsage =
     "                                [--scaling]\n"
     "  --quick        smaller problems and fewer repetitions (CI smoke test, well under a minute)\n"
     "  --json FILE    also write the results as JSON to FILE (atomically)\n"
-    "  --only NAME    run one part: ccx, threads, implicit, quad, batch or spmv\n"
+    "  --only NAME    run one part: ccx, threads, implicit, quad, batch, spmv or scatter\n"
     "  --threads N    threads of tensormass AND ccx (OMP_NUM_THREADS) in the ccx comparison (default: the\n"
     "                 OpenMP default a user gets, all cores)\n"
     "  --ccx PATH     the CalculiX executable (default: $TENSORMASS_CCX, else ccx in PATH)\n"
@@ -895,6 +895,79 @@ bool run_block_products(const Options& options, std::vector<JsonObject>& json, s
   return agree;
 }
 
+// --- 7. The tangent scatter by node blocks ------------------------------------
+
+struct ScatterCase {
+  const char* label;
+  int dim;
+  const char* cut;
+  std::array<int, 3> cells;
+};
+constexpr ScatterCase kScatterCases[] = {{"stvk quad4", 2, "quad4", {60, 10, 1}},
+                                         {"stvk tet4 10k", 3, "tet6", {28, 6, 10}},
+                                         {"stvk tet4 100k", 3, "tet6", {70, 12, 20}},
+                                         {"stvk hex8", 3, "hex8", {40, 8, 8}}};
+
+/// Median ms of assemblies (forces + tangent) scattering by entries (the
+/// baseline) and by node blocks, alternated; `same`: identical values.
+std::array<double, 2> time_scatters(Assembler& assembler, const std::vector<double>& u, int repetitions, bool& same) {
+  std::vector<double> g(u.size());
+  SparseMatrix K[2] = {assembler.pattern(), assembler.pattern()};
+  std::vector<double> samples[2];  // by entries, by blocks
+  for (int rep = 0; rep < repetitions + 1; ++rep)
+    for (int blocks = 0; blocks < 2; ++blocks) {
+      assembler.set_scatter_by_blocks(blocks == 1);
+      const auto start = Clock::now();
+      assembler.assemble(u, g, &K[blocks]);
+      if (rep > 0) samples[blocks].push_back(1e3 * since(start));  // the first is a warm-up
+    }
+  same = K[0].values == K[1].values;
+  return {median(samples[0]), median(samples[1])};
+}
+
+bool run_scatter(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+  const int repetitions = options.quick ? 5 : 21;
+  const int defaults = omp_get_max_threads();
+  std::printf("\n== 7. The tangent scatter: by node blocks (the default) vs one index per Hessian entry ==\n");
+  std::printf(
+      "one assembly (forces + tangent) of u = a small wave; runs alternate, median of %d; map: the scatter map's "
+      "MiB\n",
+      repetitions);
+  std::printf("%-15s %7s %7s | %9s %9s %6s | %8s %8s\n", "case", "cells", "threads", "entries", "blocks", "ratio",
+              "map MiB", "(entries)");
+  bool agree = true;
+  for (const ScatterCase& c : kScatterCases) {
+    std::array<int, 3> cells = c.cells;
+    if (options.quick) cells = c.dim == 2 ? std::array<int, 3>{20, 4, 1} : std::array<int, 3>{10, 4, 4};
+    const Mesh mesh = beam_mesh(c.dim, c.cut, cells, {0.1 * cells[0], 0.1 * cells[1], 0.1 * cells[2]});
+    const Scene scene = cantilever("stvk", 1.0e6, 9.81, SolverType::implicit_euler);
+    const Model model(mesh, scene.model);
+    Assembler assembler(model);
+    const double block_mib = assembler.scatter_map_bytes() / 1048576.0;
+    assembler.set_scatter_by_blocks(false);
+    const double entry_mib = assembler.scatter_map_bytes() / 1048576.0;
+    std::vector<double> u(model.dof_count());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = 1e-3 * std::sin(0.7 * static_cast<double>(i));
+    for (const int threads : {1, defaults}) {
+      const Threads scope(threads);
+      bool same = false;
+      const auto t = time_scatters(assembler, u, repetitions, same);
+      agree = agree && same;
+      std::printf("%-15s %7d %7d | %9.3f %9.3f %6.2f | %8.1f %8.1f\n", c.label, model.cell_count(), threads, t[0], t[1],
+                  t[1] / t[0], block_mib, entry_mib);
+      JsonObject row;
+      row.add("case", c.label).add("cells", model.cell_count()).add("threads", threads);
+      row.add("by_entries_ms", t[0]).add("by_blocks_ms", t[1]).add("identical", same);
+      row.add("map_mib_blocks", block_mib).add("map_mib_entries", entry_mib);
+      json.push_back(row);
+      if (threads == defaults && std::string(c.label) == "stvk tet4 100k")
+        targets.push_back({"assembly, scatter by node blocks / by entries, 100k tets", t[1] / t[0], "<=", 1.0, true});
+    }
+  }
+  if (!agree) std::printf("FAILED: the two scatters gave different tangents\n");
+  return agree;
+}
+
 bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
   auto value = [&](std::size_t& i, const char* what) -> const std::string* {
     if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1].rfind("--", 0) == 0) {
@@ -920,11 +993,12 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
       if (a == "--json") options.json = *v;
       if (a == "--ccx") options.ccx = *v;
       if (a == "--only") {
-        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad" && *v != "batch" && *v != "spmv") {
-          std::fprintf(
-              stderr,
-              "tensormass bench runtime: --only expects ccx, threads, implicit, quad, batch or spmv, not '%s'\n%s",
-              v->c_str(), kUsage);
+        if (*v != "ccx" && *v != "threads" && *v != "implicit" && *v != "quad" && *v != "batch" && *v != "spmv" &&
+            *v != "scatter") {
+          std::fprintf(stderr,
+                       "tensormass bench runtime: --only expects ccx, threads, implicit, quad, batch, spmv or scatter, "
+                       "not '%s'\n%s",
+                       v->c_str(), kUsage);
           exit_code = 2;
           return false;
         }
@@ -996,19 +1070,21 @@ int runtime_command(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   JsonObject ccx_json, threads_json, quad_json;
-  std::vector<JsonObject> implicit_json, batch_json, spmv_json;
+  std::vector<JsonObject> implicit_json, batch_json, spmv_json, scatter_json;
   guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
   guarded("threads", [&] { return run_thread_defaults(options, threads_json, targets); });
   guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
   guarded("quad", [&] { return run_quad_beam(options, quad_json, targets); });
   guarded("batch", [&] { return run_batched_assembly(options, batch_json, targets); });
   guarded("spmv", [&] { return run_block_products(options, spmv_json, targets); });
+  guarded("scatter", [&] { return run_scatter(options, scatter_json, targets); });
   if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
   if (options.only.empty() || options.only == "threads") report.add("threads", threads_json);
   if (options.only.empty() || options.only == "implicit") report.add("implicit", implicit_json);
   if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
   if (options.only.empty() || options.only == "batch") report.add("batched_assembly", batch_json);
   if (options.only.empty() || options.only == "spmv") report.add("block_products", spmv_json);
+  if (options.only.empty() || options.only == "scatter") report.add("scatter", scatter_json);
 
   std::printf("\ntargets\n");
   int pass = 0, miss = 0;

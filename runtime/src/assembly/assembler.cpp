@@ -1,6 +1,7 @@
 #include "tensormass/assembly/assembler.hpp"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "tensormass/assembly/psd_projection.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
@@ -107,29 +108,75 @@ void Assembler::build_pattern() {
   }
   m.values.assign(m.columns.size(), 0.0);
   m.node_runs = std::make_shared<const NodeRuns>(node_runs(graph_, free_index, d));
-  // Scatter map: each entry of each cell's dense Hessian -> index in values.
-  // Free indices grow with the dof, so a node's free columns sit side by
-  // side in a sorted row: one search per row and node finds them all.
-  scatter_offsets_.assign(1, 0);
+  build_scatter_map();
+}
+
+namespace {
+
+/// How many of a node's d dofs are free.
+int free_dofs_of(const std::vector<int>& free_index, int node, int d) {
+  return static_cast<int>(
+      std::count_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; }));
+}
+
+/// Position in m.values of (row, the first free column of `node`), -1 when
+/// the row is fixed or the node has no free dof. Free indices grow with the
+/// dof, so a node's free columns sit side by side in a sorted row.
+int first_position(const SparseMatrix& m, const std::vector<int>& free_index, int row, int node, int d) {
+  const int* columns = &free_index[node * d];
+  const int* first_free = std::find_if(columns, columns + d, [](int c) { return c >= 0; });
+  if (row < 0 || first_free == columns + d) return -1;
+  const auto begin = m.columns.begin() + m.row_start[row], end = m.columns.begin() + m.row_start[row + 1];
+  return static_cast<int>(std::lower_bound(begin, end, *first_free) - m.columns.begin());
+}
+
+}  // namespace
+
+void Assembler::build_scatter_map() {
+  const Model& model = *model_;
+  const int d = model.dim();
+  const auto& free_index = model.free_index();
+  const SparseMatrix& m = pattern_;
+  const int nodes = static_cast<int>(free_index.size()) / d;
+  row_length_.assign(nodes, 0);
+  for (int node = 0; node < nodes; ++node)
+    if (const int row = free_index[node * d]; row >= 0) row_length_[node] = m.row_start[row + 1] - m.row_start[row];
+  block_offsets_.assign(1, 0);
+  entry_offsets_.assign(1, 0);
+  block_scatter_.clear();
+  entry_scatter_.clear();
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const auto cn = model.cell_nodes(cell);
-    const int dofs = static_cast<int>(cn.size()) * d;
-    for (int i = 0; i < dofs; ++i) {
-      const int row = free_index[cn[i / d] * d + i % d];
-      for (int node : cn) {
-        const int* columns = &free_index[node * d];
-        const int* first_free = std::find_if(columns, columns + d, [](int c) { return c >= 0; });
-        if (row < 0 || first_free == columns + d) {
-          scatter_.insert(scatter_.end(), d, -1);
-          continue;
+    const bool partial = !scatter_by_blocks_ || std::any_of(cn.begin(), cn.end(), [&](int node) {
+      const int free = free_dofs_of(free_index, node, d);
+      return free > 0 && free < d;
+    });
+    if (!partial)
+      for (int row_node : cn)
+        for (int node : cn) block_scatter_.push_back(first_position(m, free_index, free_index[row_node * d], node, d));
+    else
+      for (int i = 0; i < static_cast<int>(cn.size()) * d; ++i) {
+        const int row = free_index[cn[i / d] * d + i % d];
+        for (int node : cn) {
+          int position = first_position(m, free_index, row, node, d);
+          for (int c = 0; c < d; ++c)
+            entry_scatter_.push_back(position >= 0 && free_index[node * d + c] >= 0 ? position++ : -1);
         }
-        const auto begin = m.columns.begin() + m.row_start[row], end = m.columns.begin() + m.row_start[row + 1];
-        int position = static_cast<int>(std::lower_bound(begin, end, *first_free) - m.columns.begin());
-        for (int c = 0; c < d; ++c) scatter_.push_back(columns[c] >= 0 ? position++ : -1);
       }
-    }
-    scatter_offsets_.push_back(scatter_.size());
+    block_offsets_.push_back(block_scatter_.size());
+    entry_offsets_.push_back(entry_scatter_.size());
   }
+}
+
+void Assembler::set_scatter_by_blocks(bool on) {
+  if (on == scatter_by_blocks_) return;
+  scatter_by_blocks_ = on;
+  build_scatter_map();
+}
+
+std::size_t Assembler::scatter_map_bytes() const {
+  return sizeof(int) * (block_scatter_.size() + entry_scatter_.size() + row_length_.size()) +
+         sizeof(std::size_t) * (block_offsets_.size() + entry_offsets_.size());
 }
 
 void Assembler::build_colours() {
@@ -339,16 +386,46 @@ void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<dou
   scatter_cell(cell, buffers.g, local_k, gradient, stiffness);
 }
 
+namespace {
+
+/// values += the node blocks of one cell's Hessian k (nodes*D by nodes*D)
+/// at the positions `blocks` (nodes by nodes, Assembler::block_scatter_).
+template <int D>
+void add_node_blocks(std::span<const int> nodes, const int* blocks, const int* row_length, const double* k,
+                     double* values) {
+  const int m = static_cast<int>(nodes.size()), n = m * D;
+  for (int i = 0; i < m; ++i) {
+    const int stride = row_length[nodes[i]];
+    for (int j = 0; j < m; ++j) {
+      const int base = blocks[i * m + j];
+      if (base < 0) continue;
+      const double* block = k + static_cast<std::ptrdiff_t>(i) * D * n + j * D;
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) values[base + a * stride + b] += block[a * n + b];
+    }
+  }
+}
+
+}  // namespace
+
 void Assembler::scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                              SparseMatrix* stiffness) const {
   const Model& model = *model_;
   const int d = model.dim();
   const auto cn = model.cell_nodes(cell);
   if (stiffness) {
-    const int* scatter = scatter_.data() + scatter_offsets_[cell];
-    const int dofs2 = static_cast<int>(cn.size()) * d * static_cast<int>(cn.size()) * d;
-    for (int e = 0; e < dofs2; ++e)
-      if (scatter[e] >= 0) stiffness->values[scatter[e]] += k[e];
+    double* values = stiffness->values.data();
+    if (entry_offsets_[cell + 1] > entry_offsets_[cell]) {
+      const int* scatter = entry_scatter_.data() + entry_offsets_[cell];
+      const int dofs2 = static_cast<int>(cn.size()) * d * static_cast<int>(cn.size()) * d;
+      for (int e = 0; e < dofs2; ++e)
+        if (scatter[e] >= 0) values[scatter[e]] += k[e];
+    } else {
+      const int* blocks = block_scatter_.data() + block_offsets_[cell];
+      if (d == 3) add_node_blocks<3>(cn, blocks, row_length_.data(), k, values);
+      else if (d == 2) add_node_blocks<2>(cn, blocks, row_length_.data(), k, values);
+      else add_node_blocks<1>(cn, blocks, row_length_.data(), k, values);
+    }
   }
   for (int j = 0; j < static_cast<int>(cn.size()); ++j)
     for (int a = 0; a < d; ++a) gradient[static_cast<std::size_t>(cn[j]) * d + a] += g[j * d + a];
