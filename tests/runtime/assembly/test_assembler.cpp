@@ -21,6 +21,17 @@ std::vector<double> wavy_displacement(int dofs, double amplitude) {
   return u;
 }
 
+/// A 3D beam of `cells` unit-long cubes across a 1 x 1 section, in four
+/// phases along x: hex8, tet4 (6 per cube), prism6 and pyramid5.
+Mesh mixed_beam(std::array<int, 3> cells) {
+  BeamSpec spec;
+  spec.dim = 3;
+  spec.cells = cells;
+  spec.size = {double(cells[0]), 1, 1};
+  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
+  return make_beam(spec);
+}
+
 double entry(const SparseMatrix& K, int row, int column) {
   for (int k = K.row_start[row]; k < K.row_start[row + 1]; ++k)
     if (K.columns[k] == column) return K.values[k];
@@ -43,12 +54,7 @@ void expect_same_on_one_and_two_threads(const Model& model, const Assembler& ass
 }
 
 TEST(Assembler, TangentIsTheDerivativeOfTheForcesOnAMixedBeam) {
-  BeamSpec spec;
-  spec.dim = 3;
-  spec.cells = {4, 1, 1};
-  spec.size = {4, 1, 1};
-  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
-  const Mesh mesh = make_beam(spec);
+  const Mesh mesh = mixed_beam({4, 1, 1});
   const Model model(mesh, test::cantilever("stvk").model);
   const Assembler assembler(model);
   std::vector<double> u = wavy_displacement(model.dof_count(), 0.02), g(model.dof_count()), gp(g), gm(g);
@@ -130,13 +136,8 @@ void expect_tangent_matches_dense_sum(const Mesh& mesh, std::array<bool, 3> part
 }
 
 TEST(Assembler, TangentMatchesTheCellByCellSumWithPartlyFixedNodes) {
-  BeamSpec spec;
-  spec.dim = 3;
-  spec.cells = {4, 2, 2};
-  spec.size = {4, 1, 1};
-  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
-  expect_tangent_matches_dense_sum(make_beam(spec), {true, false, true});
-  expect_tangent_matches_dense_sum(make_beam(spec), {false, true, false});
+  expect_tangent_matches_dense_sum(mixed_beam({4, 2, 2}), {true, false, true});
+  expect_tangent_matches_dense_sum(mixed_beam({4, 2, 2}), {false, true, false});
   expect_tangent_matches_dense_sum(test::beam(2, "quad4", {6, 2, 1}), {true, false, false});
   expect_tangent_matches_dense_sum(test::beam(2, "tri3", {6, 2, 1}), {false, true, false});
 }
@@ -203,12 +204,7 @@ void expect_folded_matches_per_cell(const Model& model, const Assembler& folded,
 }
 
 TEST(Assembler, FoldedHookeCellsGiveThePerCellForcesAndTangent) {
-  BeamSpec spec;
-  spec.dim = 3;
-  spec.cells = {4, 2, 2};
-  spec.size = {4, 1, 1};
-  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
-  const Mesh mesh = make_beam(spec);
+  const Mesh mesh = mixed_beam({4, 2, 2});
   const Model model(mesh, test::cantilever("hooke").model);
   const Assembler folded(model), per_cell(model, false);
   const std::vector<double> u = wavy_displacement(model.dof_count(), 0.02);
@@ -269,12 +265,7 @@ double batched_against_per_element(const Model& model, Assembler& assembler, con
 TEST(Assembler, BatchedKernelsGiveThePerElementForcesAndTangent) {
   // Four element types in runs of every length, laws interleaved so that
   // batches break on kernel changes, and a blending cell in a run.
-  BeamSpec spec;
-  spec.dim = 3;
-  spec.cells = {6, 2, 2};
-  spec.size = {6, 1, 1};
-  spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
-  const Mesh mesh = make_beam(spec);
+  const Mesh mesh = mixed_beam({6, 2, 2});
   Model model(mesh, test::cantilever("stvk").model);
   Assembler assembler(model, false);
   EXPECT_TRUE(assembler.batched());
