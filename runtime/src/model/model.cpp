@@ -235,18 +235,20 @@ int Model::first_inverted_cell(std::span<const double> u) const {
 }
 
 void Model::apply_constraints(double t, std::span<double> u, bool static_load_factor) const {
-  for (const PrescribedDof& p : prescribed_) {
-    const TimeProfile& profile = profiles_[p.profile];
-    // A static solve reaches the full value at the last load step whatever the
-    // time profile: the load factor scales it linearly.
-    const double factor = p.held ? 1.0 : static_load_factor ? t : profile.factor(t);
-    u[p.dof] = p.amplitude * factor;
-    if (p.held) continue;
-    if (p.rotation >= 0) {
-      const double* x = &mesh_->rest_positions[3 * static_cast<std::size_t>(p.dof / dim_)];
-      u[p.dof] += rotations_[p.rotation].displacement(x, factor)[p.dof % dim_];
-    }
+  for (const PrescribedDof& p : prescribed_) u[p.dof] = prescribed_value(p, t, static_load_factor);
+}
+
+double Model::prescribed_value(const PrescribedDof& p, double t, bool static_load_factor) const {
+  if (p.held) return p.amplitude;
+  // A static solve reaches the full value at the last load step whatever the
+  // time profile: the load factor scales it linearly.
+  const double factor = static_load_factor ? t : profiles_[p.profile].factor(t);
+  double value = p.amplitude * factor;
+  if (p.rotation >= 0) {
+    const double* x = &mesh_->rest_positions[3 * static_cast<std::size_t>(p.dof / dim_)];
+    value += rotations_[p.rotation].displacement(x, factor)[p.dof % dim_];
   }
+  return value;
 }
 
 }  // namespace tensormass

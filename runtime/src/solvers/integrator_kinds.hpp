@@ -36,7 +36,7 @@ class ExplicitIntegrator final : public Integrator {
   void finish(const State& state) override;
 
  private:
-  std::vector<double> g_, next_;  ///< internal force, constrained displacement (dof_count)
+  std::vector<double> g_;  ///< internal force (dof_count)
 };
 
 }  // namespace tensormass

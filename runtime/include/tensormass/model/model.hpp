@@ -140,6 +140,8 @@ class Model {
   /// Sets every constrained dof of `u` (dof_count) to its value at time `t`;
   /// the static solver passes the load factor as t with ramp profiles.
   void apply_constraints(double t, std::span<double> u, bool static_load_factor = false) const;
+  /// The value apply_constraints gives the prescribed dof `p` at time t.
+  double prescribed_value(const PrescribedDof& p, double t, bool static_load_factor = false) const;
   /// Sum over the cells of Young's modulus times rest volume (J, or J/m in
   /// 2D): the size of energies whose round-off decides whether a change of
   /// the total energy is meaningful (line searches).
