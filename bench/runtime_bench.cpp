@@ -895,6 +895,90 @@ bool run_block_products(const Options& options, std::vector<JsonObject>& json, s
   return agree;
 }
 
+// --- 6b. The folded linear part's product ------------------------------------
+
+/// g = K_L u as LinearPart::multiply did before session 15: one sum per row
+/// of the blocks (D chains of additions per node), parallel above the same
+/// node count. The baseline of run_folded_products.
+template <int D>
+void folded_product_one_sum_per_row(const NodeGraph& graph, const double* blocks, const double* u, double* g) {
+  const int nodes = graph.node_count();
+#pragma omp parallel for schedule(static) if (nodes >= 1000)
+  for (int node = 0; node < nodes; ++node) {
+    double sum[D] = {};
+    for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
+      const double* block = blocks + static_cast<std::size_t>(k) * D * D;
+      const double* x = u + static_cast<std::size_t>(graph.columns[k]) * D;
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) sum[a] += block[a * D + b] * x[b];
+    }
+    for (int a = 0; a < D; ++a) g[static_cast<std::size_t>(node) * D + a] = sum[a];
+  }
+}
+
+/// Median ms of the folded Hooke forces K_L u: one sum per row (the
+/// baseline) and LinearPart::multiply, alternated; `difference`: their
+/// largest difference over the largest entry.
+std::array<double, 2> time_folded_products(const Model& model, const LinearPart& linear, int repetitions,
+                                           double& difference) {
+  const NodeGraph graph = make_node_graph(model);
+  const std::vector<double> blocks = linear.saved().blocks;
+  std::vector<double> u(model.dof_count()), baseline(u.size()), current(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = 1e-3 * std::sin(0.37 * static_cast<double>(i));
+  std::vector<double> samples[2];
+  for (int rep = 0; rep < repetitions + 1; ++rep) {
+    auto start = Clock::now();
+    folded_product_one_sum_per_row<3>(graph, blocks.data(), u.data(), baseline.data());
+    if (rep > 0) samples[0].push_back(1e3 * since(start));  // the first is a warm-up
+    start = Clock::now();
+    linear.multiply(u, current);
+    if (rep > 0) samples[1].push_back(1e3 * since(start));
+  }
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    worst = std::max(worst, std::abs(baseline[i] - current[i]));
+    scale = std::max(scale, std::abs(baseline[i]));
+  }
+  difference = worst / std::max(scale, 1e-300);
+  return {median(samples[0]), median(samples[1])};
+}
+
+bool run_folded_products(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+  const int repetitions = options.quick ? 5 : 101;
+  const int defaults = omp_get_max_threads();
+  std::printf("\n== 6b. Folded Hooke forces K_L u: D x D sums per node (the default) vs one sum per row ==\n");
+  std::printf("Hooke tet6 beams; runs alternate, median of %d\n", repetitions);
+  std::printf("%-8s %7s %7s | %9s %9s %6s %9s\n", "mesh", "nodes", "threads", "per row", "D x D", "ratio", "rel. diff");
+  bool agree = true;
+  const std::vector<std::array<int, 3>> sizes =
+      options.quick ? std::vector<std::array<int, 3>>{{10, 4, 4}}
+                    : std::vector<std::array<int, 3>>{{20, 10, 20}, {70, 12, 20}};  // 24k (indentation) and 100k tets
+  for (const auto& cells : sizes) {
+    const Mesh mesh = beam_mesh(3, "tet6", cells, {0.1 * cells[0], 0.1 * cells[1], 0.1 * cells[2]});
+    const Scene scene = cantilever("hooke", 1.0e6, 9.81, SolverType::explicit_euler);
+    const Model model(mesh, scene.model);
+    const Assembler assembler(model);
+    std::vector<double> zero(model.dof_count(), 0.0), g(model.dof_count());
+    assembler.assemble(zero, g, nullptr);  // folds the cells
+    for (const int threads : {1, defaults}) {
+      const Threads scope(threads);
+      double difference = 0.0;
+      const auto t = time_folded_products(model, *assembler.linear_part(), repetitions, difference);
+      agree = agree && difference <= 1e-13;
+      std::printf("%-8s %7d %7d | %9.4f %9.4f %6.2f %9.1e\n", (std::to_string(model.cell_count() / 1000) + "k").c_str(),
+                  mesh.node_count(), threads, t[0], t[1], t[1] / t[0], difference);
+      JsonObject row;
+      row.add("tets", model.cell_count()).add("nodes", mesh.node_count()).add("threads", threads);
+      row.add("one_sum_per_row_ms", t[0]).add("d_by_d_sums_ms", t[1]).add("relative_difference", difference);
+      json.push_back(row);
+      if (threads == defaults && &cells == &sizes.front())
+        targets.push_back({"folded K_L u, D x D sums / one per row, 24k tets", t[1] / t[0], "<=", 1.0, true});
+    }
+  }
+  if (!agree) std::printf("FAILED: the two folded products differ by more than rounding\n");
+  return agree;
+}
+
 // --- 7. The tangent scatter by node blocks ------------------------------------
 
 struct ScatterCase {
@@ -1070,13 +1154,15 @@ int runtime_command(const std::vector<std::string>& args) {
     std::fflush(stdout);
   };
   JsonObject ccx_json, threads_json, quad_json;
-  std::vector<JsonObject> implicit_json, batch_json, spmv_json, scatter_json;
+  std::vector<JsonObject> implicit_json, batch_json, spmv_json, folded_json, scatter_json;
   guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
   guarded("threads", [&] { return run_thread_defaults(options, threads_json, targets); });
   guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
   guarded("quad", [&] { return run_quad_beam(options, quad_json, targets); });
   guarded("batch", [&] { return run_batched_assembly(options, batch_json, targets); });
-  guarded("spmv", [&] { return run_block_products(options, spmv_json, targets); });
+  guarded("spmv", [&] {
+    return run_block_products(options, spmv_json, targets) && run_folded_products(options, folded_json, targets);
+  });
   guarded("scatter", [&] { return run_scatter(options, scatter_json, targets); });
   if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
   if (options.only.empty() || options.only == "threads") report.add("threads", threads_json);
@@ -1084,6 +1170,7 @@ int runtime_command(const std::vector<std::string>& args) {
   if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
   if (options.only.empty() || options.only == "batch") report.add("batched_assembly", batch_json);
   if (options.only.empty() || options.only == "spmv") report.add("block_products", spmv_json);
+  if (options.only.empty() || options.only == "spmv") report.add("folded_products", folded_json);
   if (options.only.empty() || options.only == "scatter") report.add("scatter", scatter_json);
 
   std::printf("\ntargets\n");
