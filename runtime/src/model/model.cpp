@@ -197,6 +197,9 @@ bool inverted_at_a_point(const double* u, const double* consts, int derived, int
 
 using InversionCheck = bool (*)(const double*, const double*, int, int);
 
+/// Below this many cells in a block the check stays on one thread.
+constexpr int kParallelInversionCells = 4096;
+
 InversionCheck inversion_check(int dim, int nodes) {
   if (dim == 2) {
     switch (nodes) {
@@ -221,15 +224,19 @@ InversionCheck inversion_check(int dim, int nodes) {
 }  // namespace
 
 int Model::first_inverted_cell(std::span<const double> u) const {
-  double local[81];
+  int first = cell_count();  // the smallest inverted cell: the same answer on any thread count
   for (const ElementBlock& block : mesh_->blocks) {
     const InversionCheck inverted = inversion_check(dim_, block.element->nodes);
-    for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
+    const int begin = block.first_cell, end = block.first_cell + block.count();
+#pragma omp parallel for schedule(static) reduction(min : first) if (end - begin >= kParallelInversionCells)
+    for (int cell = begin; cell < end; ++cell) {
       const tm_kernel& kernel = *kernels_[cell];
-      if (kernel.invertible) continue;  // defined through inversion: not a failure
+      if (kernel.invertible || cell >= first) continue;  // invertible: defined through inversion, not a failure
+      double local[81];
       gather(cell, u, local);
-      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) return cell;
+      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) first = cell;
     }
+    if (first < cell_count()) return first;
   }
   return -1;
 }

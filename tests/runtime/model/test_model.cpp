@@ -1,5 +1,6 @@
 // Model: lumped masses, consistent loads, constraints, rest Jacobians.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <numeric>
@@ -135,6 +136,30 @@ TEST(Model, InversionCheckSkipsInvertibleLaws) {
   EXPECT_EQ(stable.first_inverted_cell(flipped), -1);
   EXPECT_TRUE(std::isfinite(stable.strain_energy(flipped)));
   EXPECT_GT(stable.strain_energy(flipped), 0.0);
+}
+
+/// Above 4,096 cells the check runs on all threads: it still names the
+/// smallest inverted cell, the one a single thread (scanning in order)
+/// names. Only the beam's far end is flipped, so the answer is a cell there.
+TEST(Model, InversionCheckNamesTheSmallestInvertedCellOnAnyThreadCount) {
+  const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
+  const Model model(mesh, test::cantilever("neohookean").model);
+  ASSERT_GE(model.cell_count(), 4096);
+  std::vector<double> u(model.dof_count(), 0.0);
+  const double far = 0.8 * 20.0 / 6.0;  // the beam is 20/6 long
+  for (int node = 0; node < mesh.node_count(); ++node)
+    if (mesh.rest_positions[3 * node] > far) u[3 * node] = -3.0 * (mesh.rest_positions[3 * node] - far);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const int one = model.first_inverted_cell(u);
+  omp_set_num_threads(2);
+  const int two = model.first_inverted_cell(u);
+  omp_set_num_threads(threads);
+  EXPECT_GT(one, 0);
+  EXPECT_EQ(one, two);
+  bool touches_far_end = false;
+  for (int node : model.cell_nodes(one)) touches_far_end |= mesh.rest_positions[3 * node] > far;
+  EXPECT_TRUE(touches_far_end);
 }
 
 }  // namespace
