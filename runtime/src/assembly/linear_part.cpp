@@ -46,15 +46,20 @@ void multiply_blocks(const NodeGraph& graph, const double* blocks, const double*
 }  // namespace
 
 LinearPart::LinearPart(const Model& model, const NodeGraph& graph, const SparseMatrix& free_pattern)
-    : model_(&model), graph_(&graph), dim_(model.dim()) {
-  const int d = dim_, d2 = d * d;
-  blocks_.assign(graph.columns.size() * d2, 0.0);
+    : model_(&model), graph_(&graph), free_pattern_(&free_pattern), dim_(model.dim()) {
   folded_kernel_.assign(model.cell_count(), nullptr);
+}
+
+void LinearPart::allocate() {
+  if (!blocks_.empty()) return;
+  const int d = dim_, d2 = d * d;
+  const NodeGraph& graph = *graph_;
+  const SparseMatrix& free_pattern = *free_pattern_;
+  blocks_.assign(graph.columns.size() * d2, 0.0);
   // Each free non-zero (row dof r, column dof c) is entry (r % d, c % d) of block (r / d, c / d).
-  const auto& free_dofs = model.free_dofs();
+  const auto& free_dofs = model_->free_dofs();
   free_to_block_.resize(free_pattern.columns.size());
-  const int rows = free_pattern.rows;
-  for (int row = 0; row < rows; ++row) {
+  for (int row = 0; row < free_pattern.rows; ++row) {
     const int r = free_dofs[row];
     for (int k = free_pattern.row_start[row]; k < free_pattern.row_start[row + 1]; ++k) {
       const int c = free_dofs[free_pattern.columns[k]];
@@ -95,9 +100,15 @@ LinearPart::Saved LinearPart::saved() const {
 }
 
 void LinearPart::restore(Saved saved) {
-  if (saved.blocks.size() != blocks_.size() || saved.folded.size() != folded_kernel_.size())
+  const std::size_t block_count = graph_->columns.size() * dim_ * dim_;
+  if ((!saved.blocks.empty() && saved.blocks.size() != block_count) || saved.folded.size() != folded_kernel_.size())
     throw std::invalid_argument("LinearPart::restore: saved for another model");
-  blocks_ = std::move(saved.blocks);
+  if (saved.blocks.empty()) {
+    blocks_.clear();  // nothing was folded: allocated again at the first fold
+  } else {
+    allocate();
+    blocks_ = std::move(saved.blocks);
+  }
   folded_kernel_ = std::move(saved.folded);
   folded_count_ = saved.folded_count;
   changes_ = saved.changes;
@@ -106,6 +117,7 @@ void LinearPart::restore(Saved saved) {
 }
 
 void LinearPart::add_cell(int cell, const tm_kernel& kernel, double sign) {
+  allocate();
   const int d = dim_, d2 = d * d, dofs = kernel.dofs;
   double zero[kMaxDofs] = {};
   std::vector<double> K(static_cast<std::size_t>(dofs) * dofs);

@@ -240,6 +240,22 @@ TEST(Assembler, FoldedPartFollowsLawSwitchesAndBlends) {
   EXPECT_EQ(folded.folding_changes(), model.cell_count() + stvk_cells + 1 + (model.cell_count() - stvk_cells + 1));
 }
 
+/// A model with no linear cell holds no folded blocks; the first cell that
+/// switches to Hooke allocates them, and the forces and tangent still
+/// match the per-cell assembly.
+TEST(Assembler, FoldedBlocksAreAllocatedAtTheFirstFold) {
+  const Mesh mesh = test::beam(2, "quad4", {8, 2, 1});
+  Model model(mesh, test::cantilever("stvk").model);
+  const Assembler folded(model), per_cell(model, false);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.05);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_TRUE(folded.linear_part()->saved().blocks.empty());
+  model.set_law(5, "hooke");
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), 1);
+  EXPECT_FALSE(folded.linear_part()->saved().blocks.empty());
+}
+
 /// Largest difference between the batched and the per-element assembly
 /// (forces and tangent), relative to the largest entry.
 double batched_against_per_element(const Model& model, Assembler& assembler, const std::vector<double>& u) {

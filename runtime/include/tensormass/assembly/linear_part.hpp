@@ -27,7 +27,8 @@ namespace tensormass {
 class LinearPart {
  public:
   /// An empty linear part (nothing folded) for `model`; `free_pattern` is
-  /// the pattern of the tangent over the free dofs (Assembler::pattern()).
+  /// the pattern of the tangent over the free dofs (Assembler::pattern()),
+  /// kept by reference like `graph`.
   LinearPart(const Model& model, const NodeGraph& graph, const SparseMatrix& free_pattern);
 
   /// Folds the cells that are linear now and unfolds those that are not,
@@ -62,12 +63,16 @@ class LinearPart {
 
  private:
   void add_cell(int cell, const tm_kernel& kernel, double sign);
+  /// Sizes blocks_ and free_to_block_ at the first fold: a run with no
+  /// linear cell holds neither (at a million tets they are about 300 MB).
+  void allocate();
 
   const Model* model_;
   const NodeGraph* graph_;
+  const SparseMatrix* free_pattern_;
   int dim_;
-  std::vector<double> blocks_;                   ///< graph columns by d by d, row-major blocks
-  std::vector<int> free_to_block_;               ///< free_pattern non-zero -> index in blocks_
+  std::vector<double> blocks_;      ///< graph columns by d by d, row-major blocks; empty until a cell folds
+  std::vector<int> free_to_block_;  ///< free_pattern non-zero -> index in blocks_ (with blocks_)
   std::vector<const tm_kernel*> folded_kernel_;  ///< per cell: the kernel folded, or nullptr
   int folded_count_ = 0;
   long changes_ = 0;
