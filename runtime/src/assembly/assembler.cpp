@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 
 #include "tensormass/assembly/psd_projection.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
@@ -53,7 +54,9 @@ namespace {
 /// The node blocks of the pattern build_pattern() makes: per node its free
 /// rows, and per neighbour with free dofs one run of consecutive columns
 /// (its first column; whether all the node's runs have d is kept per node).
-NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, int d) {
+/// Nodes whose rows are empty (has_columns false) have no runs.
+NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, int d,
+                   const std::function<bool(int)>& has_columns) {
   NodeRuns runs;
   const int nodes = static_cast<int>(graph.row_start.size()) - 1;
   const auto free_count = [&](int node) {
@@ -69,7 +72,7 @@ NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, i
     const int rows = free_count(node);
     runs.node_row_start.push_back(runs.node_row_start.back() + rows);
     bool full = true;
-    if (rows > 0)
+    if (rows > 0 && has_columns(node))
       for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
         const int neighbour = graph.columns[k];
         if (const int columns = free_count(neighbour); columns > 0) {
@@ -85,6 +88,14 @@ NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, i
 
 }  // namespace
 
+bool Assembler::keeps_rows_of(int node) const { return !distribution_ || distribution_->owns_node(node); }
+
+void Assembler::distribute(const Distribution* distribution) {
+  distribution_ = distribution;
+  build_pattern();  // this rank's rows only
+  if (linear_) linear_->pattern_changed();
+}
+
 void Assembler::build_pattern() {
   const Model& model = *model_;
   const int d = model.dim();
@@ -92,22 +103,27 @@ void Assembler::build_pattern() {
   SparseMatrix& m = pattern_;
   m.rows = model.free_dof_count();
   m.row_start.assign(1, 0);
+  m.columns.clear();
   m.diagonal.assign(m.rows, -1);
   for (int dof : model.free_dofs()) {
     const int row = free_index[dof];
     const int node = dof / d;
-    for (int k = graph_.row_start[node]; k < graph_.row_start[node + 1]; ++k)
-      for (int b = 0; b < d; ++b) {
-        const int neighbour = graph_.columns[k];
-        const int column = free_index[neighbour * d + b];
-        if (column < 0) continue;
-        if (column == row) m.diagonal[row] = static_cast<int>(m.columns.size());
-        m.columns.push_back(column);
-      }
+    if (keeps_rows_of(node))
+      for (int k = graph_.row_start[node]; k < graph_.row_start[node + 1]; ++k)
+        for (int b = 0; b < d; ++b) {
+          const int neighbour = graph_.columns[k];
+          const int column = free_index[neighbour * d + b];
+          if (column < 0) continue;
+          if (column == row) m.diagonal[row] = static_cast<int>(m.columns.size());
+          m.columns.push_back(column);
+        }
     m.row_start.push_back(static_cast<int>(m.columns.size()));
   }
+  m.columns.shrink_to_fit();
   m.values.assign(m.columns.size(), 0.0);
-  m.node_runs = std::make_shared<const NodeRuns>(node_runs(graph_, free_index, d));
+  m.values.shrink_to_fit();
+  m.node_runs = std::make_shared<const NodeRuns>(
+      node_runs(graph_, free_index, d, [this](int node) { return keeps_rows_of(node); }));
   build_scatter_map();
 }
 
@@ -146,6 +162,11 @@ void Assembler::build_scatter_map() {
   block_scatter_.clear();
   entry_scatter_.clear();
   for (int cell = 0; cell < model.cell_count(); ++cell) {
+    if (distribution_ && !distribution_->assembles_cell(cell)) {  // another rank's cell: never scattered here
+      block_offsets_.push_back(block_scatter_.size());
+      entry_offsets_.push_back(entry_scatter_.size());
+      continue;
+    }
     const auto cn = model.cell_nodes(cell);
     const bool partial = !scatter_by_blocks_ || std::any_of(cn.begin(), cn.end(), [&](int node) {
       const int free = free_dofs_of(free_index, node, d);
@@ -153,10 +174,12 @@ void Assembler::build_scatter_map() {
     });
     if (!partial)
       for (int row_node : cn)
-        for (int node : cn) block_scatter_.push_back(first_position(m, free_index, free_index[row_node * d], node, d));
+        for (int node : cn)
+          block_scatter_.push_back(
+              keeps_rows_of(row_node) ? first_position(m, free_index, free_index[row_node * d], node, d) : -1);
     else
       for (int i = 0; i < static_cast<int>(cn.size()) * d; ++i) {
-        const int row = free_index[cn[i / d] * d + i % d];
+        const int row = keeps_rows_of(cn[i / d]) ? free_index[cn[i / d] * d + i % d] : -1;
         for (int node : cn) {
           int position = first_position(m, free_index, row, node, d);
           for (int c = 0; c < d; ++c)
@@ -166,6 +189,8 @@ void Assembler::build_scatter_map() {
     block_offsets_.push_back(block_scatter_.size());
     entry_offsets_.push_back(entry_scatter_.size());
   }
+  block_scatter_.shrink_to_fit();  // rebuilt by distribute(): the whole mesh's map is not kept
+  entry_scatter_.shrink_to_fit();
 }
 
 void Assembler::set_scatter_by_blocks(bool on) {

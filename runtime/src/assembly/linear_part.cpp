@@ -52,10 +52,18 @@ LinearPart::LinearPart(const Model& model, const NodeGraph& graph, const SparseM
 
 void LinearPart::allocate() {
   if (!blocks_.empty()) return;
+  blocks_.assign(graph_->columns.size() * dim_ * dim_, 0.0);
+  map_free_pattern();
+}
+
+void LinearPart::pattern_changed() {
+  if (!blocks_.empty()) map_free_pattern();
+}
+
+void LinearPart::map_free_pattern() {
   const int d = dim_, d2 = d * d;
   const NodeGraph& graph = *graph_;
   const SparseMatrix& free_pattern = *free_pattern_;
-  blocks_.assign(graph.columns.size() * d2, 0.0);
   // Each free non-zero (row dof r, column dof c) is entry (r % d, c % d) of block (r / d, c / d).
   const auto& free_dofs = model_->free_dofs();
   free_to_block_.resize(free_pattern.columns.size());

@@ -173,7 +173,8 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
     else if (residual <= settings.tolerance * reference) break;
     // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
     for (int k = 0; k < K_.nonzeros(); ++k) J_.values[k] = stiffness_factor * K_.values[k];
-    for (int i = 0; i < n; ++i) J_.values[J_.diagonal[i]] += mass_factor * mass[free[i]];
+    for (int i = 0; i < n; ++i)  // rows of other MPI ranks are empty here
+      if (J_.diagonal[i] >= 0) J_.values[J_.diagonal[i]] += mass_factor * mass[free[i]];
     for (double& x : r_) x = -x;
     detail::linear_solve(run, J_, r_, direction);  // warm start: the previous correction
     const double slope = -dot(r_, direction);      // r holds -residual here

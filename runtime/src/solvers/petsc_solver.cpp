@@ -227,8 +227,6 @@ class PetscSolver final : public LinearSolver {
       }
       row_start.push_back(static_cast<PetscInt>(columns.size()));
     }
-    own_columns_.assign(columns.begin(), columns.end());
-    own_row_start_.assign(row_start.begin(), row_start.end());
     check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check(MatSetSizes(matrix_, local, local, A.rows, A.rows), "MatSetSizes");
     check(MatSetType(matrix_, MATMPIAIJ), "MatSetType");
@@ -236,6 +234,8 @@ class PetscSolver final : public LinearSolver {
     if (blocks) check(MatSetBlockSize(matrix_, block_size_), "MatSetBlockSize");
     check(MatMPIAIJSetPreallocationCSR(matrix_, row_start.data(), columns.data(), nullptr),
           "MatMPIAIJSetPreallocationCSR");
+    own_row_start_ = std::move(row_start);  // kept for set_own_rows
+    own_columns_ = std::move(columns);
     check(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
@@ -250,13 +250,13 @@ class PetscSolver final : public LinearSolver {
   void set_own_rows(const SparseMatrix& A) {
     const auto& own = distribution_->owned_free_rows();
     const PetscInt first = distribution_->first_global_row();
-    own_values_.resize(own_positions_.size());
-    for (std::size_t k = 0; k < own_positions_.size(); ++k) own_values_[k] = A.values[own_positions_[k]];
+    std::vector<PetscScalar> row;  // one row at a time: no copy of all own values
     for (std::size_t i = 0; i < own.size(); ++i) {
       const PetscInt global_row = first + static_cast<PetscInt>(i);
       const PetscInt begin = own_row_start_[i], count = own_row_start_[i + 1] - begin;
-      check(MatSetValues(matrix_, 1, &global_row, count, own_columns_.data() + begin, own_values_.data() + begin,
-                         INSERT_VALUES),
+      row.resize(count);
+      for (PetscInt k = 0; k < count; ++k) row[k] = A.values[own_positions_[begin + k]];
+      check(MatSetValues(matrix_, 1, &global_row, count, own_columns_.data() + begin, row.data(), INSERT_VALUES),
             "MatSetValues");
     }
   }
@@ -372,7 +372,6 @@ class PetscSolver final : public LinearSolver {
   const Distribution* distribution_ = nullptr;
   std::vector<PetscInt> own_row_start_, own_columns_;
   std::vector<int> own_positions_;  ///< per own entry: its position in A.values
-  std::vector<PetscScalar> own_values_;
   VecScatter gather_ = nullptr;  ///< x to x_all_ on every rank
   Vec x_all_ = nullptr;
 };

@@ -68,7 +68,10 @@ class Assembler {
   /// has this rank's rows complete and the others partial; energy() adds
   /// each cell on its owner's rank and sums over the ranks. The
   /// distribution must outlive the assembler.
-  void distribute(const Distribution* distribution) { distribution_ = distribution; }
+  /// The pattern then holds this rank's rows only (the other rows are
+  /// empty: K's memory is divided among the ranks), and pattern() changes:
+  /// take copies of it after this call.
+  void distribute(const Distribution* distribution);
   const Distribution* distribution() const { return distribution_; }
   /// The free dofs (sorted) of the nodes of the cells that run kernels (not
   /// folded): the only rows and columns of K that change between
@@ -125,6 +128,8 @@ class Assembler {
   void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                     SparseMatrix* stiffness) const;
   void build_pattern();
+  /// Whether K keeps the rows of `node`: all of them on one process, this rank's own under distribute().
+  bool keeps_rows_of(int node) const;
   /// Fills the scatter maps above for the pattern in pattern_.
   void build_scatter_map();
   void build_colours();

@@ -60,12 +60,16 @@ class LinearPart {
   void multiply(std::span<const double> u, std::span<double> g) const;
   /// values (free_pattern's non-zeros) = K_L restricted to the free dofs.
   void copy_free(std::span<double> values) const;
+  /// The free pattern given at construction was rebuilt (Assembler::distribute).
+  void pattern_changed();
 
  private:
   void add_cell(int cell, const tm_kernel& kernel, double sign);
   /// Sizes blocks_ and free_to_block_ at the first fold: a run with no
   /// linear cell holds neither (at a million tets they are about 300 MB).
   void allocate();
+  /// free_to_block_ for the free pattern as it is now.
+  void map_free_pattern();
 
   const Model* model_;
   const NodeGraph* graph_;
