@@ -12,6 +12,7 @@
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 
 namespace tensormass {
 
@@ -231,54 +232,68 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
   }
   const int cells = model_->cell_count();
   const int rungs = static_cast<int>(settings_.ladder.size());
-  moves_.resize(cells);
+  moves_.assign(cells, 0);
   refresh_rungs();
-  std::vector<int> per_rung(rungs, 0);
-  int upgrades = 0, downgrades = 0, off_ladder = 0;
+  const Distribution* shared = distribution_;
   std::vector<double> seconds(criteria_.size(), 0.0);  // the first thread's share of each criterion
 #pragma omp parallel if (cells >= kParallelCells)
   {
-    std::vector<int> my_rungs(rungs, 0);
-    int my_upgrades = 0, my_downgrades = 0, my_off_ladder = 0;
     const bool timing = omp_get_thread_num() == 0;
     for (const ElementBlock& block : model_->mesh().blocks) {
       for (std::size_t c = 0; c < criteria_.size(); ++c) {
         const auto start = std::chrono::steady_clock::now();
-        criteria_[c]->evaluate_block({*model_, block, u, nodal_forces_}, values_[c]);
+        criteria_[c]->evaluate_block({*model_, block, u, nodal_forces_, shared}, values_[c]);
         if (timing) seconds[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       }
 #pragma omp for schedule(static) nowait
       for (int local = 0; local < block.count(); ++local) {
         const int cell = block.first_cell + local;
-        const int rung = cell_rungs_[cell];
-        const signed char move = decide(cell, rung);
-        moves_[cell] = move;
-        my_upgrades += move > 0;
-        my_downgrades += move < 0;
-        if (rung >= 0) ++my_rungs[rung + move];
-        else ++my_off_ladder;
+        if (!shared || shared->owns_cell(cell)) moves_[cell] = decide(cell, cell_rungs_[cell]);
       }
-    }
-#pragma omp critical(tensormass_adaptivity_counts)
-    {
-      for (int r = 0; r < rungs; ++r) per_rung[r] += my_rungs[r];
-      upgrades += my_upgrades, downgrades += my_downgrades, off_ladder += my_off_ladder;
     }
   }
   for (std::size_t c = 0; c < criteria_.size(); ++c) criterion_seconds_[c] += seconds[c];
-  for (int cell = 0; cell < cells; ++cell)
-    if (moves_[cell] != 0) {
-      cell_rungs_[cell] = static_cast<signed char>(cell_rungs_[cell] + moves_[cell]);
+  if (shared) share_decisions();
+  std::vector<int> per_rung(rungs, 0);
+  int off_ladder = 0;
+  for (int cell = 0; cell < cells; ++cell) {
+    const int rung = cell_rungs_[cell], move = moves_[cell];
+    record.upgrades += move > 0;
+    record.downgrades += move < 0;
+    if (rung >= 0) ++per_rung[rung + move];
+    else ++off_ladder;
+    if (move != 0) {
+      cell_rungs_[cell] = static_cast<signed char>(rung + move);
       switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
     }
-  rungs_revision_ = model_->law_revision();  // the switches above are in cell_rungs_ already
-  record.upgrades += upgrades;
-  record.downgrades += downgrades;
+  }
+  rungs_revision_ = model_->law_revision();        // the switches above are in cell_rungs_ already
   if (off_ladder > 0) return record_laws(record);  // laws outside the ladder: count them all by name
   std::map<std::string, int> per_law;
   for (int r = 0; r < rungs; ++r)
     if (per_rung[r] > 0) per_law[settings_.ladder[r]] += per_rung[r];
   record.cells_per_law.assign(per_law.begin(), per_law.end());
+}
+
+void Adaptivity::share_decisions() {
+  // One sum over the ranks of what each owner decided: its cells' moves,
+  // calm counts and criteria values (every rank then holds all of them,
+  // for its output, checkpoints and a refinement's new cut).
+  const int cells = model_->cell_count();
+  const std::size_t n = cells;
+  std::vector<double> decided((2 + values_.size()) * n, 0.0);
+  for (int cell = 0; cell < cells; ++cell)
+    if (distribution_->owns_cell(cell)) {
+      decided[cell] = moves_[cell];
+      decided[n + cell] = calm_evaluations_[cell];
+      for (std::size_t c = 0; c < values_.size(); ++c) decided[(2 + c) * n + cell] = values_[c][cell];
+    }
+  parallel::sum_over_ranks(decided);
+  for (int cell = 0; cell < cells; ++cell) {
+    moves_[cell] = static_cast<signed char>(decided[cell]);
+    calm_evaluations_[cell] = static_cast<int>(decided[n + cell]);
+    for (std::size_t c = 0; c < values_.size(); ++c) values_[c][cell] = decided[(2 + c) * n + cell];
+  }
 }
 
 void Adaptivity::record_laws(AdaptivityRecord& record) {

@@ -189,6 +189,7 @@ void evaluate_cells(const Criterion& self, const BlockInput& in, std::span<doubl
 #pragma omp for schedule(static) nowait
   for (int local = 0; local < block.count(); ++local) {
     const int cell = block.first_cell + local;
+    if (in.distribution && !in.distribution->owns_cell(cell)) continue;
     const int* nodes = model.cell_nodes(cell).data();
     double rest[D * N], u[D * N], force[D * N];
     if (rest_needed) gather_nodes<D, N>(nodes, rest_positions, 3, rest);
@@ -387,6 +388,7 @@ void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) c
   for (int local = 0; local < block.count(); ++local) {
     double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
     const int cell = block.first_cell + local;
+    if (in.distribution && !in.distribution->owns_cell(cell)) continue;
     if (rest_needed) {
       const auto nodes = model.cell_nodes(cell);
       for (std::size_t j = 0; j < nodes.size(); ++j)

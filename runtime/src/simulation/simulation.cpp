@@ -357,6 +357,7 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
     AdaptivitySettings settings = scene.adaptivity;
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
     adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
+    adaptivity->distribute(distribution.get());
   }
   if (checkpoint) check_checkpoint_state(*checkpoint, checkpoint_path, disc->model);
 
@@ -395,8 +396,9 @@ void Simulation::Impl::replay_refinement(const Checkpoint& checkpoint) {
 }
 
 /// Every rank holds the whole model and state; each assembles the cells
-/// of its part of the mesh (and those touching its nodes) and the linear
-/// solver spreads its rows over the ranks. Rank 0 writes the files.
+/// of its part of the mesh (and those touching its nodes), evaluates the
+/// criteria of its own cells, and the linear solver spreads its rows over
+/// the ranks. Rank 0 writes the files.
 void Simulation::Impl::share_among_ranks() {
   const int ranks = parallel::world_size(), rank = parallel::world_rank();
   std::vector<int> cell_owner =
@@ -405,6 +407,7 @@ void Simulation::Impl::share_among_ranks() {
   distribution = std::make_unique<Distribution>(disc->model, std::move(cell_owner), rank, ranks);
   disc->assembler.distribute(distribution.get());
   if (scene.solver.type != SolverType::explicit_euler) disc->linear->distribute(*distribution);
+  if (adaptivity) adaptivity->distribute(distribution.get());  // a refinement's new cut
 }
 
 /// Everything the steps so far left behind, as the killed run had it.

@@ -372,7 +372,7 @@ class PetscSolver final : public LinearSolver {
   const Distribution* distribution_ = nullptr;
   std::vector<PetscInt> own_row_start_, own_columns_;
   std::vector<int> own_positions_;  ///< per own entry: its position in A.values
-  VecScatter gather_ = nullptr;  ///< x to x_all_ on every rank
+  VecScatter gather_ = nullptr;     ///< x to x_all_ on every rank
   Vec x_all_ = nullptr;
 };
 

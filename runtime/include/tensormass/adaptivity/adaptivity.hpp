@@ -84,6 +84,12 @@ class Adaptivity {
   /// when a ladder law has no kernel for an element type of the new mesh,
   /// or when origin does not have one entry per new cell, each an old cell.
   void follow(Model& model, const Assembler& assembler, std::span<const int> origin);
+  /// Over MPI ranks: each rank evaluates and decides its own cells, then
+  /// every rank applies every rank's moves (one sum over the ranks per
+  /// evaluation, which also shares the values and calm counts), so the laws
+  /// stay the same everywhere; nullptr: one process. The distribution must
+  /// outlive this object (or be replaced by another call).
+  void distribute(const Distribution* distribution) { distribution_ = distribution; }
 
  private:
   /// Evaluates the criteria at u, decides and switches every cell; adds
@@ -105,6 +111,9 @@ class Adaptivity {
   AdaptivitySettings settings_;
   Model* model_;
   const Assembler* assembler_;
+  const Distribution* distribution_ = nullptr;
+  /// Sums each cell's move, calm count and criteria values over the ranks (each cell decided by its owner only).
+  void share_decisions();
   std::vector<double> nodal_forces_;  ///< dof_count, for R_S
   std::vector<std::unique_ptr<Criterion>> criteria_;
   std::vector<double> thresholds_;

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "tensormass/model/model.hpp"
+#include "tensormass/parallel/distribution.hpp"
 
 namespace tensormass {
 
@@ -62,6 +63,8 @@ struct BlockInput {
   const ElementBlock& block;
   std::span<const double> u;       ///< dof_count displacements
   std::span<const double> forces;  ///< dof_count assembled internal forces (read only when needs_force())
+  /// Over MPI ranks: only this rank's own cells are evaluated (the others' values are left as they were).
+  const Distribution* distribution = nullptr;
 };
 
 class Criterion {
