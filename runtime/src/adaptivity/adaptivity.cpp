@@ -276,23 +276,27 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
 }
 
 void Adaptivity::share_decisions() {
-  // One sum over the ranks of what each owner decided: its cells' moves,
-  // calm counts and criteria values (every rank then holds all of them,
-  // for its output, checkpoints and a refinement's new cut).
+  // One sum over the ranks of what each owner decided, a double per cell:
+  // 4 x its calm count + its move + 1 (exact), 0 from the other ranks.
   const int cells = model_->cell_count();
-  const std::size_t n = cells;
-  std::vector<double> decided((2 + values_.size()) * n, 0.0);
+  std::vector<double> decided(cells, 0.0);
   for (int cell = 0; cell < cells; ++cell)
-    if (distribution_->owns_cell(cell)) {
-      decided[cell] = moves_[cell];
-      decided[n + cell] = calm_evaluations_[cell];
-      for (std::size_t c = 0; c < values_.size(); ++c) decided[(2 + c) * n + cell] = values_[c][cell];
-    }
+    if (distribution_->owns_cell(cell)) decided[cell] = 4.0 * calm_evaluations_[cell] + moves_[cell] + 1;
   parallel::sum_over_ranks(decided);
   for (int cell = 0; cell < cells; ++cell) {
-    moves_[cell] = static_cast<signed char>(decided[cell]);
-    calm_evaluations_[cell] = static_cast<int>(decided[n + cell]);
-    for (std::size_t c = 0; c < values_.size(); ++c) values_[c][cell] = decided[(2 + c) * n + cell];
+    const long packed = std::lround(decided[cell]);
+    moves_[cell] = static_cast<signed char>(packed % 4 - 1);
+    calm_evaluations_[cell] = static_cast<int>(packed / 4);
+  }
+}
+
+void Adaptivity::share_values() {
+  if (!distribution_) return;
+  const int cells = model_->cell_count();
+  for (std::vector<double>& values : values_) {
+    for (int cell = 0; cell < cells; ++cell)
+      if (!distribution_->owns_cell(cell)) values[cell] = 0.0;
+    parallel::sum_over_ranks(values);
   }
 }
 

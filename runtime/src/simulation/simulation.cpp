@@ -464,6 +464,7 @@ SavedRefinement Simulation::Impl::save_refinement() const {
 }
 
 void Simulation::Impl::write_checkpoint_now(const State& state_now) {
+  if (adaptivity) adaptivity->share_values();  // on every rank: rank 0 saves all cells' values
   if (!writes_files()) return;
   detail::PhaseTimer timer(report.output_seconds);
   Checkpoint saved = fingerprints;
@@ -565,6 +566,7 @@ bool Simulation::Impl::refine_load_step(const State& now) {
 /// a static load step is then solved again from the carried displacement.
 void Simulation::Impl::apply_refinement() {
   const int d = disc->model.dim();
+  if (adaptivity) adaptivity->share_values();  // the new cut gives cells to other ranks
   for (const LeafTransfer& transfer : pending) {
     state.displacement = transfer_nodal_field(transfer, state.displacement, d);
     state.velocity = transfer_nodal_field(transfer, state.velocity, d);

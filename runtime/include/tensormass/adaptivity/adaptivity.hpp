@@ -86,10 +86,14 @@ class Adaptivity {
   void follow(Model& model, const Assembler& assembler, std::span<const int> origin);
   /// Over MPI ranks: each rank evaluates and decides its own cells, then
   /// every rank applies every rank's moves (one sum over the ranks per
-  /// evaluation, which also shares the values and calm counts), so the laws
-  /// stay the same everywhere; nullptr: one process. The distribution must
-  /// outlive this object (or be replaced by another call).
+  /// evaluation, which also shares the calm counts), so the laws stay the
+  /// same everywhere; nullptr: one process. The distribution must outlive
+  /// this object (or be replaced by another call).
   void distribute(const Distribution* distribution) { distribution_ = distribution; }
+  /// Over MPI ranks each rank holds the criteria values of its own cells
+  /// only (all its output piece needs); this gives every rank all of them
+  /// (for a checkpoint, or before a new cut). Collective: every rank calls it.
+  void share_values();
 
  private:
   /// Evaluates the criteria at u, decides and switches every cell; adds
@@ -112,7 +116,7 @@ class Adaptivity {
   Model* model_;
   const Assembler* assembler_;
   const Distribution* distribution_ = nullptr;
-  /// Sums each cell's move, calm count and criteria values over the ranks (each cell decided by its owner only).
+  /// Sums each cell's move and calm count over the ranks (each cell decided by its owner only).
   void share_decisions();
   std::vector<double> nodal_forces_;  ///< dof_count, for R_S
   std::vector<std::unique_ptr<Criterion>> criteria_;
