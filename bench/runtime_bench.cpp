@@ -828,6 +828,16 @@ bool run_batched_assembly(const Options& options, std::vector<JsonObject>& json,
 
 // --- 6. The tangent product by node blocks -----------------------------------
 
+/// Largest |a - b| over the largest |baseline|.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& baseline) {
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, std::abs(a[i] - baseline[i]));
+    scale = std::max(scale, std::abs(baseline[i]));
+  }
+  return worst / std::max(scale, 1e-300);
+}
+
 /// Median ms of K x by rows (column indices, the baseline) and by node
 /// blocks (SparseMatrix::multiply), alternated; `difference`: their largest
 /// difference over the largest entry.
@@ -843,12 +853,7 @@ std::array<double, 2> time_products(const SparseMatrix& K, int repetitions, doub
     K.multiply(x, by_blocks);
     if (rep > 0) samples[1].push_back(1e3 * since(start));
   }
-  double worst = 0.0, scale = 0.0;
-  for (int i = 0; i < K.rows; ++i) {
-    worst = std::max(worst, std::abs(by_rows[i] - by_blocks[i]));
-    scale = std::max(scale, std::abs(by_rows[i]));
-  }
-  difference = worst / std::max(scale, 1e-300);
+  difference = relative_difference(by_blocks, by_rows);
   return {median(samples[0]), median(samples[1])};
 }
 
@@ -934,12 +939,7 @@ std::array<double, 2> time_folded_products(const Model& model, const LinearPart&
     linear.multiply(u, current);
     if (rep > 0) samples[1].push_back(1e3 * since(start));
   }
-  double worst = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    worst = std::max(worst, std::abs(baseline[i] - current[i]));
-    scale = std::max(scale, std::abs(baseline[i]));
-  }
-  difference = worst / std::max(scale, 1e-300);
+  difference = relative_difference(current, baseline);
   return {median(samples[0]), median(samples[1])};
 }
 

@@ -51,6 +51,12 @@ Assembler::Assembler(const Model& model, bool fold_linear_cells) : model_(&model
 
 namespace {
 
+/// How many of a node's d dofs are free.
+int free_dofs_of(const std::vector<int>& free_index, int node, int d) {
+  return static_cast<int>(
+      std::count_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; }));
+}
+
 /// The node blocks of the pattern build_pattern() makes: per node its free
 /// rows, and per neighbour with free dofs one run of consecutive columns
 /// (its first column; whether all the node's runs have d is kept per node).
@@ -59,10 +65,7 @@ NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, i
                    const std::function<bool(int)>& has_columns) {
   NodeRuns runs;
   const int nodes = static_cast<int>(graph.row_start.size()) - 1;
-  const auto free_count = [&](int node) {
-    return static_cast<int>(
-        std::count_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; }));
-  };
+  const auto free_count = [&](int node) { return free_dofs_of(free_index, node, d); };
   const auto first_free = [&](int node) {
     return *std::find_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; });
   };
@@ -128,12 +131,6 @@ void Assembler::build_pattern() {
 }
 
 namespace {
-
-/// How many of a node's d dofs are free.
-int free_dofs_of(const std::vector<int>& free_index, int node, int d) {
-  return static_cast<int>(
-      std::count_if(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; }));
-}
 
 /// Position in m.values of (row, the first free column of `node`), -1 when
 /// the row is fixed or the node has no free dof. Free indices grow with the
