@@ -68,6 +68,8 @@ struct Case {
 struct Run {
   std::string label;
   std::optional<double> threshold;
+  double evaluated_share = 1;  // cells the criteria screen evaluated, over cells x evaluations
+  bool screened = true;        // false: the criteria evaluated on every cell (AdaptivitySettings::screen), the baseline
   double mean_ms = 0, assembly_ms = 0, solve_ms = 0, criteria_ms = 0;  // per step
   long linear_iterations = 0;
   int factorizations = 0;
@@ -281,6 +283,8 @@ Run simulate(const Case& c, const std::string& label, const Scene& scene, std::o
   run.linear_iterations = statistics.linear_iterations;
   run.factorizations = statistics.factorizations;
   run.switches = adaptivity ? adaptivity->total_switches() : 0;
+  if (const CriteriaScreen* screen = adaptivity ? adaptivity->screen() : nullptr; screen && screen->evaluations() > 0)
+    run.evaluated_share = static_cast<double>(screen->evaluated_cells()) / screen->evaluations() / model.cell_count();
   for (int cell = 0; cell < model.cell_count(); ++cell) ++run.cells_per_law[model.kernel(cell).law];
   return run;
 }
@@ -342,6 +346,15 @@ CaseResult run_case(const Case& c) {
     std::snprintf(label, sizeof label, "adaptive %s %g", c.criterion.c_str(), t);
     result.runs.push_back(simulate(c, label, run_scene_of(c, linear, t), t));
   }
+  if (!c.thresholds.empty()) {  // the middle threshold again with every cell evaluated: the screen's baseline
+    const double t = c.thresholds[c.thresholds.size() / 2];
+    Scene scene = run_scene_of(c, linear, t);
+    scene.adaptivity.screen = false;
+    char label[96];
+    std::snprintf(label, sizeof label, "adaptive %s %g, every cell evaluated", c.criterion.c_str(), t);
+    result.runs.push_back(simulate(c, label, scene, t));
+    result.runs.back().screened = false;
+  }
   for (const auto& [nonlinear, strain] : c.corotational_thresholds) {
     char label[96];
     std::snprintf(label, sizeof label, "3 rungs, R_NL %g -> corot., R_E %g -> %s", nonlinear, strain, rich.c_str());
@@ -369,6 +382,24 @@ CaseResult run_case(const Case& c) {
   return result;
 }
 
+/// The screened run against its baseline (every cell evaluated, same threshold):
+/// the criteria's cost, and whether the trajectories are the same bits.
+void print_screen(const CaseResult& result) {
+  const auto baseline = std::find_if(result.runs.begin(), result.runs.end(), [](const Run& r) { return !r.screened; });
+  if (baseline == result.runs.end()) return;
+  const auto screened = std::find_if(result.runs.begin(), result.runs.end(), [&](const Run& r) {
+    return r.screened && r.threshold == baseline->threshold && r.label.rfind("adaptive", 0) == 0;
+  });
+  if (screened == result.runs.end()) return;
+  const bool same = screened->trajectory == baseline->trajectory && screened->failure == baseline->failure;
+  std::printf(
+      "  criteria screen at %g: %.1f %% of the cells evaluated, %.4f ms a step against %.4f every cell "
+      "evaluated (%.2fx), %.2f ms a step against %.2f; trajectories %s\n",
+      *baseline->threshold, 100 * screened->evaluated_share, screened->criteria_ms, baseline->criteria_ms,
+      screened->criteria_ms / std::max(baseline->criteria_ms, 1e-12), screened->mean_ms, baseline->mean_ms,
+      same ? "identical" : "DIFFER");
+}
+
 /// The targets of issue 13 on one scene; prints each, returns nothing (misses are reported, not fatal).
 void print_targets(const CaseResult& result) {
   const Case& c = *result.scene;
@@ -377,7 +408,7 @@ void print_targets(const CaseResult& result) {
   const Run* best = nullptr;  // cheapest adaptive run within the error target
   double worst_ratio = 0.0, worst_criteria = 0.0;
   for (const Run& run : result.runs) {
-    if (!run.threshold || !run.failure.empty()) continue;  // pure runs
+    if (!run.threshold || !run.failure.empty() || !run.screened) continue;  // pure runs, the screen's baseline
     worst_ratio = std::max(worst_ratio, run.mean_ms / rich.mean_ms);
     worst_criteria = std::max(worst_criteria, run.criteria_ms / linear.mean_ms);
     if (run.error <= c.error_target && (!best || run.mean_ms < best->mean_ms)) best = &run;
@@ -394,6 +425,7 @@ void print_targets(const CaseResult& result) {
               worst_ratio <= 1.05 ? "met" : "MISSED");
   std::printf("  criteria <= 5 %% of a %s step: worst %.1f %% -> %s\n", c.ladder.front().c_str(), 100 * worst_criteria,
               worst_criteria <= 0.05 ? "met" : "MISSED");
+  print_screen(result);
 }
 
 // --- JSON and the command ----------------------------------------------------
@@ -410,10 +442,11 @@ std::string json_of(const std::vector<CaseResult>& results) {
       out << (r ? ", " : "") << "{\"label\": \"" << run.label << "\", \"threshold\": ";
       if (run.threshold) out << *run.threshold;
       else out << "null";
-      out << ", \"ms_per_step\": " << run.mean_ms << ", \"assembly_ms\": " << run.assembly_ms
-          << ", \"solve_ms\": " << run.solve_ms << ", \"criteria_ms\": " << run.criteria_ms
-          << ", \"error\": " << run.error << ", \"switches\": " << run.switches
-          << ", \"failed\": " << (run.failure.empty() ? "false" : "true") << ", \"cells_per_law\": {";
+      out << ", \"screened\": " << (run.screened ? "true" : "false") << ", \"ms_per_step\": " << run.mean_ms
+          << ", \"assembly_ms\": " << run.assembly_ms << ", \"solve_ms\": " << run.solve_ms
+          << ", \"criteria_ms\": " << run.criteria_ms << ", \"error\": " << run.error
+          << ", \"switches\": " << run.switches << ", \"failed\": " << (run.failure.empty() ? "false" : "true")
+          << ", \"cells_per_law\": {";
       bool first = true;
       for (const auto& [law, count] : run.cells_per_law) {
         out << (first ? "" : ", ") << "\"" << law << "\": " << count;

@@ -46,6 +46,8 @@ def draw(axis, scene):
         if run["failed"]:
             failed += 1
             continue
+        if not run.get("screened", True):
+            continue  # the criteria screen's baseline: same trajectory as its screened run
         x = run["ms_per_step"] / rich["ms_per_step"]
         y = max(100.0 * run["error"], FLOOR)
         label = run["label"]

@@ -57,6 +57,24 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
     initial_rungs_[cell] = static_cast<signed char>(rung_of(model.initial_kernel(cell)));
   criterion_seconds_.assign(criteria_.size(), 0.0);
   calm_evaluations_.assign(model.cell_count(), 0);
+  for (int target : target_rungs_) top_target_ = std::max(top_target_, target);
+  make_screen();
+}
+
+void Adaptivity::make_screen() {
+  std::vector<const Criterion*> criteria;
+  for (const auto& criterion : criteria_) criteria.push_back(criterion.get());
+  screen_.reset();
+  stale_ = false;
+  if (!settings_.screen || !CriteriaScreen::applies(criteria)) return;
+  screen_ = std::make_unique<CriteriaScreen>(*model_, std::move(criteria), thresholds_,
+                                             settings_.downgrade ? settings_.hysteresis : 0.0);
+}
+
+void Adaptivity::distribute(const Distribution* distribution) {
+  distribution_ = distribution;
+  rungs_revision_ = -1;  // which cells can move depends on which this rank owns
+  if (screen_) screen_->reset();
 }
 
 void Adaptivity::find_rungs() {
@@ -96,9 +114,11 @@ void Adaptivity::follow(Model& model, const Assembler& assembler, std::span<cons
   moves_.clear();
   cell_rungs_.clear();
   rungs_revision_ = -1;  // read the rungs from the new model's kernels at the next evaluation
+  make_screen();         // the carried values are the refreshed ones (share_values before the new mesh)
 }
 
 AdaptivityMemory Adaptivity::memory() const {
+  refresh_values();
   return {calm_evaluations_, values_, total_switches_, criteria_seconds_, criterion_seconds_, records_};
 }
 
@@ -115,6 +135,8 @@ void Adaptivity::restore(AdaptivityMemory memory) {
   criteria_seconds_ = memory.criteria_seconds;
   criterion_seconds_ = std::move(memory.criterion_seconds);
   records_ = std::move(memory.records);
+  stale_ = false;
+  if (screen_) screen_->reset();
 }
 
 void Adaptivity::advance_blends() {
@@ -199,8 +221,24 @@ void Adaptivity::refresh_rungs() {
   if (rungs_revision_ == model_->law_revision()) return;
   const int cells = model_->cell_count();
   cell_rungs_.resize(cells);
-  for (int cell = 0; cell < cells; ++cell) cell_rungs_[cell] = static_cast<signed char>(rung_of(model_->kernel(cell)));
+  movable_.resize(cells);
+  cells_per_rung_.assign(settings_.ladder.size(), 0);
+  off_ladder_cells_ = 0;
+  for (int cell = 0; cell < cells; ++cell) {
+    const int rung = rung_of(model_->kernel(cell));
+    cell_rungs_[cell] = static_cast<signed char>(rung);
+    movable_[cell] = can_move(cell, rung) ? kMustDecide : kStill;
+    if (rung >= 0) ++cells_per_rung_[rung];
+    else ++off_ladder_cells_;
+  }
   rungs_revision_ = model_->law_revision();
+}
+
+bool Adaptivity::can_move(int cell, int rung) const {
+  if (distribution_ && !distribution_->owns_cell(cell)) return false;
+  const int initial = initial_rungs_[cell];
+  if (rung < 0 || initial < 0) return false;
+  return rung < top_target_ || (settings_.downgrade && rung > initial);
 }
 
 /// The move of one cell after its criteria were evaluated: +1 (climb), -1
@@ -219,60 +257,95 @@ signed char Adaptivity::decide(int cell, int rung) {
   return -1;
 }
 
+void Adaptivity::evaluate_criteria(const ElementBlock& block, std::span<const double> u, const unsigned char* flags,
+                                   std::vector<double>& seconds) const {
+  const bool timing = omp_get_thread_num() == 0;
+  for (std::size_t c = 0; c < criteria_.size(); ++c) {
+    const auto start = std::chrono::steady_clock::now();
+    criteria_[c]->evaluate_block({*model_, block, u, nodal_forces_, distribution_, flags}, values_[c]);
+    if (timing) seconds[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+}
+
 /// One parallel pass over the cells, block by block: every criterion on the
 /// block's cells (each criterion's loop compiled for the block's shape),
-/// then each cell's move. The loops of a block share one static schedule,
-/// so a thread decides the cells whose values it computed and no barrier
-/// is needed between them; the only one is at the end. Then the few cells
-/// that move switch, in cell order, and the laws are counted.
+/// then each cell's move, counted per rung. With the screen, the nodes'
+/// motion is measured first (the one barrier before the end), and each
+/// block's cells are flagged: only those whose values may have crossed a
+/// boundary are evaluated; the others decide on their kept values, which
+/// lie on the same side of every boundary. The loops of a block share one
+/// static schedule, so a thread evaluates and decides the cells it flagged
+/// with no barrier between them (each barrier is a futex wait under the
+/// passive wait policy). Then the cells that move switch, in cell order.
 void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
   if (needs_force_) {
     nodal_forces_.resize(model_->dof_count());
     assembler_->assemble(u, nodal_forces_, nullptr);
   }
   const int cells = model_->cell_count();
-  const int rungs = static_cast<int>(settings_.ladder.size());
   moves_.assign(cells, 0);
   refresh_rungs();
-  const Distribution* shared = distribution_;
+  CriteriaScreen* screen = screen_.get();
+  if (screen) screen_flags_.resize(cells), screen->count_evaluation();
+  const unsigned char* flags = screen ? screen_flags_.data() : nullptr;
   std::vector<double> seconds(criteria_.size(), 0.0);  // the first thread's share of each criterion
-#pragma omp parallel if (cells >= kParallelCells)
+  int moved = 0;
+#pragma omp parallel if (cells >= kParallelCells) reduction(+ : moved)
   {
-    const bool timing = omp_get_thread_num() == 0;
+    if (screen) screen->measure(u);
     for (const ElementBlock& block : model_->mesh().blocks) {
-      for (std::size_t c = 0; c < criteria_.size(); ++c) {
-        const auto start = std::chrono::steady_clock::now();
-        criteria_[c]->evaluate_block({*model_, block, u, nodal_forces_, shared}, values_[c]);
-        if (timing) seconds[c] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      }
+      if (screen) screen->flag_block(block, movable_, screen_flags_);
+      evaluate_criteria(block, u, flags, seconds);
 #pragma omp for schedule(static) nowait
-      for (int local = 0; local < block.count(); ++local) {
-        const int cell = block.first_cell + local;
-        if (!shared || shared->owns_cell(cell)) moves_[cell] = decide(cell, cell_rungs_[cell]);
-      }
+      for (int local = 0; local < block.count(); ++local) moved += decide_cell(block.first_cell + local, flags);
     }
   }
+  stale_ = screen != nullptr;
   for (std::size_t c = 0; c < criteria_.size(); ++c) criterion_seconds_[c] += seconds[c];
-  if (shared) share_decisions();
-  std::vector<int> per_rung(rungs, 0);
-  int off_ladder = 0;
-  for (int cell = 0; cell < cells; ++cell) {
-    const int rung = cell_rungs_[cell], move = moves_[cell];
+  if (distribution_) share_decisions();
+  if (moved > 0 || distribution_) switch_moved_cells(record);
+  rungs_revision_ = model_->law_revision();               // the switches above are in cell_rungs_ already
+  if (off_ladder_cells_ > 0) return record_laws(record);  // laws outside the ladder: count them all by name
+  std::map<std::string, int> per_law;
+  for (std::size_t r = 0; r < cells_per_rung_.size(); ++r)
+    if (cells_per_rung_[r] > 0) per_law[settings_.ladder[r]] += cells_per_rung_[r];
+  record.cells_per_law.assign(per_law.begin(), per_law.end());
+}
+
+int Adaptivity::decide_cell(int cell, const unsigned char* flags) {
+  const unsigned char state = movable_[cell];
+  if (state == kStill) return 0;  // also another rank's cell
+  const bool evaluated = !flags || flags[cell] == kScreenEvaluate;
+  if (flags && evaluated) screen_->settle(cell, values_);
+  if (!evaluated && state == kQuiet) return 0;  // the same values, rung and answer as last time
+  const signed char move = moves_[cell] = decide(cell, cell_rungs_[cell]);
+  movable_[cell] = move == 0 && !settings_.downgrade ? kQuiet : kMustDecide;
+  return move != 0;
+}
+
+void Adaptivity::switch_moved_cells(AdaptivityRecord& record) {
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    const int move = moves_[cell];
+    if (move == 0) continue;
     record.upgrades += move > 0;
     record.downgrades += move < 0;
-    if (rung >= 0) ++per_rung[rung + move];
-    else ++off_ladder;
-    if (move != 0) {
-      cell_rungs_[cell] = static_cast<signed char>(rung + move);
-      switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
-    }
+    --cells_per_rung_[cell_rungs_[cell]];
+    cell_rungs_[cell] = static_cast<signed char>(cell_rungs_[cell] + move);
+    ++cells_per_rung_[cell_rungs_[cell]];
+    movable_[cell] = can_move(cell, cell_rungs_[cell]) ? kMustDecide : kStill;
+    switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
   }
-  rungs_revision_ = model_->law_revision();        // the switches above are in cell_rungs_ already
-  if (off_ladder > 0) return record_laws(record);  // laws outside the ladder: count them all by name
-  std::map<std::string, int> per_law;
-  for (int r = 0; r < rungs; ++r)
-    if (per_rung[r] > 0) per_law[settings_.ladder[r]] += per_rung[r];
-  record.cells_per_law.assign(per_law.begin(), per_law.end());
+}
+
+void Adaptivity::refresh_values() const {
+  if (!stale_) return;
+  const auto begin = std::chrono::steady_clock::now();
+  std::vector<double> seconds(criteria_.size(), 0.0);
+#pragma omp parallel if (model_->cell_count() >= kParallelCells)
+  for (const ElementBlock& block : model_->mesh().blocks)
+    evaluate_criteria(block, screen_->last_displacement(), nullptr, seconds);
+  stale_ = false;
+  criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 
 void Adaptivity::share_decisions() {
@@ -291,6 +364,7 @@ void Adaptivity::share_decisions() {
 }
 
 void Adaptivity::share_values() {
+  refresh_values();
   if (!distribution_) return;
   const int cells = model_->cell_count();
   for (std::vector<double>& values : values_) {
@@ -314,6 +388,7 @@ void Adaptivity::record_laws(AdaptivityRecord& record) {
 }
 
 std::vector<io::Field> Adaptivity::cell_fields() const {
+  refresh_values();
   std::vector<io::Field> fields;
   for (std::size_t c = 0; c < criteria_.size(); ++c) fields.push_back({names_[c], 1, values_[c]});
   io::Field state{"state", 1, std::vector<double>(model_->cell_count(), 0.0)};

@@ -190,6 +190,7 @@ void evaluate_cells(const Criterion& self, const BlockInput& in, std::span<doubl
   for (int local = 0; local < block.count(); ++local) {
     const int cell = block.first_cell + local;
     if (in.distribution && !in.distribution->owns_cell(cell)) continue;
+    if (in.selected && in.selected[cell] != 1) continue;
     const int* nodes = model.cell_nodes(cell).data();
     double rest[D * N], u[D * N], force[D * N];
     if (rest_needed) gather_nodes<D, N>(nodes, rest_positions, 3, rest);
@@ -332,6 +333,12 @@ class NonlinearStrainCriterion final : public ShapedCriterion<NonlinearStrainCri
   static double value(const ElementView& view) {
     return 0.5 * std::sqrt(largest_over_points<D, N>(view, quadratic_strain_squared_norm<D>));
   }
+  /// |H|_F^2 = sum sigma_i^2 <= sqrt(D) sqrt(sum sigma_i^4) = sqrt(D) |H^T H|_F <= 2 sqrt(D) value.
+  double gradient_norm_bound(double value, int dim) const override {
+    return std::sqrt(2.0 * std::sqrt(static_cast<double>(dim)) * value);
+  }
+  /// |H'^T H' - H^T H|_F <= 2 h delta + delta^2, halved.
+  double change_slope(double h) const override { return h; }
 
  private:
   /// |H^T H|_F^2.
@@ -360,6 +367,13 @@ class GreenStrainCriterion final : public ShapedCriterion<GreenStrainCriterion> 
   static double value(const ElementView& view) {
     return std::sqrt(largest_over_points<D, N>(view, green_strain_squared_norm<D>));
   }
+  /// |H|_F <= |I + H|_F + |I|_F, |I + H|_F^2 = tr(I + 2E) <= D + 2 sqrt(D) |E|_F.
+  double gradient_norm_bound(double value, int dim) const override {
+    const double d = dim;
+    return std::sqrt(d + 2.0 * std::sqrt(d) * value) + std::sqrt(d);
+  }
+  /// E' - E = sym(dH) + (dH^T H + H^T dH + dH^T dH) / 2: at most delta + h delta + delta^2 / 2.
+  double change_slope(double h) const override { return 1.0 + h; }
 
  private:
   /// |E|_F^2 with E = (H + H^T + H^T H) / 2.
@@ -389,6 +403,7 @@ void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) c
     double rest[kMaxDofs], local_u[kMaxDofs], force[kMaxDofs];
     const int cell = block.first_cell + local;
     if (in.distribution && !in.distribution->owns_cell(cell)) continue;
+    if (in.selected && in.selected[cell] != 1) continue;
     if (rest_needed) {
       const auto nodes = model.cell_nodes(cell);
       for (std::size_t j = 0; j < nodes.size(); ++j)

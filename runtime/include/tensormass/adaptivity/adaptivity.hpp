@@ -16,6 +16,7 @@
 
 #include "tensormass/adaptivity/adaptivity_settings.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
+#include "tensormass/adaptivity/criteria_screen.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/model/model.hpp"
@@ -60,7 +61,8 @@ class Adaptivity {
   /// multiple of `every`, switches laws, and returns the number of switches.
   int update(std::span<const double> u, int step);
 
-  /// Cell data for output: one array per criterion (its last values), and
+  /// Cell data for output: one array per criterion (its values at the last
+  /// evaluation; cells the screen skipped are evaluated here first), and
   /// `state`: the largest criterion / threshold in [0, 1] for a cell under
   /// its initial law (1 = at the threshold), 2 once switched.
   std::vector<io::Field> cell_fields() const;
@@ -70,9 +72,14 @@ class Adaptivity {
   /// Running time of each criterion (same order as criterion_names()).
   const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
   const std::vector<AdaptivityRecord>& records() const { return records_; }
+  /// The criteria screen (criteria_screen.hpp), or null when every cell is evaluated every time.
+  const CriteriaScreen* screen() const { return screen_.get(); }
   const std::vector<std::string>& criterion_names() const { return names_; }
   /// The last evaluation of criterion `index` (criterion_names() order), per cell.
-  const std::vector<double>& criterion_values(int index) const { return values_.at(index); }
+  const std::vector<double>& criterion_values(int index) const {
+    refresh_values();
+    return values_.at(index);
+  }
   AdaptivityMemory memory() const;
   /// Takes a saved memory back (its sizes must fit: std::invalid_argument otherwise).
   void restore(AdaptivityMemory memory);
@@ -89,7 +96,7 @@ class Adaptivity {
   /// evaluation, which also shares the calm counts), so the laws stay the
   /// same everywhere; nullptr: one process. The distribution must outlive
   /// this object (or be replaced by another call).
-  void distribute(const Distribution* distribution) { distribution_ = distribution; }
+  void distribute(const Distribution* distribution);
   /// Over MPI ranks each rank holds the criteria values of its own cells
   /// only (all its output piece needs); this gives every rank all of them
   /// (for a checkpoint, or before a new cut). Collective: every rank calls it.
@@ -102,8 +109,28 @@ class Adaptivity {
   void refresh_rungs();
   /// Lists rungs_ for the kernels of the model's element types.
   void find_rungs();
+  /// Builds screen_ for the model when the settings and criteria allow.
+  void make_screen();
+  /// Whether a cell's decision can ever move it (its rung, the ladder, downgrade, ownership).
+  bool can_move(int cell, int rung) const;
+  /// The values of the cells the screen kept, computed at the last
+  /// evaluation's displacement (the values are then what a full evaluation
+  /// gives). Logically const: the values are computed lazily.
+  void refresh_values() const;
+  /// Every criterion on the block's cells (flags: CriteriaScreen's, or null for every cell).
+  void evaluate_criteria(const ElementBlock& block, std::span<const double> u, const unsigned char* flags,
+                         std::vector<double>& seconds) const;
   signed char decide(int cell, int rung);
   void record_laws(AdaptivityRecord& record);
+  /// Applies moves_ (in cell order) and counts them in the record.
+  void switch_moved_cells(AdaptivityRecord& record);
+  /// moves_[cell] for one cell after its values were evaluated or kept
+  /// (flags: the screen's, or null); returns 1 when it moves.
+  int decide_cell(int cell, const unsigned char* flags);
+  /// movable_ per cell: it cannot move (or is another rank's); it must be
+  /// decided; or its last decision was to stay, on the values and rung it
+  /// still has, with no downgrade (deciding again gives the same).
+  enum Movable : unsigned char { kStill = 0, kMustDecide = 1, kQuiet = 2 };
   /// Index of the kernel's law on the ladder, or -1.
   int rung_of(const tm_kernel& kernel) const;
   /// A criterion whose rung is above `rung` fails on the cell.
@@ -123,8 +150,15 @@ class Adaptivity {
   std::vector<double> thresholds_;
   std::vector<int> target_rungs_;  ///< per criterion: the ladder index it asks for
   std::vector<std::string> names_;
-  std::vector<char> quality_;                ///< per criterion: Criterion::is_quality
-  std::vector<std::vector<double>> values_;  ///< per criterion, per cell
+  std::vector<char> quality_;                        ///< per criterion: Criterion::is_quality
+  mutable std::vector<std::vector<double>> values_;  ///< per criterion, per cell
+  std::unique_ptr<CriteriaScreen> screen_;           ///< null: every cell evaluated every time
+  std::vector<unsigned char> movable_;               ///< per cell: Movable, kept with cell_rungs_
+  std::vector<int> cells_per_rung_;                  ///< kept with cell_rungs_
+  int off_ladder_cells_ = 0;
+  std::vector<unsigned char> screen_flags_;  ///< per cell: CriteriaScreen::select's flags
+  mutable bool stale_ = false;               ///< kept cells' values are from earlier evaluations
+  int top_target_ = 0;                       ///< highest rung a criterion asks for
   std::vector<int> calm_evaluations_;        ///< per cell
   std::vector<std::pair<const tm_kernel*, int>>
       rungs_;                       ///< every kernel of a ladder law on the mesh's elements -> rung
@@ -133,7 +167,7 @@ class Adaptivity {
   long rungs_revision_ = -1;                             ///< the model's law_revision when cell_rungs_ was right
   bool needs_force_ = false;
   int total_switches_ = 0;
-  double criteria_seconds_ = 0;
+  mutable double criteria_seconds_ = 0;
   std::vector<double> criterion_seconds_;
   std::vector<AdaptivityRecord> records_;
 };

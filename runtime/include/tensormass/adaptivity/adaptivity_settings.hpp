@@ -43,6 +43,11 @@ struct AdaptivitySettings {
   bool downgrade = false;
   double hysteresis = 0.5;
   int calm_steps = 10;
+  /// Evaluate only the cells that can move and whose nodes moved far enough
+  /// to change a decision (criteria_screen.hpp; R_NL and R_E only, else
+  /// every cell). Decisions and written values are the same either way;
+  /// false is for benchmarks and tests.
+  bool screen = true;
 };
 
 }  // namespace tensormass

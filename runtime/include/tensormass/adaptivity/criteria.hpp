@@ -36,6 +36,8 @@
 #ifndef TENSORMASS_CRITERIA_HPP
 #define TENSORMASS_CRITERIA_HPP
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -65,6 +67,9 @@ struct BlockInput {
   std::span<const double> forces;  ///< dof_count assembled internal forces (read only when needs_force())
   /// Over MPI ranks: only this rank's own cells are evaluated (the others' values are left as they were).
   const Distribution* distribution = nullptr;
+  /// cell_count flags, or null: only the cells whose flag is 1 are
+  /// evaluated (the others' values are left as they were; CriteriaScreen).
+  const unsigned char* selected = nullptr;
 };
 
 class Criterion {
@@ -89,6 +94,18 @@ class Criterion {
   /// Criteria on edge lengths read the rest positions; the others only the
   /// constants (quadrature weights and shape gradients) and u.
   virtual bool needs_rest() const { return true; }
+  /// Screening (criteria_screen.hpp), for criteria that are functions of the
+  /// displacement gradients H_q at the quadrature points alone: an upper
+  /// bound on max_q |H_q|_F from the criterion's value; +inf when the value
+  /// does not bound it (or the criterion is not such a function).
+  virtual double gradient_norm_bound(double /*value*/, int /*dim*/) const {
+    return std::numeric_limits<double>::infinity();
+  }
+  /// The slope a such that, when max_q |H_q|_F <= h and every
+  /// |H'_q - H_q|_F <= delta, the value moves by at most a delta + delta^2 / 2;
+  /// +inf when the criterion has no such bound (it is then never screened).
+  virtual double change_slope(double /*h*/) const { return std::numeric_limits<double>::infinity(); }
+  bool screenable() const { return std::isfinite(change_slope(0.0)); }
   /// Quality: value < threshold; others: value >= threshold, so that a
   /// threshold of 0 fails every cell (the pure last rung of the ladder).
   bool fails(double value, double threshold) const { return is_quality() ? value < threshold : value >= threshold; }
