@@ -221,17 +221,24 @@ void Adaptivity::refresh_rungs() {
   if (rungs_revision_ == model_->law_revision()) return;
   const int cells = model_->cell_count();
   cell_rungs_.resize(cells);
-  movable_.resize(cells);
+  if (movable_.size() != static_cast<std::size_t>(cells) && screen_) screen_->reset();
+  movable_.resize(cells, kStill);
   cells_per_rung_.assign(settings_.ladder.size(), 0);
   off_ladder_cells_ = 0;
   for (int cell = 0; cell < cells; ++cell) {
     const int rung = rung_of(model_->kernel(cell));
     cell_rungs_[cell] = static_cast<signed char>(rung);
-    movable_[cell] = can_move(cell, rung) ? kMustDecide : kStill;
+    set_movable(cell, can_move(cell, rung) ? kMustDecide : kStill);
     if (rung >= 0) ++cells_per_rung_[rung];
     else ++off_ladder_cells_;
   }
   rungs_revision_ = model_->law_revision();
+}
+
+void Adaptivity::set_movable(int cell, unsigned char state) {
+  // A still cell's values were not kept up to date: evaluate it once it can move.
+  if (screen_ && movable_[cell] == kStill && state != kStill) screen_->forget(cell);
+  movable_[cell] = state;
 }
 
 bool Adaptivity::can_move(int cell, int rung) const {
@@ -286,15 +293,14 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
   moves_.assign(cells, 0);
   refresh_rungs();
   CriteriaScreen* screen = screen_.get();
-  if (screen) screen_flags_.resize(cells), screen->count_evaluation();
+  if (screen) screen_flags_.resize(cells);
   const unsigned char* flags = screen ? screen_flags_.data() : nullptr;
   std::vector<double> seconds(criteria_.size(), 0.0);  // the first thread's share of each criterion
   int moved = 0;
 #pragma omp parallel if (cells >= kParallelCells) reduction(+ : moved)
   {
-    if (screen) screen->measure(u);
+    if (screen) screen->select(u, movable_, screen_flags_);
     for (const ElementBlock& block : model_->mesh().blocks) {
-      if (screen) screen->flag_block(block, movable_, screen_flags_);
       evaluate_criteria(block, u, flags, seconds);
 #pragma omp for schedule(static) nowait
       for (int local = 0; local < block.count(); ++local) moved += decide_cell(block.first_cell + local, flags);
@@ -332,7 +338,7 @@ void Adaptivity::switch_moved_cells(AdaptivityRecord& record) {
     --cells_per_rung_[cell_rungs_[cell]];
     cell_rungs_[cell] = static_cast<signed char>(cell_rungs_[cell] + move);
     ++cells_per_rung_[cell_rungs_[cell]];
-    movable_[cell] = can_move(cell, cell_rungs_[cell]) ? kMustDecide : kStill;
+    set_movable(cell, can_move(cell, cell_rungs_[cell]) ? kMustDecide : kStill);
     switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
   }
 }

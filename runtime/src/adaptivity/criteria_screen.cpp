@@ -1,7 +1,9 @@
 #include "tensormass/adaptivity/criteria_screen.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace tensormass {
@@ -12,6 +14,12 @@ namespace {
 constexpr double kGradientRoundOff = 1e-13;
 /// Round-off of a computed value, relative to the value and the boundary.
 constexpr double kValueRoundOff = 1e-12;
+/// Round-off of a chunk's running motion, relative to it.
+constexpr double kRunningRoundOff = 1e-12;
+/// Cells per chunk: consecutive cells share their nodes' motion.
+constexpr int kChunkCells = 64;
+/// The expiry of a cell (or chunk) whose values are unknown: it is evaluated.
+constexpr double kUnknown = -std::numeric_limits<double>::infinity();
 
 /// G = max_q sum_j |grad N_j(x_q)|: the rest gradients of the cell's constants
 /// (per point: the weight, then G^T, D rows of `nodes`; kernel_abi.h).
@@ -54,11 +62,36 @@ CriteriaScreen::CriteriaScreen(const Model& model, std::vector<const Criterion*>
     throw std::invalid_argument("CriteriaScreen: one threshold per criterion expected");
   const int cells = model.cell_count(), nodes = model.mesh().node_count();
   gradient_sum_.resize(cells);
-  for (int cell = 0; cell < cells; ++cell) gradient_sum_[cell] = gradient_sum(model, cell);
-  slack_.assign(cells, -1.0);
+  cell_chunk_.resize(cells);
+  for (int cell = 0; cell < cells; ++cell) {
+    gradient_sum_[cell] = gradient_sum(model, cell);
+    cell_chunk_[cell] = cell / kChunkCells;
+  }
+  build_chunks();
+  expiry_.assign(cells, kUnknown);
   reference_.assign(model.dof_count(), 0.0);
   motion_.assign(nodes, 0.0);
   length_.assign(nodes, 0.0);
+}
+
+void CriteriaScreen::build_chunks() {
+  const int cells = model_->cell_count();
+  const int chunks = (cells + kChunkCells - 1) / kChunkCells;
+  chunk_node_offsets_.assign(1, 0);
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    const int first = chunk * kChunkCells, last = std::min(cells, first + kChunkCells);
+    chunk_first_.push_back(first);
+    std::vector<int> nodes;
+    for (int cell = first; cell < last; ++cell)
+      for (int node : model_->cell_nodes(cell)) nodes.push_back(node);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    chunk_nodes_.insert(chunk_nodes_.end(), nodes.begin(), nodes.end());
+    chunk_node_offsets_.push_back(static_cast<int>(chunk_nodes_.size()));
+  }
+  chunk_first_.push_back(cells);
+  chunk_motion_.assign(chunks, 0.0);
+  chunk_expiry_.assign(chunks, kUnknown);
 }
 
 bool CriteriaScreen::applies(std::span<const Criterion* const> criteria) {
@@ -66,9 +99,30 @@ bool CriteriaScreen::applies(std::span<const Criterion* const> criteria) {
          std::all_of(criteria.begin(), criteria.end(), [](const Criterion* c) { return c->screenable(); });
 }
 
-void CriteriaScreen::reset() { std::fill(slack_.begin(), slack_.end(), -1.0); }
+void CriteriaScreen::reset() {
+  std::fill(expiry_.begin(), expiry_.end(), kUnknown);
+  std::fill(chunk_expiry_.begin(), chunk_expiry_.end(), kUnknown);
+}
 
-void CriteriaScreen::measure(std::span<const double> u) {
+void CriteriaScreen::forget(int cell) {
+  expiry_[cell] = kUnknown;
+  chunk_expiry_[cell_chunk_[cell]] = kUnknown;
+}
+
+void CriteriaScreen::select(std::span<const double> u, std::span<const unsigned char> movable,
+                            std::span<unsigned char> flags) {
+  measure_nodes(u);
+  const int chunks = static_cast<int>(chunk_motion_.size());
+  long evaluated = 0;
+#pragma omp for schedule(static) nowait
+  for (int chunk = 0; chunk < chunks; ++chunk) evaluated += flag_chunk(chunk, movable, flags);
+#pragma omp atomic
+  evaluated_ += evaluated;
+#pragma omp single
+  ++evaluations_;  // and the barrier at the end of `single`
+}
+
+void CriteriaScreen::measure_nodes(std::span<const double> u) {
   const int d = model_->dim(), nodes = static_cast<int>(motion_.size());
 #pragma omp for schedule(static)
   for (int node = 0; node < nodes; ++node) {
@@ -85,28 +139,26 @@ void CriteriaScreen::measure(std::span<const double> u) {
   }
 }
 
-void CriteriaScreen::flag_block(const ElementBlock& block, std::span<const unsigned char> movable,
-                                std::span<unsigned char> flags) {
-  long evaluated = 0;
-#pragma omp for schedule(static) nowait
-  for (int local = 0; local < block.count(); ++local) {
-    const int cell = block.first_cell + local;
-    if (!movable[cell]) {
-      flags[cell] = kScreenIdle;
-      slack_[cell] = -1.0;
-      continue;
-    }
-    if (slack_[cell] > 0.0) {  // what the last interval used of it (with the round-off of this evaluation)
-      double motion = 0.0;
-      for (int node : model_->cell_nodes(cell)) motion = std::max(motion, motion_[node]);
-      slack_[cell] -= motion;
-    }
-    const bool keep = slack_[cell] > 0.0;
+int CriteriaScreen::flag_chunk(int chunk, std::span<const unsigned char> movable, std::span<unsigned char> flags) {
+  double motion = 0.0;
+  for (int n = chunk_node_offsets_[chunk]; n < chunk_node_offsets_[chunk + 1]; ++n)
+    motion = std::max(motion, motion_[chunk_nodes_[n]]);
+  const double running = chunk_motion_[chunk] += motion;
+  const int first = chunk_first_[chunk], last = chunk_first_[chunk + 1];
+  if (running < chunk_expiry_[chunk]) {  // every cell keeps its values
+    std::fill(flags.begin() + first, flags.begin() + last, kScreenKeep);
+    return 0;
+  }
+  double earliest = std::numeric_limits<double>::infinity();  // settle() lowers it for the cells evaluated
+  int evaluated = 0;
+  for (int cell = first; cell < last; ++cell) {
+    const bool keep = !movable[cell] || running < expiry_[cell];
     flags[cell] = keep ? kScreenKeep : kScreenEvaluate;
+    if (keep && movable[cell]) earliest = std::min(earliest, expiry_[cell]);
     evaluated += !keep;
   }
-#pragma omp atomic
-  evaluated_ += evaluated;
+  chunk_expiry_[chunk] = earliest;
+  return evaluated;
 }
 
 double CriteriaScreen::gradient_change_allowed(int cell, const std::vector<std::vector<double>>& values) const {
@@ -129,7 +181,15 @@ void CriteriaScreen::settle(int cell, const std::vector<std::vector<double>>& va
   double length = 0.0;
   for (int node : model_->cell_nodes(cell)) length = std::max(length, length_[node]);
   const double slack = gradient_change_allowed(cell, values) / gradient_sum_[cell] - kGradientRoundOff * length;
-  slack_[cell] = slack > 0.0 ? slack : -1.0;  // NaN too
+  const int chunk = cell_chunk_[cell];
+  const double running = chunk_motion_[chunk];
+  // The running sum's own round-off over many evaluations is far below 1e-12 of it.
+  const double expiry = slack > 0.0 ? running + slack - kRunningRoundOff * running : kUnknown;  // NaN too
+  expiry_[cell] = expiry;
+  std::atomic_ref<double> earliest(chunk_expiry_[chunk]);  // cells of one chunk may settle on two threads
+  double seen = earliest.load(std::memory_order_relaxed);
+  while (expiry < seen && !earliest.compare_exchange_weak(seen, expiry, std::memory_order_relaxed)) {
+  }
 }
 
 }  // namespace tensormass

@@ -113,6 +113,8 @@ class Adaptivity {
   void make_screen();
   /// Whether a cell's decision can ever move it (its rung, the ladder, downgrade, ownership).
   bool can_move(int cell, int rung) const;
+  /// movable_[cell] = state; the screen forgets a cell that starts to move.
+  void set_movable(int cell, unsigned char state);
   /// The values of the cells the screen kept, computed at the last
   /// evaluation's displacement (the values are then what a full evaluation
   /// gives). Logically const: the values are computed lazily.

@@ -15,11 +15,15 @@
 /// are on the same side of every boundary as fresh ones, so every decision
 /// is the one a full evaluation takes.
 ///
-/// The nodes' motion is measured between successive evaluations: each
-/// evaluation takes from every kept cell's slack the largest distance one of
-/// its nodes moved since the previous evaluation (the triangle inequality
-/// adds them up), and an evaluated cell's slack starts again from its new
-/// values. Round-off in H (about N eps |u| G) is covered by a margin of
+/// The nodes' motion is measured between successive evaluations, and
+/// summed per chunk of 64 consecutive cells: each evaluation adds to a
+/// chunk's running motion the largest distance one of its nodes moved since
+/// the previous one (the triangle inequality adds them up), and a cell
+/// keeps its values while its chunk's running motion stays below the
+/// cell's expiry (the running motion when it was evaluated, plus its
+/// slack). A chunk whose cells all expire later is skipped whole, so a
+/// quiet region costs a few node reads per evaluation, not a pass over its
+/// cells. Round-off in H (about N eps |u| G) is covered by a margin of
 /// 1e-13 |u| per evaluation, and the values' own by a relative margin of
 /// 1e-12 on each boundary.
 #ifndef TENSORMASS_ADAPTIVITY_CRITERIA_SCREEN_HPP
@@ -33,11 +37,10 @@
 
 namespace tensormass {
 
-/// Per cell flags of CriteriaScreen::flag_block.
+/// Per cell flags of CriteriaScreen::select.
 enum ScreenFlag : unsigned char {
-  kScreenKeep = 0,      ///< within its slack: keeps its values
+  kScreenKeep = 0,      ///< within its slack, or cannot move: keeps its values
   kScreenEvaluate = 1,  ///< evaluate (then CriteriaScreen::settle)
-  kScreenIdle = 2,      ///< cannot move (or another rank's): not evaluated, slack forgotten
 };
 
 class CriteriaScreen {
@@ -52,35 +55,37 @@ class CriteriaScreen {
   /// True when every criterion is screenable().
   static bool applies(std::span<const Criterion* const> criteria);
 
-  /// Forgets every slack: the next evaluation evaluates every movable cell.
+  /// Forgets every slack: the next select() flags every movable cell.
   void reset();
+  /// Forgets one cell's slack (it became movable): the next select() flags it.
+  void forget(int cell);
 
-  /// The nodes' motion since the previous measure() (u: dof_count), and u
-  /// becomes the next one's reference. Called by every thread of an
-  /// enclosing parallel region (or serially); returns after a barrier.
-  void measure(std::span<const double> u);
-  /// After measure(), flags the block's cells (flags: cell_count):
-  /// kScreenIdle where movable[cell] is 0, else kScreenKeep when its nodes
-  /// stayed within its slack, else kScreenEvaluate. Shares the cells among
-  /// the threads like Criterion::evaluate_block (static schedule over
-  /// block.count(), no barrier), so a thread evaluates the cells it flagged.
-  void flag_block(const ElementBlock& block, std::span<const unsigned char> movable, std::span<unsigned char> flags);
-  /// Counts an evaluation (for evaluated_cells() / evaluations()).
-  void count_evaluation() { ++evaluations_; }
+  /// Measures the nodes' motion since the previous select() (u: dof_count;
+  /// u becomes the next one's reference) and flags every cell (flags:
+  /// cell_count): kScreenEvaluate when movable[cell] is not 0 and its
+  /// nodes may have moved past its slack, else kScreenKeep. Called by every
+  /// thread of an enclosing parallel region (or serially); returns after a
+  /// barrier.
+  void select(std::span<const double> u, std::span<const unsigned char> movable, std::span<unsigned char> flags);
 
   /// After a kScreenEvaluate cell's values (values[criterion][cell]) were
-  /// computed at measure()'s u: its new slack. Thread-safe across cells.
+  /// computed at select()'s u: its new slack. Thread-safe across cells.
   void settle(int cell, const std::vector<std::vector<double>>& values);
 
-  /// The slack of a cell in metres (<= 0: evaluated at the next evaluation).
-  double slack(int cell) const { return slack_[cell]; }
-  /// The displacement of the last measure() (dof_count).
+  /// How far (metres) the cell's nodes may still move before it is
+  /// evaluated again (<= 0: at the next select()).
+  double slack(int cell) const { return expiry_[cell] - chunk_motion_[cell_chunk_[cell]]; }
+  /// The displacement of the last select() (dof_count).
   const std::vector<double>& last_displacement() const { return reference_; }
-  /// Cells flagged kScreenEvaluate, summed over the evaluations, and the number of evaluations.
+  /// Cells flagged kScreenEvaluate, summed over the select() calls, and the number of calls.
   long evaluated_cells() const { return evaluated_; }
   long evaluations() const { return evaluations_; }
 
  private:
+  void build_chunks();
+  void measure_nodes(std::span<const double> u);
+  /// Flags one chunk's cells; returns how many are flagged kScreenEvaluate.
+  int flag_chunk(int chunk, std::span<const unsigned char> movable, std::span<unsigned char> flags);
   /// Largest |delta H| the cell's values allow before one may reach a boundary.
   double gradient_change_allowed(int cell, const std::vector<std::vector<double>>& values) const;
 
@@ -89,10 +94,15 @@ class CriteriaScreen {
   std::vector<double> thresholds_;
   double hysteresis_;
   std::vector<double> gradient_sum_;  ///< per cell: G = max_q sum_j |grad N_j(x_q)|
-  std::vector<double> slack_;         ///< per cell, metres
-  std::vector<double> reference_;     ///< dof_count: the displacement of the last measure
-  std::vector<double> motion_;        ///< per node: |u - reference| + 1e-13 |u| at the last measure
-  std::vector<double> length_;        ///< per node: |u| at the last measure
+  std::vector<int> cell_chunk_;       ///< per cell: its chunk
+  std::vector<int> chunk_first_;      ///< chunks + 1: each chunk's first cell (its cells are consecutive)
+  std::vector<int> chunk_node_offsets_, chunk_nodes_;  ///< each chunk's distinct nodes
+  std::vector<double> chunk_motion_;                   ///< per chunk: the running sum of its largest node motions
+  std::vector<double> chunk_expiry_;  ///< per chunk: the earliest expiry of its movable cells (-inf: unknown)
+  std::vector<double> expiry_;        ///< per cell: its values hold while its chunk's motion is below this
+  std::vector<double> reference_;     ///< dof_count: the displacement of the last select
+  std::vector<double> motion_;        ///< per node: |u - reference| + 1e-13 |u| at the last select
+  std::vector<double> length_;        ///< per node: |u| at the last select
   long evaluated_ = 0, evaluations_ = 0;
 };
 
