@@ -18,6 +18,11 @@ namespace tensormass {
 
 namespace {
 constexpr int kParallelCells = 4096;  // below this a parallel region costs more than it saves
+/// Settling a cell's slack costs more than evaluating it: when the screen
+/// leaves more than this share of the cells to evaluate, the next
+/// kScreenPause evaluations evaluate every cell and skip the screen.
+constexpr double kScreenBusyShare = 0.25;
+constexpr int kScreenPause = 8;
 
 /// Every ladder law must have a kernel for every element type of the mesh.
 void check_ladder(const std::vector<std::string>& ladder, const Mesh& mesh) {
@@ -69,12 +74,13 @@ void Adaptivity::make_screen() {
   if (!settings_.screen || !CriteriaScreen::applies(criteria)) return;
   screen_ = std::make_unique<CriteriaScreen>(*model_, std::move(criteria), thresholds_,
                                              settings_.downgrade ? settings_.hysteresis : 0.0);
+  restart_screen();
 }
 
 void Adaptivity::distribute(const Distribution* distribution) {
   distribution_ = distribution;
   rungs_revision_ = -1;  // which cells can move depends on which this rank owns
-  if (screen_) screen_->reset();
+  restart_screen();
 }
 
 void Adaptivity::find_rungs() {
@@ -136,7 +142,7 @@ void Adaptivity::restore(AdaptivityMemory memory) {
   criterion_seconds_ = std::move(memory.criterion_seconds);
   records_ = std::move(memory.records);
   stale_ = false;
-  if (screen_) screen_->reset();
+  restart_screen();
 }
 
 void Adaptivity::advance_blends() {
@@ -221,7 +227,7 @@ void Adaptivity::refresh_rungs() {
   if (rungs_revision_ == model_->law_revision()) return;
   const int cells = model_->cell_count();
   cell_rungs_.resize(cells);
-  if (movable_.size() != static_cast<std::size_t>(cells) && screen_) screen_->reset();
+  if (movable_.size() != static_cast<std::size_t>(cells)) restart_screen();
   movable_.resize(cells, kStill);
   cells_per_rung_.assign(settings_.ladder.size(), 0);
   off_ladder_cells_ = 0;
@@ -233,6 +239,28 @@ void Adaptivity::refresh_rungs() {
     else ++off_ladder_cells_;
   }
   rungs_revision_ = model_->law_revision();
+}
+
+void Adaptivity::restart_screen() {
+  if (!screen_) return;
+  screen_->reset();
+  screen_warming_ = true;
+  screen_pause_ = 0;
+}
+
+CriteriaScreen* Adaptivity::screen_now() {
+  if (!screen_) return nullptr;
+  if (screen_pause_ == 0) return screen_.get();
+  if (--screen_pause_ == 0) restart_screen();  // the screen's slacks are stale after the pause
+  return nullptr;
+}
+
+void Adaptivity::judge_screen(long evaluated) {
+  if (screen_warming_) {  // every movable cell was evaluated to start the slacks: says nothing
+    screen_warming_ = false;
+    return;
+  }
+  if (evaluated > kScreenBusyShare * model_->cell_count()) screen_pause_ = kScreenPause;
 }
 
 void Adaptivity::set_movable(int cell, unsigned char state) {
@@ -292,7 +320,8 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
   const int cells = model_->cell_count();
   moves_.assign(cells, 0);
   refresh_rungs();
-  CriteriaScreen* screen = screen_.get();
+  CriteriaScreen* screen = screen_now();
+  const long evaluated_before = screen ? screen->evaluated_cells() : 0;
   if (screen) screen_flags_.resize(cells);
   const unsigned char* flags = screen ? screen_flags_.data() : nullptr;
   std::vector<double> seconds(criteria_.size(), 0.0);  // the first thread's share of each criterion
@@ -307,6 +336,7 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
     }
   }
   stale_ = screen != nullptr;
+  if (screen) judge_screen(screen->evaluated_cells() - evaluated_before);
   for (std::size_t c = 0; c < criteria_.size(); ++c) criterion_seconds_[c] += seconds[c];
   if (distribution_) share_decisions();
   if (moved > 0 || distribution_) switch_moved_cells(record);

@@ -71,7 +71,8 @@ TEST(CriteriaScreen, ChangeBoundsHoldOnEveryShape) {
         for (double& x : u) x = size * unit(random);
         for (double step : {1e-6, 1e-3, 0.05}) {
           for (std::size_t i = 0; i < u.size(); ++i) moved[i] = u[i] + step * unit(random);
-          const std::vector<double> before = values_at(*criterion, model, u), after = values_at(*criterion, model, moved);
+          const std::vector<double> before = values_at(*criterion, model, u),
+                                    after = values_at(*criterion, model, moved);
           for (int cell = 0; cell < model.cell_count(); ++cell) {
             double largest_move = 0.0;
             for (int node : model.cell_nodes(cell)) {
@@ -193,7 +194,7 @@ TEST(CriteriaScreen, AStillRegionIsNotEvaluatedAgain) {
   const long moved = adaptivity.screen()->evaluated_cells() - first;
   EXPECT_GT(moved, 0);
   EXPECT_LE(moved, 2 * 64 + 2 * 2 * 6);  // the cells touching the tip, rounded up to chunks
-  adaptivity.update(u, 2);  // nothing moved since
+  adaptivity.update(u, 2);               // nothing moved since
   EXPECT_EQ(adaptivity.screen()->evaluated_cells() - first, moved);
 }
 

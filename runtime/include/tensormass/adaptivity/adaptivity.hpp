@@ -113,6 +113,12 @@ class Adaptivity {
   void make_screen();
   /// Whether a cell's decision can ever move it (its rung, the ladder, downgrade, ownership).
   bool can_move(int cell, int rung) const;
+  /// Every slack forgotten: the next screened evaluation evaluates every movable cell.
+  void restart_screen();
+  /// The screen for this evaluation, or null while it is paused (busy scenes).
+  CriteriaScreen* screen_now();
+  /// After a screened evaluation of `evaluated` cells: pauses the screen when it saved little.
+  void judge_screen(long evaluated);
   /// movable_[cell] = state; the screen forgets a cell that starts to move.
   void set_movable(int cell, unsigned char state);
   /// The values of the cells the screen kept, computed at the last
@@ -160,6 +166,8 @@ class Adaptivity {
   int off_ladder_cells_ = 0;
   std::vector<unsigned char> screen_flags_;  ///< per cell: CriteriaScreen::select's flags
   mutable bool stale_ = false;               ///< kept cells' values are from earlier evaluations
+  bool screen_warming_ = true;               ///< the screen's next evaluation starts every slack
+  int screen_pause_ = 0;                     ///< evaluations left without the screen
   int top_target_ = 0;                       ///< highest rung a criterion asks for
   std::vector<int> calm_evaluations_;        ///< per cell
   std::vector<std::pair<const tm_kernel*, int>>
