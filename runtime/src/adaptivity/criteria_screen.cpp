@@ -16,8 +16,6 @@ constexpr double kGradientRoundOff = 1e-13;
 constexpr double kValueRoundOff = 1e-12;
 /// Round-off of a chunk's running motion, relative to it.
 constexpr double kRunningRoundOff = 1e-12;
-/// Cells per chunk: consecutive cells share their nodes' motion.
-constexpr int kChunkCells = 64;
 /// The expiry of a cell (or chunk) whose values are unknown: it is evaluated.
 constexpr double kUnknown = -std::numeric_limits<double>::infinity();
 
@@ -61,16 +59,11 @@ CriteriaScreen::CriteriaScreen(const Model& model, std::vector<const Criterion*>
   if (thresholds_.size() != criteria_.size())
     throw std::invalid_argument("CriteriaScreen: one threshold per criterion expected");
   const int cells = model.cell_count(), nodes = model.mesh().node_count();
-  gradient_sum_.resize(cells);
-  cell_chunk_.resize(cells);
-  for (int cell = 0; cell < cells; ++cell) {
-    gradient_sum_[cell] = gradient_sum(model, cell);
-    cell_chunk_[cell] = cell / kChunkCells;
-  }
+  cells_.resize(cells);
+  for (int cell = 0; cell < cells; ++cell) cells_[cell] = {kUnknown, 1.0 / gradient_sum(model, cell)};
   build_chunks();
-  expiry_.assign(cells, kUnknown);
   reference_.assign(model.dof_count(), 0.0);
-  motion_.assign(nodes, 0.0);
+  delta_.assign(model.dof_count(), 0.0);
   length_.assign(nodes, 0.0);
 }
 
@@ -100,13 +93,13 @@ bool CriteriaScreen::applies(std::span<const Criterion* const> criteria) {
 }
 
 void CriteriaScreen::reset() {
-  std::fill(expiry_.begin(), expiry_.end(), kUnknown);
+  for (CellSlack& cell : cells_) cell.expiry = kUnknown;
   std::fill(chunk_expiry_.begin(), chunk_expiry_.end(), kUnknown);
 }
 
 void CriteriaScreen::forget(int cell) {
-  expiry_[cell] = kUnknown;
-  chunk_expiry_[cell_chunk_[cell]] = kUnknown;
+  cells_[cell].expiry = kUnknown;
+  chunk_expiry_[cell / kChunkCells] = kUnknown;
 }
 
 void CriteriaScreen::select(std::span<const double> u, std::span<const unsigned char> movable,
@@ -123,27 +116,47 @@ void CriteriaScreen::select(std::span<const double> u, std::span<const unsigned 
 }
 
 void CriteriaScreen::measure_nodes(std::span<const double> u) {
-  const int d = model_->dim(), nodes = static_cast<int>(motion_.size());
+  const int d = model_->dim(), nodes = static_cast<int>(length_.size());
 #pragma omp for schedule(static)
   for (int node = 0; node < nodes; ++node) {
-    double drift2 = 0.0, length2 = 0.0;
+    double length2 = 0.0;
     for (int a = 0; a < d; ++a) {
       const std::size_t dof = static_cast<std::size_t>(node) * d + a;
-      const double delta = u[dof] - reference_[dof];
-      drift2 += delta * delta;
+      delta_[dof] = u[dof] - reference_[dof];
       length2 += u[dof] * u[dof];
       reference_[dof] = u[dof];
     }
     length_[node] = std::sqrt(length2);
-    motion_[node] = std::sqrt(drift2) + kGradientRoundOff * length_[node];
   }
 }
 
-int CriteriaScreen::flag_chunk(int chunk, std::span<const unsigned char> movable, std::span<unsigned char> flags) {
+double CriteriaScreen::chunk_motion(int chunk) const {
+  // sum_j grad N_j = 0, so delta H = sum_j (du_j - w) grad N_j for any w:
+  // the middle of the chunk's node motions takes out what they share.
+  const int d = model_->dim(), first = chunk_node_offsets_[chunk], last = chunk_node_offsets_[chunk + 1];
+  double low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
+  for (int a = 0; a < d; ++a) low[a] = high[a] = delta_[static_cast<std::size_t>(chunk_nodes_[first]) * d + a];
+  for (int n = first + 1; n < last; ++n)
+    for (int a = 0; a < d; ++a) {
+      const double value = delta_[static_cast<std::size_t>(chunk_nodes_[n]) * d + a];
+      low[a] = std::min(low[a], value);
+      high[a] = std::max(high[a], value);
+    }
   double motion = 0.0;
-  for (int n = chunk_node_offsets_[chunk]; n < chunk_node_offsets_[chunk + 1]; ++n)
-    motion = std::max(motion, motion_[chunk_nodes_[n]]);
-  const double running = chunk_motion_[chunk] += motion;
+  for (int n = first; n < last; ++n) {
+    const int node = chunk_nodes_[n];
+    double squared = 0.0;
+    for (int a = 0; a < d; ++a) {
+      const double relative = delta_[static_cast<std::size_t>(node) * d + a] - 0.5 * (low[a] + high[a]);
+      squared += relative * relative;
+    }
+    motion = std::max(motion, std::sqrt(squared) + kGradientRoundOff * length_[node]);
+  }
+  return motion;
+}
+
+int CriteriaScreen::flag_chunk(int chunk, std::span<const unsigned char> movable, std::span<unsigned char> flags) {
+  const double running = chunk_motion_[chunk] += chunk_motion(chunk);
   const int first = chunk_first_[chunk], last = chunk_first_[chunk + 1];
   if (running < chunk_expiry_[chunk]) {  // every cell keeps its values
     std::fill(flags.begin() + first, flags.begin() + last, kScreenKeep);
@@ -152,9 +165,9 @@ int CriteriaScreen::flag_chunk(int chunk, std::span<const unsigned char> movable
   double earliest = std::numeric_limits<double>::infinity();  // settle() lowers it for the cells evaluated
   int evaluated = 0;
   for (int cell = first; cell < last; ++cell) {
-    const bool keep = !movable[cell] || running < expiry_[cell];
+    const bool keep = !movable[cell] || running < cells_[cell].expiry;
     flags[cell] = keep ? kScreenKeep : kScreenEvaluate;
-    if (keep && movable[cell]) earliest = std::min(earliest, expiry_[cell]);
+    if (keep && movable[cell]) earliest = std::min(earliest, cells_[cell].expiry);
     evaluated += !keep;
   }
   chunk_expiry_[chunk] = earliest;
@@ -180,12 +193,13 @@ double CriteriaScreen::gradient_change_allowed(int cell, const std::vector<std::
 void CriteriaScreen::settle(int cell, const std::vector<std::vector<double>>& values) {
   double length = 0.0;
   for (int node : model_->cell_nodes(cell)) length = std::max(length, length_[node]);
-  const double slack = gradient_change_allowed(cell, values) / gradient_sum_[cell] - kGradientRoundOff * length;
-  const int chunk = cell_chunk_[cell];
+  CellSlack& slot = cells_[cell];
+  const double slack = gradient_change_allowed(cell, values) * slot.inverse_gradient_sum - kGradientRoundOff * length;
+  const int chunk = cell / kChunkCells;
   const double running = chunk_motion_[chunk];
   // The running sum's own round-off over many evaluations is far below 1e-12 of it.
   const double expiry = slack > 0.0 ? running + slack - kRunningRoundOff * running : kUnknown;  // NaN too
-  expiry_[cell] = expiry;
+  slot.expiry = expiry;
   std::atomic_ref<double> earliest(chunk_expiry_[chunk]);  // cells of one chunk may settle on two threads
   double seen = earliest.load(std::memory_order_relaxed);
   while (expiry < seen && !earliest.compare_exchange_weak(seen, expiry, std::memory_order_relaxed)) {

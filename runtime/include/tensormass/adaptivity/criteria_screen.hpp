@@ -18,7 +18,9 @@
 /// The nodes' motion is measured between successive evaluations, and
 /// summed per chunk of 64 consecutive cells: each evaluation adds to a
 /// chunk's running motion the largest distance one of its nodes moved since
-/// the previous one (the triangle inequality adds them up), and a cell
+/// the previous one, less what all its nodes moved alike (sum_j grad N_j = 0,
+/// so a common motion w leaves H unchanged and delta H = sum_j (du_j - w) x
+/// grad N_j); the triangle inequality adds the evaluations up. A cell
 /// keeps its values while its chunk's running motion stays below the
 /// cell's expiry (the running motion when it was evaluated, plus its
 /// slack). A chunk whose cells all expire later is skipped whole, so a
@@ -45,6 +47,9 @@ enum ScreenFlag : unsigned char {
 
 class CriteriaScreen {
  public:
+  /// Cells per chunk: consecutive cells share their nodes' motion.
+  static constexpr int kChunkCells = 64;
+
   /// criteria: every one screenable(), thresholds one per criterion;
   /// hysteresis: the calm boundary's factor (threshold x hysteresis) when
   /// downgrade is on, 0 without. The model must outlive the screen.
@@ -74,7 +79,7 @@ class CriteriaScreen {
 
   /// How far (metres) the cell's nodes may still move before it is
   /// evaluated again (<= 0: at the next select()).
-  double slack(int cell) const { return expiry_[cell] - chunk_motion_[cell_chunk_[cell]]; }
+  double slack(int cell) const { return cells_[cell].expiry - chunk_motion_[cell / kChunkCells]; }
   /// The displacement of the last select() (dof_count).
   const std::vector<double>& last_displacement() const { return reference_; }
   /// Cells flagged kScreenEvaluate, summed over the select() calls, and the number of calls.
@@ -84,6 +89,8 @@ class CriteriaScreen {
  private:
   void build_chunks();
   void measure_nodes(std::span<const double> u);
+  /// The largest |du_j - w| + 1e-13 |u_j| over the chunk's nodes, w the middle of their motions du.
+  double chunk_motion(int chunk) const;
   /// Flags one chunk's cells; returns how many are flagged kScreenEvaluate.
   int flag_chunk(int chunk, std::span<const unsigned char> movable, std::span<unsigned char> flags);
   /// Largest |delta H| the cell's values allow before one may reach a boundary.
@@ -93,15 +100,18 @@ class CriteriaScreen {
   std::vector<const Criterion*> criteria_;
   std::vector<double> thresholds_;
   double hysteresis_;
-  std::vector<double> gradient_sum_;  ///< per cell: G = max_q sum_j |grad N_j(x_q)|
-  std::vector<int> cell_chunk_;       ///< per cell: its chunk
-  std::vector<int> chunk_first_;      ///< chunks + 1: each chunk's first cell (its cells are consecutive)
+  /// What settle() and select() read of a cell, side by side (one cache line).
+  struct CellSlack {
+    double expiry;                ///< its values hold while its chunk's running motion is below this
+    double inverse_gradient_sum;  ///< 1 / G, G = max_q sum_j |grad N_j(x_q)|
+  };
+  std::vector<CellSlack> cells_;
+  std::vector<int> chunk_first_;  ///< chunks + 1: each chunk's first cell (its cells are consecutive)
   std::vector<int> chunk_node_offsets_, chunk_nodes_;  ///< each chunk's distinct nodes
   std::vector<double> chunk_motion_;                   ///< per chunk: the running sum of its largest node motions
   std::vector<double> chunk_expiry_;  ///< per chunk: the earliest expiry of its movable cells (-inf: unknown)
-  std::vector<double> expiry_;        ///< per cell: its values hold while its chunk's motion is below this
   std::vector<double> reference_;     ///< dof_count: the displacement of the last select
-  std::vector<double> motion_;        ///< per node: |u - reference| + 1e-13 |u| at the last select
+  std::vector<double> delta_;         ///< dof_count: u - reference at the last select
   std::vector<double> length_;        ///< per node: |u| at the last select
   long evaluated_ = 0, evaluations_ = 0;
 };
