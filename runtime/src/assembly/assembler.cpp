@@ -43,7 +43,9 @@ double cell_energy(const Model& model, int cell, const double* u) {
 
 }  // namespace
 
-Assembler::Assembler(const Model& model, bool fold_linear_cells) : model_(&model), graph_(make_node_graph(model)) {
+Assembler::Assembler(const Model& model, bool fold_linear_cells, const Distribution* distribution)
+    : model_(&model), graph_(make_node_graph(model)) {
+  distribution_ = distribution;
   build_pattern();
   build_colours();
   if (fold_linear_cells) linear_ = std::make_unique<LinearPart>(model, graph_, pattern_);

@@ -183,11 +183,23 @@ void time_loop(const Scene& scene, const State& state, double adaptivity_seconds
 
 /// The mesh and everything built on it: replaced as a whole when
 /// refinement changes the mesh.
+/// Over several MPI ranks, the cut of the model's cells among them (rank 0
+/// partitions, every rank gets the same); nullptr on one process.
+std::unique_ptr<Distribution> cut_among_ranks(const Model& model) {
+  const int ranks = parallel::world_size(), rank = parallel::world_rank();
+  if (ranks <= 1) return nullptr;
+  std::vector<int> cell_owner =
+      rank == 0 ? parallel::partition_cells(model, ranks) : std::vector<int>(model.cell_count(), 0);
+  parallel::broadcast_from_root(cell_owner);
+  return std::make_unique<Distribution>(model, std::move(cell_owner), rank, ranks);
+}
+
 struct Discretisation {
   Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics)
       : mesh(std::move(mesh_in)),
         model(mesh, scene.model),
-        assembler(model),
+        distribution(cut_among_ranks(model)),
+        assembler(model, true, distribution.get()),
         linear(make_linear_solver(scene.solver.linear)),
         integration{model, assembler, *linear, scene.solver, statistics} {}
   /// What the solvers need before the first step (after any distribution).
@@ -198,6 +210,7 @@ struct Discretisation {
 
   Mesh mesh;
   Model model;
+  std::unique_ptr<Distribution> distribution;  // null on one process; before the assembler, which uses it
   Assembler assembler;
   std::unique_ptr<LinearSolver> linear;
   Integration integration;
@@ -298,9 +311,12 @@ struct Simulation::Impl {
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   Scene scene;
   RunReport report;
+  /// This rank's peak memory at the end of each phase so far (RunReport::peak_memory_mib_by_phase);
+  /// initialised before disc: the mesh is read, the model not built yet.
+  std::vector<std::pair<std::string, double>> memory_marks{{"mesh", peak_memory_mib()}};
   std::unique_ptr<Discretisation> disc;
   std::unique_ptr<detail::RunRefinement> refinement;  // null without adaptivity.refine
-  std::unique_ptr<Distribution> distribution;         // null on one process
+  const Distribution* distribution = nullptr;         // disc's, once shared among ranks; null on one process
   bool dynamic;
   std::unique_ptr<Adaptivity> adaptivity;
   std::vector<GroupTrack> tracks;
@@ -311,6 +327,7 @@ struct Simulation::Impl {
   detail::Progress progress;
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
   std::size_t counted_steps = 0;
+  void mark_memory(const char* phase) { memory_marks.emplace_back(phase, peak_memory_mib()); }
   double stepping_ms = 0;
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;               // static: repeats of the current load step after switches
@@ -346,20 +363,23 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
                options.progress && parallel::world_rank() == 0) {
+  mark_memory("model and assembler");
   fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);  // the scene's mesh, before any refinement
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
   if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints);
   if (checkpoint && refinement) replay_refinement(*checkpoint);
   if (parallel::world_size() > 1) share_among_ranks();
+  mark_memory("shared");
   disc->prepare(scene);
   if (scene.adaptivity.enabled) {
     AdaptivitySettings settings = scene.adaptivity;
     if (!dynamic) settings.blend_steps = 0;  // a static solve has no steps to blend over
     adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
-    adaptivity->distribute(distribution.get());
+    adaptivity->distribute(distribution);
   }
   if (checkpoint) check_checkpoint_state(*checkpoint, checkpoint_path, disc->model);
+  mark_memory("solver");
 
   report.output_directory = scene.output.directory;
   report.nodes = disc->mesh.node_count();
@@ -396,18 +416,13 @@ void Simulation::Impl::replay_refinement(const Checkpoint& checkpoint) {
 }
 
 /// Every rank holds the whole model and state; each assembles the cells
-/// of its part of the mesh (and those touching its nodes), evaluates the
-/// criteria of its own cells, and the linear solver spreads its rows over
-/// the ranks. Rank 0 writes the files.
+/// of its part of the mesh (and those touching its nodes; the assembler
+/// was built for them), evaluates the criteria of its own cells, and the
+/// linear solver spreads its rows over the ranks. Rank 0 writes the files.
 void Simulation::Impl::share_among_ranks() {
-  const int ranks = parallel::world_size(), rank = parallel::world_rank();
-  std::vector<int> cell_owner =
-      rank == 0 ? parallel::partition_cells(disc->model, ranks) : std::vector<int>(disc->model.cell_count(), 0);
-  parallel::broadcast_from_root(cell_owner);
-  distribution = std::make_unique<Distribution>(disc->model, std::move(cell_owner), rank, ranks);
-  disc->assembler.distribute(distribution.get());
+  distribution = disc->distribution.get();
   if (scene.solver.type != SolverType::explicit_euler) disc->linear->distribute(*distribution);
-  if (adaptivity) adaptivity->distribute(distribution.get());  // a refinement's new cut
+  if (adaptivity) adaptivity->distribute(distribution);  // a refinement's new cut
 }
 
 /// Everything the steps so far left behind, as the killed run had it.
@@ -511,6 +526,7 @@ bool Simulation::Impl::observe(const State& now) {
   resolves = 0;
   refinement_passes = 0;
   last_good = now;
+  if (memory_marks.size() == 4) mark_memory("first step");
   if (!tracks.empty()) {
     detail::PhaseTimer timer(report.output_seconds);
     for (GroupTrack& track : tracks) track.record(now.time, now.displacement);
@@ -526,7 +542,7 @@ bool Simulation::Impl::observe(const State& now) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d", now.step);
     const std::string file =
-        write_state(scene.output.directory, name, disc->model, now, levels(), adaptivity.get(), distribution.get());
+        write_state(scene.output.directory, name, disc->model, now, levels(), adaptivity.get(), distribution);
     series.push_back({now.time, file});
     if (writes_files()) io::write_pvd(output_path("series.pvd"), series);
   }
@@ -631,7 +647,7 @@ void Simulation::Impl::fail(const NumericalError& failure) {
   done = true;
   progress.finish();
   const std::string file = write_state(scene.output.directory, "last_good", disc->model, last_good, levels(),
-                                       adaptivity.get(), distribution.get());
+                                       adaptivity.get(), distribution);
   report.files.push_back(file);
   close_report(last_good, failure.what());
   throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
@@ -644,8 +660,8 @@ void Simulation::Impl::finish_run() {
   progress.finish();
   {
     detail::PhaseTimer timer(report.output_seconds);
-    report.files.push_back(write_state(scene.output.directory, "final", disc->model, state, levels(), adaptivity.get(),
-                                       distribution.get()));
+    report.files.push_back(
+        write_state(scene.output.directory, "final", disc->model, state, levels(), adaptivity.get(), distribution));
   }
   if (!series.empty()) report.files.push_back("series.pvd");
   close_report(state, "");
@@ -668,6 +684,10 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   if (scene.solver.type != SolverType::explicit_euler)
     report.linear_solver = disc->linear->name();  // after any fallback
   report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
+  report.peak_memory_mib_by_phase.clear();
+  for (const auto& [phase, mib] : memory_marks)  // the same phases on every rank: collective
+    report.peak_memory_mib_by_phase.emplace_back(phase, parallel::gather_to_root(mib));
+  report.peak_memory_mib_by_phase.emplace_back("end", report.peak_memory_mib);
   report.wall_seconds = detail::seconds_since(start);
   if (writes_files()) detail::write_summary(output_path("summary.json"), scene, disc->model, report, failure);
 }

@@ -81,6 +81,14 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   for (std::size_t i = 0; i < report.peak_memory_mib.size(); ++i)
     j << (i ? ", " : "") << number(report.peak_memory_mib[i]);
   j << "],\n";
+  j << "  \"peak_memory_mib_by_phase\": {";
+  for (std::size_t p = 0; p < report.peak_memory_mib_by_phase.size(); ++p) {
+    const auto& [phase, per_rank] = report.peak_memory_mib_by_phase[p];
+    j << (p ? ", " : "") << quoted(phase) << ": [";
+    for (std::size_t i = 0; i < per_rank.size(); ++i) j << (i ? ", " : "") << number(per_rank[i]);
+    j << "]";
+  }
+  j << "},\n";
   j << "  \"steps\": " << s.step_ms.size() << ",\n";
   if (report.resumed_from_step >= 0) j << "  \"resumed_from_step\": " << report.resumed_from_step << ",\n";
   j << "  \"time_per_step_ms\": {\"mean\": " << number(mean) << ", \"median\": " << number(median) << "},\n";

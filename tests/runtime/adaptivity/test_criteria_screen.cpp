@@ -173,13 +173,16 @@ TEST(CriteriaScreen, DecidesEveryCellAsAFullEvaluationDoes) {
       for (int cell = 0; cell < mesh.cell_count(); ++cell)
         ASSERT_EQ(&screened_model.kernel(cell), screened_model.law_kernel(cell, full_model.kernel(cell).law))
             << "step " << step << ", " << mesh.describe_cell(cell);
-      if (step % 10 == 0)  // refreshed: the values of a full evaluation, bit for bit
+      if (step % 10 == 0) {  // refreshed: the values of a full evaluation, bit for bit
         for (std::size_t c = 0; c < ladder.criteria.size(); ++c)
           ASSERT_EQ(screened.criterion_values(static_cast<int>(c)), full.criterion_values(static_cast<int>(c)));
+      }
     }
     EXPECT_EQ(screened.total_switches(), full.total_switches());
     EXPECT_GT(full.total_switches(), 0);
-    if (ladder.downgrade) EXPECT_GT(downgrades, 0);
+    if (ladder.downgrade) {
+      EXPECT_GT(downgrades, 0);
+    }
     const CriteriaScreen& screen = *screened.screen();  // the whole beam bends: it skips few cells
     EXPECT_LT(screen.evaluated_cells(), screen.evaluations() * mesh.cell_count());
   }

@@ -137,6 +137,11 @@ def check_scene(binary, work, name):
                 failures.append(f"{name}, {ranks} ranks: meshes {cells}, serial {serial_cells} (refined alike?)")
         if summary["mpi_ranks"] != ranks:
             failures.append(f"{name}, {ranks} ranks: summary.json says mpi_ranks {summary['mpi_ranks']}")
+        phases = summary["peak_memory_mib_by_phase"]
+        if list(phases) != ["mesh", "model and assembler", "shared", "solver", "first step", "end"] or any(
+                len(per_rank) != ranks for per_rank in phases.values()) or phases["end"] != summary[
+                    "peak_memory_mib_per_rank"]:
+            failures.append(f"{name}, {ranks} ranks: peak_memory_mib_by_phase {phases}")
     return failures
 
 

@@ -85,6 +85,22 @@ TEST_F(SteppedBeam, SteppingEqualsWholeRunForEveryIntegrator) {
   }
 }
 
+TEST_F(SteppedBeam, PeakMemoryIsReportedPerPhase) {
+  const RunReport report = run_scene(scene("memory", "stvk", SolverType::implicit_euler), quiet());
+  const std::vector<std::string> expected{"mesh", "model and assembler", "shared", "solver", "first step", "end"};
+  ASSERT_EQ(report.peak_memory_mib_by_phase.size(), expected.size());
+  double before = 0.0;
+  for (std::size_t p = 0; p < expected.size(); ++p) {
+    const auto& [phase, per_rank] = report.peak_memory_mib_by_phase[p];
+    EXPECT_EQ(phase, expected[p]);
+    ASSERT_EQ(per_rank.size(), 1u);
+    EXPECT_GE(per_rank[0], before) << phase;  // a peak never falls
+    before = per_rank[0];
+  }
+  EXPECT_GT(before, 0.0);
+  EXPECT_EQ(report.peak_memory_mib_by_phase.back().second, report.peak_memory_mib);
+}
+
 TEST_F(SteppedBeam, SteppingEqualsWholeRunWhenLoadStepsAreSolvedAgain) {
   auto adaptive = [&](const std::string& name) {
     Scene s = scene(name, "hooke", SolverType::static_newton);

@@ -35,8 +35,10 @@ class Assembler {
  public:
   /// fold_linear_cells = false runs every cell's kernel at every assembly
   /// (the reference the folded assembly is tested and benchmarked against).
-  explicit Assembler(const Model& model, bool fold_linear_cells = true);
-  explicit Assembler(Model&&, bool = true) = delete;  ///< keeps a reference to the model
+  /// `distribution`: as distribute(distribution), from the start, so that
+  /// the whole mesh's pattern is never built on a rank (nullptr: one process).
+  explicit Assembler(const Model& model, bool fold_linear_cells = true, const Distribution* distribution = nullptr);
+  explicit Assembler(Model&&, bool = true, const Distribution* = nullptr) = delete;  ///< keeps a reference to the model
 
   /// An empty matrix with the pattern of K (free dofs by free dofs).
   const SparseMatrix& pattern() const { return pattern_; }

@@ -57,6 +57,11 @@ struct RunReport {
   int nodes = 0, cells = 0, dofs = 0, free_dofs = 0;
   int mpi_ranks = 1;                    ///< MPI ranks the run was shared among
   std::vector<double> peak_memory_mib;  ///< each rank's peak resident memory at the end (MiB)
+  /// Each rank's peak resident memory (MiB) when a phase of the run ended:
+  /// "mesh" (read), "model and assembler" (built), "shared" (cut among the
+  /// ranks), "solver" (ready for the first step), "first step", "end".
+  /// The first phase whose peak reaches the final one set it.
+  std::vector<std::pair<std::string, std::vector<double>>> peak_memory_mib_by_phase;
   std::vector<std::pair<std::string, int>> cells_per_law;
   std::vector<std::pair<std::string, int>> cells_per_type;
   std::string linear_solver;
