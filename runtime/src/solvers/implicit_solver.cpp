@@ -137,7 +137,11 @@ SearchResult line_search(const EulerStep& step, const SparseMatrix& K, double sl
 
 }  // namespace
 
-ImplicitIntegrator::ImplicitIntegrator(Integration& run) : Integrator(run), K_(run.assembler.pattern()), J_(K_) {}
+// Without stiffness damping nothing reads K once J is formed (the residual
+// and the line search's potential use it only for beta K v), so J is built
+// in K's storage: one copy of the tangent less.
+ImplicitIntegrator::ImplicitIntegrator(Integration& run)
+    : Integrator(run), K_(run.assembler.pattern()), J_(run.settings.damping_stiffness != 0.0 ? K_ : SparseMatrix{}) {}
 
 void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
   Integration& run = run_;
@@ -171,13 +175,15 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
     const double residual = norm(r_);
     if (iteration == 1) reference = std::max(residual, 1e-300);
     else if (residual <= settings.tolerance * reference) break;
-    // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K
-    for (int k = 0; k < K_.nonzeros(); ++k) J_.values[k] = stiffness_factor * K_.values[k];
+    // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K, in K's storage when beta = 0 (K is not read again)
+    SparseMatrix& J = beta != 0.0 ? J_ : K_;
+    if (beta != 0.0)
+      for (int k = 0; k < K_.nonzeros(); ++k) J_.values[k] = stiffness_factor * K_.values[k];
     for (int i = 0; i < n; ++i)  // rows of other MPI ranks are empty here
-      if (J_.diagonal[i] >= 0) J_.values[J_.diagonal[i]] += mass_factor * mass[free[i]];
+      if (J.diagonal[i] >= 0) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];
     for (double& x : r_) x = -x;
-    detail::linear_solve(run, J_, r_, direction);  // warm start: the previous correction
-    const double slope = -dot(r_, direction);      // r holds -residual here
+    detail::linear_solve(run, J, r_, direction);  // warm start: the previous correction
+    const double slope = -dot(r_, direction);     // r holds -residual here
     const SearchResult search = line_search(step, K_, slope, direction, u);
     if (search.length < 1.0) ++run.statistics.shortened_steps;
     uninverted = search.uninverted;

@@ -23,7 +23,7 @@ class ImplicitIntegrator final : public Integrator {
   void step(State& state, const StepObserver& observer) override;
 
  private:
-  SparseMatrix K_, J_;             ///< tangent and step matrix, on the assembler's pattern
+  SparseMatrix K_, J_;             ///< tangent and step matrix (J_ empty without stiffness damping: J is formed in K_)
   std::vector<double> g_, v_, r_;  ///< internal force, velocity (dof_count), residual (free)
 };
 
