@@ -19,9 +19,21 @@ constexpr double kRunningRoundOff = 1e-12;
 /// The expiry of a cell (or chunk) whose values are unknown: it is evaluated.
 constexpr double kUnknown = -std::numeric_limits<double>::infinity();
 
-/// G = max_q sum_j |grad N_j(x_q)|: the rest gradients of the cell's constants
-/// (per point: the weight, then G^T, D rows of `nodes`; kernel_abi.h).
-double gradient_sum(const Model& model, int cell) {
+/// The delta at which a delta + delta^2 / 2 reaches margin m (0 when m <= 0).
+double change_reaching(double slope, double margin) {
+  if (!(margin > 0.0)) return 0.0;
+  return 2.0 * margin / (slope + std::sqrt(slope * slope + 2.0 * margin));
+}
+
+/// Distance from value to boundary, less the round-off of both.
+double margin_to(double value, double boundary) {
+  return std::fabs(value - boundary) - kValueRoundOff * (std::fabs(value) + std::fabs(boundary));
+}
+
+}  // namespace
+
+// Per point the constants hold the weight, then G^T: D rows of `nodes` (kernel_abi.h).
+double shape_gradient_sum(const Model& model, int cell) {
   const tm_kernel& kernel = model.kernel(cell);
   const int d = model.dim(), nodes = kernel.nodes, stride = 1 + d * nodes;
   const double* points = model.consts(cell) + kernel.derived_params;
@@ -39,19 +51,6 @@ double gradient_sum(const Model& model, int cell) {
   return largest;
 }
 
-/// The delta at which a delta + delta^2 / 2 reaches margin m (0 when m <= 0).
-double change_reaching(double slope, double margin) {
-  if (!(margin > 0.0)) return 0.0;
-  return 2.0 * margin / (slope + std::sqrt(slope * slope + 2.0 * margin));
-}
-
-/// Distance from value to boundary, less the round-off of both.
-double margin_to(double value, double boundary) {
-  return std::fabs(value - boundary) - kValueRoundOff * (std::fabs(value) + std::fabs(boundary));
-}
-
-}  // namespace
-
 CriteriaScreen::CriteriaScreen(const Model& model, std::vector<const Criterion*> criteria,
                                std::vector<double> thresholds, double hysteresis)
     : model_(&model), criteria_(std::move(criteria)), thresholds_(std::move(thresholds)), hysteresis_(hysteresis) {
@@ -60,7 +59,7 @@ CriteriaScreen::CriteriaScreen(const Model& model, std::vector<const Criterion*>
     throw std::invalid_argument("CriteriaScreen: one threshold per criterion expected");
   const int cells = model.cell_count(), nodes = model.mesh().node_count();
   cells_.resize(cells);
-  for (int cell = 0; cell < cells; ++cell) cells_[cell] = {kUnknown, 1.0 / gradient_sum(model, cell)};
+  for (int cell = 0; cell < cells; ++cell) cells_[cell] = {kUnknown, 1.0 / shape_gradient_sum(model, cell)};
   build_chunks();
   reference_.assign(model.dof_count(), 0.0);
   delta_.assign(model.dof_count(), 0.0);

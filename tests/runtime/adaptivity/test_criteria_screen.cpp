@@ -29,29 +29,20 @@ ModelSpec material_spec(const std::string& law) {
   return spec;
 }
 
-/// max_q sum_j |grad N_j(x_q)| from the cell's constants (kernel_abi.h layout).
-double gradient_sum(const Model& model, int cell) {
-  const tm_kernel& kernel = model.kernel(cell);
-  const int d = model.dim(), n = kernel.nodes;
-  double largest = 0.0;
-  for (int q = 0; q < kernel.quadrature_points; ++q) {
-    const double* gt = model.consts(cell) + kernel.derived_params + q * (1 + d * n) + 1;
-    double sum = 0.0;
-    for (int j = 0; j < n; ++j) {
-      double squared = 0.0;
-      for (int c = 0; c < d; ++c) squared += gt[c * n + j] * gt[c * n + j];
-      sum += std::sqrt(squared);
-    }
-    largest = std::max(largest, sum);
-  }
-  return largest;
-}
-
 /// Every criterion's values on every cell at u.
 std::vector<double> values_at(const Criterion& criterion, const Model& model, const std::vector<double>& u) {
   std::vector<double> values(model.cell_count(), 0.0);
   for (const ElementBlock& block : model.mesh().blocks) criterion.evaluate_block({model, block, u, u}, values);
   return values;
+}
+
+TEST(CriteriaScreen, ShapeGradientSumOfRightTriangles) {
+  // A unit square cut into two right triangles with unit legs: gradients
+  // (-1, -1), (1, 0), (0, 1) in some order, so G = 2 + sqrt(2) on both.
+  const Mesh mesh = test::beam(2, "tri3", {1, 1, 1});
+  const Model model(mesh, material_spec("stvk"));
+  ASSERT_EQ(model.cell_count(), 2);
+  for (int cell = 0; cell < 2; ++cell) EXPECT_NEAR(shape_gradient_sum(model, cell), 2.0 + std::sqrt(2.0), 1e-12);
 }
 
 TEST(CriteriaScreen, ChangeBoundsHoldOnEveryShape) {
@@ -92,7 +83,7 @@ TEST(CriteriaScreen, ChangeBoundsHoldOnEveryShape) {
               }
               largest_move = std::max(largest_move, std::sqrt(squared));
             }
-            const double delta = gradient_sum(model, cell) * largest_move;
+            const double delta = shape_gradient_sum(model, cell) * largest_move;
             const double slope = criterion->change_slope(criterion->gradient_norm_bound(before[cell], model.dim()));
             const double bound = slope * delta + 0.5 * delta * delta;
             ASSERT_LE(std::abs(after[cell] - before[cell]), bound * (1 + 1e-12) + 1e-13)

@@ -45,6 +45,11 @@ enum ScreenFlag : unsigned char {
   kScreenEvaluate = 1,  ///< evaluate (then CriteriaScreen::settle)
 };
 
+/// G = max_q sum_j |grad N_j(x_q)| of a cell (rest shape gradients, read
+/// from its constants: kernel_abi.h), so that every |delta H_q|_F <= G
+/// max_j |delta u_j|.
+double shape_gradient_sum(const Model& model, int cell);
+
 class CriteriaScreen {
  public:
   /// Cells per chunk: consecutive cells share their nodes' motion.
@@ -77,9 +82,6 @@ class CriteriaScreen {
   /// computed at select()'s u: its new slack. Thread-safe across cells.
   void settle(int cell, const std::vector<std::vector<double>>& values);
 
-  /// How far (metres) the cell's nodes may still move before it is
-  /// evaluated again (<= 0: at the next select()).
-  double slack(int cell) const { return cells_[cell].expiry - chunk_motion_[cell / kChunkCells]; }
   /// The displacement of the last select() (dof_count).
   const std::vector<double>& last_displacement() const { return reference_; }
   /// Cells flagged kScreenEvaluate, summed over the select() calls, and the number of calls.
