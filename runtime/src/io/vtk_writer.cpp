@@ -48,30 +48,34 @@ std::string exact(double value) {
 /// ParaView follow the offsets and do not mind the order.
 class AppendedData {
  public:
-  /// Adds `values`; returns the array's index, for offset().
+  /// Adds a view of `values`, which must outlive write(); returns the
+  /// array's index, for offset(). Nothing is copied: a piece's arrays go
+  /// from their vectors to the file.
   template <class T>
   int add(const std::vector<T>& values) {
-    const std::uint64_t size = values.size() * sizeof(T);
-    std::string blob(reinterpret_cast<const char*>(&size), sizeof size);
-    blob.append(reinterpret_cast<const char*>(values.data()), size);
-    blobs_.push_back(std::move(blob));
-    return static_cast<int>(blobs_.size()) - 1;
+    arrays_.push_back({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)});
+    return static_cast<int>(arrays_.size()) - 1;
   }
-  /// Where array `index` starts in bytes().
+  /// Where array `index` starts in the section.
   std::size_t offset(int index) const {
     std::size_t offset = 0;
-    for (std::size_t later = static_cast<std::size_t>(index) + 1; later < blobs_.size(); ++later)
-      offset += blobs_[later].size();
+    for (std::size_t later = static_cast<std::size_t>(index) + 1; later < arrays_.size(); ++later)
+      offset += sizeof(std::uint64_t) + arrays_[later].size;
     return offset;
   }
-  std::string bytes() const {
-    std::string all;
-    for (auto blob = blobs_.rbegin(); blob != blobs_.rend(); ++blob) all += *blob;
-    return all;
+  void write(std::ostream& out) const {
+    for (auto array = arrays_.rbegin(); array != arrays_.rend(); ++array) {
+      out.write(reinterpret_cast<const char*>(&array->size), sizeof array->size);
+      out.write(array->bytes, static_cast<std::streamsize>(array->size));
+    }
   }
 
  private:
-  std::vector<std::string> blobs_;
+  struct Array {
+    const char* bytes;
+    std::uint64_t size;
+  };
+  std::vector<Array> arrays_;
 };
 
 void data_array(std::ostream& xml, const char* type, const std::string& name, int components, std::size_t offset) {
@@ -171,10 +175,9 @@ void write_piece(const std::string& path, const std::vector<double>& points, con
   data_array(xml, "Int64", "offsets", 0, data.offset(offsets_array));
   data_array(xml, "UInt8", "types", 0, data.offset(types_array));
   xml << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  const std::string bytes = data.bytes();
   write_atomically(path, [&](std::ostream& out) {
     out << xml.str();
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    data.write(out);
     out << "\n  </AppendedData>\n</VTKFile>\n";
   });
 }
