@@ -207,35 +207,30 @@ class PetscSolver final : public LinearSolver {
   }
 
   /// An MPIAIJ with this rank's rows of A's pattern in the global numbering
-  /// (columns sorted, their positions in A kept in own_positions_), the
-  /// vectors, and the scatter that gathers a solution to every rank.
+  /// (columns sorted), the vectors, and the scatter that gathers a solution
+  /// to every rank. The pattern is given once, here, and not kept:
+  /// set_own_rows finds each entry's place again from A.
   void create_distributed(const SparseMatrix& A) {
     const Distribution& dist = *distribution_;
     const auto& global = dist.global_row();
     const auto& own = dist.owned_free_rows();
     const PetscInt local = static_cast<PetscInt>(own.size());
-    std::vector<PetscInt> row_start(1, 0), columns;
-    own_positions_.clear();
-    std::vector<std::pair<int, int>> row;  // (global column, position in A)
-    for (int r : own) {
-      row.clear();
-      for (int k = A.row_start[r]; k < A.row_start[r + 1]; ++k) row.push_back({global[A.columns[k]], k});
-      std::sort(row.begin(), row.end());
-      for (const auto& [column, position] : row) {
-        columns.push_back(column);
-        own_positions_.push_back(position);
+    {
+      std::vector<PetscInt> row_start(1, 0), columns;
+      for (int r : own) {
+        const std::size_t first = columns.size();
+        for (int k = A.row_start[r]; k < A.row_start[r + 1]; ++k) columns.push_back(global[A.columns[k]]);
+        std::sort(columns.begin() + static_cast<std::ptrdiff_t>(first), columns.end());
+        row_start.push_back(static_cast<PetscInt>(columns.size()));
       }
-      row_start.push_back(static_cast<PetscInt>(columns.size()));
+      check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
+      check(MatSetSizes(matrix_, local, local, A.rows, A.rows), "MatSetSizes");
+      check(MatSetType(matrix_, MATMPIAIJ), "MatSetType");
+      check(MatMPIAIJSetPreallocationCSR(matrix_, row_start.data(), columns.data(), nullptr),
+            "MatMPIAIJSetPreallocationCSR");
     }
-    check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
-    check(MatSetSizes(matrix_, local, local, A.rows, A.rows), "MatSetSizes");
-    check(MatSetType(matrix_, MATMPIAIJ), "MatSetType");
     const bool blocks = block_size_ > 1 && coordinates_.size() == static_cast<std::size_t>(A.rows);
     if (blocks) check(MatSetBlockSize(matrix_, block_size_), "MatSetBlockSize");
-    check(MatMPIAIJSetPreallocationCSR(matrix_, row_start.data(), columns.data(), nullptr),
-          "MatMPIAIJSetPreallocationCSR");
-    own_row_start_ = std::move(row_start);  // kept for set_own_rows
-    own_columns_ = std::move(columns);
     check(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(matrix_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
@@ -246,19 +241,48 @@ class PetscSolver final : public LinearSolver {
     nonzeros_ = A.nonzeros();
   }
 
-  /// Copies this rank's rows of A (complete there) into the MPIAIJ.
+  /// Copies this rank's rows of A (complete there) into the MPIAIJ's two
+  /// blocks in place. A row's entries in the diagonal block (columns this
+  /// rank owns) come in A's order, the global numbering keeping each rank's
+  /// order; the off-diagonal block holds the rest sorted by global column.
   void set_own_rows(const SparseMatrix& A) {
     const auto& own = distribution_->owned_free_rows();
-    const PetscInt first = distribution_->first_global_row();
-    std::vector<PetscScalar> row;  // one row at a time: no copy of all own values
-    for (std::size_t i = 0; i < own.size(); ++i) {
-      const PetscInt global_row = first + static_cast<PetscInt>(i);
-      const PetscInt begin = own_row_start_[i], count = own_row_start_[i + 1] - begin;
-      row.resize(count);
-      for (PetscInt k = 0; k < count; ++k) row[k] = A.values[own_positions_[begin + k]];
-      check(MatSetValues(matrix_, 1, &global_row, count, own_columns_.data() + begin, row.data(), INSERT_VALUES),
-            "MatSetValues");
+    const auto& global = distribution_->global_row();
+    const PetscInt first = distribution_->first_global_row(), last = first + static_cast<PetscInt>(own.size());
+    Mat diagonal_block, off_block;
+    const PetscInt* garray = nullptr;
+    check(MatMPIAIJGetSeqAIJ(matrix_, &diagonal_block, &off_block, &garray), "MatMPIAIJGetSeqAIJ");
+    const PetscInt *diagonal_start = nullptr, *off_start = nullptr, *unused = nullptr;
+    PetscInt rows = 0;
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(diagonal_block, 0, PETSC_FALSE, PETSC_FALSE, &rows, &diagonal_start, &unused, &done),
+          "MatGetRowIJ");
+    check(MatGetRowIJ(off_block, 0, PETSC_FALSE, PETSC_FALSE, &rows, &off_start, &unused, &done), "MatGetRowIJ");
+    PetscScalar *diagonal_values = nullptr, *off_values = nullptr;
+    check(MatSeqAIJGetArray(diagonal_block, &diagonal_values), "MatSeqAIJGetArray");
+    check(MatSeqAIJGetArray(off_block, &off_values), "MatSeqAIJGetArray");
+    std::vector<std::pair<PetscInt, double>> off_row;
+    bool fits = true;
+    for (std::size_t i = 0; i < own.size() && fits; ++i) {
+      const int r = own[i];
+      PetscInt d = diagonal_start[i];
+      off_row.clear();
+      for (int k = A.row_start[r]; k < A.row_start[r + 1]; ++k) {
+        const PetscInt column = global[A.columns[k]];
+        if (column >= first && column < last)
+          diagonal_values[d++] = A.values[k];
+        else
+          off_row.push_back({column, A.values[k]});
+      }
+      std::sort(off_row.begin(), off_row.end());
+      for (std::size_t k = 0; k < off_row.size(); ++k) off_values[off_start[i] + k] = off_row[k].second;
+      fits = d == diagonal_start[i + 1] && off_start[i] + static_cast<PetscInt>(off_row.size()) == off_start[i + 1];
     }
+    MatSeqAIJRestoreArray(diagonal_block, &diagonal_values);
+    MatSeqAIJRestoreArray(off_block, &off_values);
+    MatRestoreRowIJ(diagonal_block, 0, PETSC_FALSE, PETSC_FALSE, &rows, &diagonal_start, &unused, &done);
+    MatRestoreRowIJ(off_block, 0, PETSC_FALSE, PETSC_FALSE, &rows, &off_start, &unused, &done);
+    if (!fits) throw std::logic_error("PETSc solver: a row's entries do not match the matrix's pattern");
   }
 
   /// The near null space of elasticity (translations and rotations of the
@@ -370,8 +394,6 @@ class PetscSolver final : public LinearSolver {
   int rows_ = -1, nonzeros_ = -1;
   // Distributed (null on one process): this rank's rows in the global numbering.
   const Distribution* distribution_ = nullptr;
-  std::vector<PetscInt> own_row_start_, own_columns_;
-  std::vector<int> own_positions_;  ///< per own entry: its position in A.values
   VecScatter gather_ = nullptr;     ///< x to x_all_ on every rank
   Vec x_all_ = nullptr;
 };
