@@ -125,11 +125,17 @@ void Assembler::build_pattern() {
     m.row_start.push_back(static_cast<int>(m.columns.size()));
   }
   m.columns.shrink_to_fit();
-  m.values.assign(m.columns.size(), 0.0);
+  m.values.clear();
   m.values.shrink_to_fit();
   m.node_runs = std::make_shared<const NodeRuns>(
       node_runs(graph_, free_index, d, [this](int node) { return keeps_rows_of(node); }));
   build_scatter_map();
+}
+
+SparseMatrix Assembler::pattern() const {
+  SparseMatrix matrix = pattern_;
+  matrix.values.assign(pattern_.columns.size(), 0.0);
+  return matrix;
 }
 
 namespace {

@@ -40,8 +40,10 @@ class Assembler {
   explicit Assembler(const Model& model, bool fold_linear_cells = true, const Distribution* distribution = nullptr);
   explicit Assembler(Model&&, bool = true, const Distribution* = nullptr) = delete;  ///< keeps a reference to the model
 
-  /// An empty matrix with the pattern of K (free dofs by free dofs).
-  const SparseMatrix& pattern() const { return pattern_; }
+  /// A new matrix with the pattern of K (free dofs by free dofs) and zero
+  /// values. The assembler keeps the structure only: its callers own the
+  /// values (a tangent's worth of memory each).
+  SparseMatrix pattern() const;
   /// gradient (dof_count) = g(u); when `stiffness` is non-null it gets K(u)
   /// restricted to the free dofs (its pattern must be pattern()). Not
   /// re-entrant: it brings the folded linear part up to date first.
@@ -139,7 +141,7 @@ class Assembler {
 
   const Model* model_;
   NodeGraph graph_;
-  SparseMatrix pattern_;
+  SparseMatrix pattern_;  ///< rows, columns, diagonal and node runs; values empty
   std::unique_ptr<LinearPart> linear_;  ///< null when folding is off; updated by assemble()
   /// The scatter map by node blocks: per cell, node pairs (i, j) (nodes by
   /// nodes) -> the position in values of (i's first free row, j's first
