@@ -65,7 +65,10 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   const auto& free = model.free_dofs();
   std::vector<double> g(model.dof_count()), trial_g(model.dof_count()), trial_u(model.dof_count());
   std::vector<double> r(n), trial_r(n), step(n, 0.0), f_free(n);
-  SparseMatrix K = run.assembler.pattern(), trial_K = run.assembler.pattern();
+  // One tangent: once the step is solved for, K's values are spent, and the
+  // line search assembles the trial point's tangent into it (the accepted
+  // trial's is the next iteration's).
+  SparseMatrix K = run.assembler.pattern();
   for (int i = 0; i < n; ++i) f_free[i] = f[free[i]];
   detail::assemble(run, u, g, &K);
   free_residual(model, g, f, r);
@@ -89,7 +92,7 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     for (int halving = 0;; ++halving) {
       trial_u = u;
       for (int i = 0; i < n; ++i) trial_u[free[i]] += alpha * step[i];
-      detail::assemble(run, trial_u, trial_g, &trial_K);
+      detail::assemble(run, trial_u, trial_g, &K);
       free_residual(model, trial_g, f, trial_r);
       trial_residual = norm(trial_r);
       if (!std::isfinite(trial_residual)) {
@@ -109,7 +112,6 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     u.swap(trial_u);
     g.swap(trial_g);
     r.swap(trial_r);
-    std::swap(K, trial_K);
     residual = trial_residual;
     if (residual <= settings.tolerance * reference) return iteration;
     if (alpha == 1.0 && residual <= 1e-8 * reference && residual > 0.1 * previous) return iteration;
