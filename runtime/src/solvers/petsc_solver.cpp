@@ -269,10 +269,8 @@ class PetscSolver final : public LinearSolver {
       off_row.clear();
       for (int k = A.row_start[r]; k < A.row_start[r + 1]; ++k) {
         const PetscInt column = global[A.columns[k]];
-        if (column >= first && column < last)
-          diagonal_values[d++] = A.values[k];
-        else
-          off_row.push_back({column, A.values[k]});
+        if (column >= first && column < last) diagonal_values[d++] = A.values[k];
+        else off_row.push_back({column, A.values[k]});
       }
       std::sort(off_row.begin(), off_row.end());
       for (std::size_t k = 0; k < off_row.size(); ++k) off_values[off_start[i] + k] = off_row[k].second;
@@ -394,7 +392,7 @@ class PetscSolver final : public LinearSolver {
   int rows_ = -1, nonzeros_ = -1;
   // Distributed (null on one process): this rank's rows in the global numbering.
   const Distribution* distribution_ = nullptr;
-  VecScatter gather_ = nullptr;     ///< x to x_all_ on every rank
+  VecScatter gather_ = nullptr;  ///< x to x_all_ on every rank
   Vec x_all_ = nullptr;
 };
 

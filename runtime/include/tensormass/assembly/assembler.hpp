@@ -141,7 +141,7 @@ class Assembler {
 
   const Model* model_;
   NodeGraph graph_;
-  SparseMatrix pattern_;  ///< rows, columns, diagonal and node runs; values empty
+  SparseMatrix pattern_;                ///< rows, columns, diagonal and node runs; values empty
   std::unique_ptr<LinearPart> linear_;  ///< null when folding is off; updated by assemble()
   /// The scatter map by node blocks: per cell, node pairs (i, j) (nodes by
   /// nodes) -> the position in values of (i's first free row, j's first
