@@ -46,7 +46,6 @@ double cell_energy(const Model& model, int cell, const double* u) {
 Assembler::Assembler(const Model& model, bool fold_linear_cells, const Distribution* distribution)
     : model_(&model), graph_(make_node_graph(model)) {
   distribution_ = distribution;
-  build_pattern();
   build_colours();
   if (fold_linear_cells) linear_ = std::make_unique<LinearPart>(model, graph_, pattern_);
 }
@@ -97,11 +96,23 @@ bool Assembler::keeps_rows_of(int node) const { return !distribution_ || distrib
 
 void Assembler::distribute(const Distribution* distribution) {
   distribution_ = distribution;
-  build_pattern();  // this rank's rows only
+  // Built again for this rank's rows only at the next need; the whole
+  // mesh's layout is not kept.
+  tangent_layout_ = false;
+  pattern_ = SparseMatrix{};
+  for (auto* map : {&block_scatter_, &entry_scatter_, &row_length_}) *map = {};
+  block_offsets_ = {};
+  entry_offsets_ = {};
   if (linear_) linear_->pattern_changed();
 }
 
-void Assembler::build_pattern() {
+void Assembler::require_tangent_layout() const {
+  if (tangent_layout_) return;
+  build_pattern();
+  tangent_layout_ = true;
+}
+
+void Assembler::build_pattern() const {
   const Model& model = *model_;
   const int d = model.dim();
   const auto& free_index = model.free_index();
@@ -133,6 +144,7 @@ void Assembler::build_pattern() {
 }
 
 SparseMatrix Assembler::pattern() const {
+  require_tangent_layout();
   SparseMatrix matrix = pattern_;
   matrix.values.assign(pattern_.columns.size(), 0.0);
   return matrix;
@@ -153,7 +165,7 @@ int first_position(const SparseMatrix& m, const std::vector<int>& free_index, in
 
 }  // namespace
 
-void Assembler::build_scatter_map() {
+void Assembler::build_scatter_map() const {
   const Model& model = *model_;
   const int d = model.dim();
   const auto& free_index = model.free_index();
@@ -194,17 +206,18 @@ void Assembler::build_scatter_map() {
     block_offsets_.push_back(block_scatter_.size());
     entry_offsets_.push_back(entry_scatter_.size());
   }
-  block_scatter_.shrink_to_fit();  // rebuilt by distribute(): the whole mesh's map is not kept
+  block_scatter_.shrink_to_fit();  // pushed without reserving: no spare capacity kept
   entry_scatter_.shrink_to_fit();
 }
 
 void Assembler::set_scatter_by_blocks(bool on) {
   if (on == scatter_by_blocks_) return;
   scatter_by_blocks_ = on;
-  build_scatter_map();
+  if (tangent_layout_) build_scatter_map();
 }
 
 std::size_t Assembler::scatter_map_bytes() const {
+  require_tangent_layout();
   return sizeof(int) * (block_scatter_.size() + entry_scatter_.size() + row_length_.size()) +
          sizeof(std::size_t) * (block_offsets_.size() + entry_offsets_.size());
 }
@@ -251,6 +264,7 @@ void Assembler::build_colours() {
 }
 
 void Assembler::assemble(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {
+  if (stiffness) require_tangent_layout();
   const int folded = linear_ ? (linear_->update(), linear_->folded_count()) : 0;
   if (folded > 0) {
     linear_->multiply(u, gradient);

@@ -53,14 +53,14 @@ LinearPart::LinearPart(const Model& model, const NodeGraph& graph, const SparseM
 void LinearPart::allocate() {
   if (!blocks_.empty()) return;
   blocks_.assign(graph_->columns.size() * dim_ * dim_, 0.0);
-  map_free_pattern();
 }
 
 void LinearPart::pattern_changed() {
-  if (!blocks_.empty()) map_free_pattern();
+  mapped_ = false;
+  free_to_block_ = {};
 }
 
-void LinearPart::map_free_pattern() {
+void LinearPart::map_free_pattern() const {
   const int d = dim_, d2 = d * d;
   const NodeGraph& graph = *graph_;
   const SparseMatrix& free_pattern = *free_pattern_;
@@ -145,6 +145,7 @@ void LinearPart::multiply(std::span<const double> u, std::span<double> g) const 
 }
 
 void LinearPart::copy_free(std::span<double> values) const {
+  if (!mapped_) map_free_pattern(), mapped_ = true;
   const int count = static_cast<int>(free_to_block_.size());
   for (int k = 0; k < count; ++k) values[k] = blocks_[free_to_block_[k]];
 }

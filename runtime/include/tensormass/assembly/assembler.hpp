@@ -98,7 +98,7 @@ class Assembler {
   /// additions in the same order: identical results. Rebuilds the map.
   void set_scatter_by_blocks(bool on);
   bool scatter_by_blocks() const { return scatter_by_blocks_; }
-  /// Bytes held by the scatter maps.
+  /// Bytes the scatter maps take (built if they were not).
   std::size_t scatter_map_bytes() const;
 
  private:
@@ -131,17 +131,23 @@ class Assembler {
   /// Adds one cell's gradient g (dofs) and Hessian k (dofs by dofs, or null) into the totals.
   void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                     SparseMatrix* stiffness) const;
-  void build_pattern();
+  /// Builds the pattern and the scatter maps at the first need of a
+  /// tangent (pattern(), assemble() with a stiffness): an explicit run
+  /// never holds them.
+  void require_tangent_layout() const;
+  void build_pattern() const;
   /// Whether K keeps the rows of `node`: all of them on one process, this rank's own under distribute().
   bool keeps_rows_of(int node) const;
   /// Fills the scatter maps above for the pattern in pattern_.
-  void build_scatter_map();
+  void build_scatter_map() const;
   void build_colours();
   void assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
 
   const Model* model_;
   NodeGraph graph_;
-  SparseMatrix pattern_;                ///< rows, columns, diagonal and node runs; values empty
+  // The tangent's layout, built by require_tangent_layout().
+  mutable bool tangent_layout_ = false;
+  mutable SparseMatrix pattern_;        ///< rows, columns, diagonal and node runs; values empty
   std::unique_ptr<LinearPart> linear_;  ///< null when folding is off; updated by assemble()
   /// The scatter map by node blocks: per cell, node pairs (i, j) (nodes by
   /// nodes) -> the position in values of (i's first free row, j's first
@@ -149,13 +155,13 @@ class Assembler {
   /// at that position + a row_length_[i] + b: a node whose dofs are all
   /// free has d rows of the same columns. 9x fewer indices than one per
   /// Hessian entry in 3D (64 bytes per tet4 instead of 576).
-  std::vector<std::size_t> block_offsets_;  ///< cell_count+1
-  std::vector<int> block_scatter_;
-  std::vector<int> row_length_;  ///< per node: the length of its rows (nodes with every dof free)
+  mutable std::vector<std::size_t> block_offsets_;  ///< cell_count+1
+  mutable std::vector<int> block_scatter_;
+  mutable std::vector<int> row_length_;  ///< per node: the length of its rows (nodes with every dof free)
   /// Cells with a partly fixed node (some of its dofs free, not all) keep
   /// one index per Hessian entry (dofs by dofs, -1: a fixed row or column).
-  std::vector<std::size_t> entry_offsets_;  ///< cell_count+1 (empty range: scattered by blocks)
-  std::vector<int> entry_scatter_;
+  mutable std::vector<std::size_t> entry_offsets_;  ///< cell_count+1 (empty range: scattered by blocks)
+  mutable std::vector<int> entry_scatter_;
   std::vector<int> colour_start_;     ///< colours+1, into coloured_chunks_
   std::vector<int> coloured_chunks_;  ///< chunk c holds cells [c*S, (c+1)*S)
   bool project_hessians_ = false;

@@ -59,24 +59,28 @@ class LinearPart {
   /// g (dof_count) = K_L u (dof_count).
   void multiply(std::span<const double> u, std::span<double> g) const;
   /// values (free_pattern's non-zeros) = K_L restricted to the free dofs.
+  /// The free pattern must be built by then; the first call after a fold
+  /// or pattern_changed() maps it.
   void copy_free(std::span<double> values) const;
-  /// The free pattern given at construction was rebuilt (Assembler::distribute).
+  /// The free pattern given at construction was rebuilt or dropped (Assembler::distribute).
   void pattern_changed();
 
  private:
   void add_cell(int cell, const tm_kernel& kernel, double sign);
-  /// Sizes blocks_ and free_to_block_ at the first fold: a run with no
-  /// linear cell holds neither (at a million tets they are about 300 MB).
+  /// Sizes blocks_ at the first fold: a run with no linear cell holds
+  /// none (at a million tets about 200 MB).
   void allocate();
-  /// free_to_block_ for the free pattern as it is now.
-  void map_free_pattern();
+  /// free_to_block_ for the free pattern as it is now, at the first
+  /// copy_free(): a run that never asks for a tangent (explicit) holds none.
+  void map_free_pattern() const;
 
   const Model* model_;
   const NodeGraph* graph_;
   const SparseMatrix* free_pattern_;
   int dim_;
-  std::vector<double> blocks_;      ///< graph columns by d by d, row-major blocks; empty until a cell folds
-  std::vector<int> free_to_block_;  ///< free_pattern non-zero -> index in blocks_ (with blocks_)
+  std::vector<double> blocks_;              ///< graph columns by d by d, row-major blocks; empty until a cell folds
+  mutable std::vector<int> free_to_block_;  ///< free_pattern non-zero -> index in blocks_
+  mutable bool mapped_ = false;             ///< free_to_block_ matches the free pattern
   std::vector<const tm_kernel*> folded_kernel_;  ///< per cell: the kernel folded, or nullptr
   int folded_count_ = 0;
   long changes_ = 0;
