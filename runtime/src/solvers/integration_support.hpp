@@ -3,12 +3,14 @@
 #define TENSORMASS_SOLVERS_INTEGRATION_SUPPORT_HPP
 
 #include <cmath>
+#include <cstdio>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "common/phase_timer.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass::detail {
@@ -32,6 +34,10 @@ inline void linear_solve(Integration& run, const SparseMatrix& A, std::span<cons
   if (tolerance <= 0.0) tolerance = run.settings.linear.tolerance;
   run.statistics.linear_iterations += run.linear.solve(b, x, tolerance);
   run.statistics.factorizations += run.linear.factorizations() - factorizations;
+  for (std::string& warning : run.linear.take_warnings()) {
+    if (parallel::world_rank() == 0) std::fprintf(stderr, "tensormass: warning: %s\n", warning.c_str());
+    run.statistics.warnings.push_back(std::move(warning));
+  }
 }
 
 inline double max_abs(std::span<const double> v) {

@@ -123,8 +123,11 @@ class PetscSolver final : public LinearSolver {
       throw NumericalError(std::string("PETSc's linear solve did not converge (") + KSPConvergedReasons[reason] +
                            ") after " + std::to_string(iterations) + " iterations");
     count_solve(static_cast<int>(iterations));
+    if (!options_checked_) find_unused_options();
     return static_cast<int>(iterations);
   }
+
+  std::vector<std::string> take_warnings() override { return std::move(warnings_); }
 
   void set_node_blocks(int dim, std::span<const double> coordinates) override {
     block_size_ = dim;
@@ -356,6 +359,25 @@ class PetscSolver final : public LinearSolver {
     return reason;
   }
 
+  /// After the first solve (the preconditioner's levels read theirs at
+  /// its setup): the scene's options that PETSc never looked up, misspelt
+  /// or meant for a method not in use. PETSc itself says nothing of them.
+  void find_unused_options() {
+    options_checked_ = true;
+    PetscInt count = 0;
+    char **names = nullptr, **values = nullptr;
+    if (PetscOptionsLeftGet(nullptr, &count, &names, &values) != 0) return;
+    std::string unused;
+    for (PetscInt i = 0; i < count; ++i)
+      if (std::strncmp(names[i], prefix_.c_str(), prefix_.size()) == 0)
+        unused += std::string(unused.empty() ? "" : ", ") + "-" + (names[i] + prefix_.size());
+    PetscOptionsLeftRestore(nullptr, &count, &names, &values);
+    if (!unused.empty())
+      warnings_.push_back("solver.linear.petsc_options: PETSc did not use " + unused +
+                          " (misspelt, or for a method not in use; options outside the linear solve, such as "
+                          "-log_view, go in the PETSC_OPTIONS environment variable)");
+  }
+
   /// The reuse policy in iterations (counts, not clocks: runs repeat
   /// bitwise): a cycle starts when the preconditioner is built (costing
   /// kSetupCost iterations) and the next build is asked for as soon as a
@@ -379,6 +401,8 @@ class PetscSolver final : public LinearSolver {
   bool krylov_ = true;  ///< false for preonly: a direct solve with the preconditioner's factor
 
   bool built_ = false, rebuilding_ = false, rebuild_next_ = false;
+  bool options_checked_ = false;
+  std::vector<std::string> warnings_;
   double cycle_cost_ = 0.0;
   int cycle_solves_ = 0;
   LinearSolverSettings settings_;

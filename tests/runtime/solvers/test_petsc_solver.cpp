@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "integrate.hpp"
@@ -138,6 +139,31 @@ TEST(PetscSolver, BadOptionsAndNonConvergenceAreClearErrors) {
   } catch (const NumericalError& e) {
     expect_contains(e.what(), {"did not converge", "DIVERGED_ITS", "2 iterations"});
   }
+}
+
+// Options PETSc never looks up (a typo, or a preconditioner's option when
+// another one is in use) are named once, after the first solve; the used
+// ones are not.
+TEST(PetscSolver, NamesTheOptionsPetscDidNotUse) {
+  SKIP_WITHOUT_PETSC();
+  BeamSystem system;
+  auto solver =
+      make_linear_solver(petsc_settings("-ksp_type cg -pc_type jacobi -ksp_rtoll 1e-3 -pc_gamg_threshold 0.01"));
+  std::vector<double> x(system.b.size(), 0.0);
+  solver->factorize(system.K);
+  solver->solve(system.b, x, 1e-8);
+  const std::vector<std::string> warnings = solver->take_warnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  expect_contains(warnings[0], {"petsc_options", "-ksp_rtoll", "-pc_gamg_threshold", "PETSC_OPTIONS"});
+  EXPECT_EQ(warnings[0].find("-ksp_type"), std::string::npos);
+  solver->solve(system.b, x, 1e-8);
+  EXPECT_TRUE(solver->take_warnings().empty());
+  // The defaults and options in use: nothing to say.
+  auto used = make_linear_solver(petsc_settings("-ksp_type cg -pc_type gamg -pc_gamg_threshold 0.01"));
+  used->factorize(system.K);
+  std::fill(x.begin(), x.end(), 0.0);
+  used->solve(system.b, x, 1e-8);
+  EXPECT_TRUE(used->take_warnings().empty());
 }
 
 TEST(PetscSolver, FallsBackToGmresWhereCgBreaksDown) {

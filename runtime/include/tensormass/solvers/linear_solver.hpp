@@ -58,6 +58,9 @@ class LinearSolver {
   /// `revision` changes whenever the set does. CHOLMOD uses it to correct
   /// its reused factor with an exact factor of that block. Ignored by the others.
   virtual void set_changing_rows(std::span<const int> /*rows*/, long /*revision*/) {}
+  /// What the solver found wrong with its settings while solving (PETSc:
+  /// options it never used), each said once; the caller takes them.
+  virtual std::vector<std::string> take_warnings() { return {}; }
 };
 
 class Model;
