@@ -19,7 +19,8 @@
 namespace tensormass::parallel {
 
 namespace {
-bool started_here = false;
+bool started_here = false;        // MPI's world, by start_world()
+bool petsc_started_here = false;  // PETSc, by its first user (a serial run's PETSc solver too)
 
 /// OpenMP threads per rank when the user set none: the cores of this
 /// machine shared among its ranks (mpirun binds each of 2 ranks on 2 cores
@@ -50,6 +51,7 @@ void ensure_petsc_started() {
     PetscBool started = PETSC_FALSE;
     PetscInitialized(&started);
     if (!started && PetscInitializeNoArguments() != 0) throw NumericalError("PETSc (and MPI) failed to start");
+    petsc_started_here = !started;
     // PETSc's own traceback on stderr when asked (debugging a PETSc option).
     if (!std::getenv("TENSORMASS_PETSC_TRACEBACK")) PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   });
@@ -70,9 +72,14 @@ void start_world() {
 }
 
 void finish_world() {
+  // PETSc's finalisation prints what PETSC_OPTIONS asked for (-log_view),
+  // on one process as on several.
+  if (petsc_started_here) {
+    petsc_started_here = false;
+    PetscFinalize();
+  }
   if (!started_here) return;
   started_here = false;
-  PetscFinalize();
   if (mpi_running()) MPI_Finalize();
 }
 
