@@ -28,6 +28,7 @@ void sum_over_ranks(std::span<double>) {}
 double sum_over_ranks(double value) { return value; }
 std::vector<double> gather_to_root(double value) { return {value}; }
 void broadcast_from_root(std::span<int>) {}
+void broadcast_bytes_from_root(std::vector<char>&) {}
 int end_after_error(const std::string& message, int exit_code) {
   std::fprintf(stderr, "%s\n", message.c_str());
   return exit_code;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -123,6 +124,16 @@ std::vector<double> gather_to_root(double value) {
 void broadcast_from_root(std::span<int> values) {
   if (world_size() == 1 || values.empty()) return;
   MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+void broadcast_bytes_from_root(std::vector<char>& bytes) {
+  if (world_size() == 1) return;
+  std::uint64_t size = bytes.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(size);
+  constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;  // MPI counts are ints
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_CHAR, 0, MPI_COMM_WORLD);
 }
 
 int end_after_error(const std::string& message, int exit_code) {

@@ -27,6 +27,7 @@
 #include "tensormass/model/model.hpp"
 #include "tensormass/parallel/cell_partition.hpp"
 #include "tensormass/parallel/distribution.hpp"
+#include "tensormass/parallel/mesh_broadcast.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
@@ -701,7 +702,7 @@ namespace {
 /// The scene's mesh, read and checked, with the thread count set before
 /// anything runs in parallel.
 Mesh read_scene_mesh(const Scene& scene) {
-  Mesh mesh = read_mesh(scene.mesh);
+  Mesh mesh = parallel::read_mesh_on_root(scene.mesh);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   return mesh;
 }

@@ -3,8 +3,8 @@ serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
 whose cells switch laws, an explicit run, runs that refine their mesh (a
 tet beam, and the mixed beam with its pyramids); the .pvtu pieces hold every cell
-once; a bad scene and a numerical failure exit non-zero on every rank with
-one message and no hang.
+once; a bad scene, a truncated mesh (read by rank 0 alone) and a numerical
+failure exit non-zero on every rank with one message and no hang.
 
 usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
 (--without-petsc: the build has no PETSc; the test says so and is skipped)
@@ -162,6 +162,23 @@ def check_bad_scene(binary, work):
     return failures
 
 
+def check_bad_mesh(binary, work):
+    """Rank 0 reads the mesh for all ranks: its error must reach every rank."""
+    with open(os.path.join(work, "beam.msh"), "rb") as f:
+        head = f.read(3000)
+    with open(os.path.join(work, "truncated.msh"), "wb") as f:
+        f.write(head)
+    scene = os.path.join(work, "truncated.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENES["static_stvk"].replace("beam.msh", "truncated.msh"))
+    result = run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc"], work, timeout=60)
+    count = result.stderr.count("truncated.msh:")
+    print(f"truncated mesh on 2 ranks: exit {result.returncode}, the file named {count} time(s)")
+    if result.returncode != 2 or count != 1:
+        return [f"a truncated mesh on 2 ranks: exit {result.returncode}, named {count} times: " + result.stderr]
+    return []
+
+
 def check_numerical_failure(binary, work):
     scene = os.path.join(work, "diverging.yaml")
     with open(scene, "w") as f:
@@ -204,6 +221,7 @@ def main():
     for name in SCENES:
         failures += check_scene(binary, work, name)
     failures += check_bad_scene(binary, work)
+    failures += check_bad_mesh(binary, work)
     failures += check_numerical_failure(binary, work)
     for failure in failures:
         print("FAIL:", failure)

@@ -31,6 +31,9 @@ double sum_over_ranks(double value);
 std::vector<double> gather_to_root(double value);
 /// Rank 0's values, sent to every rank (a no-op on one rank).
 void broadcast_from_root(std::span<int> values);
+/// Rank 0's bytes, sent to every rank: the others' `bytes` are resized to
+/// rank 0's length (any length: sent in pieces of at most 1 GiB).
+void broadcast_bytes_from_root(std::vector<char>& bytes);
 /// The exit after an error caught on this rank: when every rank caught one
 /// (a bad scene, a numerical failure: the ranks hold the same state), rank 0
 /// prints `message` and all return `exit_code`; when the others do not

@@ -1,0 +1,30 @@
+/// \file mesh_broadcast.hpp
+/// The mesh read once for all MPI ranks: rank 0 reads the file and sends
+/// the mesh to the others, which never open it (nor hold the reader's
+/// working memory, several times the mesh's own at a million cells).
+#ifndef TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
+#define TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tensormass/mesh/mesh.hpp"
+
+namespace tensormass::parallel {
+
+/// read_mesh(path) on rank 0, its mesh sent to every other rank; on one
+/// rank, read_mesh(path). An error reading it on rank 0 is thrown on every
+/// rank with the same message (an InputError as an InputError), so no rank
+/// waits for a mesh that does not come.
+Mesh read_mesh_on_root(const std::string& path);
+
+/// `mesh` as bytes, and back: the same mesh, exactly (element types go by
+/// name and come back from the kernel registry).
+std::vector<char> pack_mesh(const Mesh& mesh);
+/// Throws std::invalid_argument on bytes that pack_mesh did not make.
+Mesh unpack_mesh(std::span<const char> bytes);
+
+}  // namespace tensormass::parallel
+
+#endif
