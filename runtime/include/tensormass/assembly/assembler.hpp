@@ -42,7 +42,8 @@ class Assembler {
 
   /// A new matrix with the pattern of K (free dofs by free dofs) and zero
   /// values. The assembler keeps the structure only: its callers own the
-  /// values (a tangent's worth of memory each).
+  /// values (a tangent's worth of memory each). The first call builds the
+  /// structure: not re-entrant, like assemble().
   SparseMatrix pattern() const;
   /// gradient (dof_count) = g(u); when `stiffness` is non-null it gets K(u)
   /// restricted to the free dofs (its pattern must be pattern()). Not
@@ -145,7 +146,7 @@ class Assembler {
 
   const Model* model_;
   NodeGraph graph_;
-  // The tangent's layout, built by require_tangent_layout().
+  /// The tangent's layout below is built (require_tangent_layout).
   mutable bool tangent_layout_ = false;
   mutable SparseMatrix pattern_;        ///< rows, columns, diagonal and node runs; values empty
   std::unique_ptr<LinearPart> linear_;  ///< null when folding is off; updated by assemble()
