@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "support/test_meshes.hpp"
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/parallel/mesh_broadcast.hpp"
-#include "support/test_meshes.hpp"
 
 namespace tensormass::parallel {
 namespace {
