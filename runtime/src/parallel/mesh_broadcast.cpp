@@ -134,30 +134,26 @@ Mesh unpack_mesh(std::span<const char> bytes) {
 
 Mesh read_mesh_on_root(const std::string& path) {
   if (world_size() == 1) return read_mesh(path);
-  // Rank 0 sends either the mesh or the error it met: a status byte
-  // (0 mesh, 1 InputError, 2 any other error) then the bytes or the message.
+  // Rank 0 sends what it met, then the mesh's bytes or the error's message.
+  enum Status : int { kMesh, kInputError, kOtherError };
+  int status = kMesh;
   std::vector<char> bytes;
   Mesh mesh;
   if (world_rank() == 0) {
-    char status = 0;
     try {
       mesh = read_mesh(path);
       bytes = pack_mesh(mesh);
     } catch (const InputError& e) {
-      status = 1, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      status = kInputError, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
     } catch (const std::exception& e) {
-      status = 2, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      status = kOtherError, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
     }
-    bytes.insert(bytes.begin(), status);
-    broadcast_bytes_from_root(bytes);
-    if (status == 0) return mesh;
-  } else {
-    broadcast_bytes_from_root(bytes);
-    if (bytes.empty()) throw std::runtime_error("reading the mesh: nothing came from rank 0");
-    if (bytes[0] == 0) return unpack_mesh(std::span<const char>(bytes).subspan(1));
   }
-  const std::string message(bytes.begin() + 1, bytes.end());
-  if (bytes[0] == 1) throw InputError(message);
+  broadcast_from_root(std::span<int>(&status, 1));
+  broadcast_bytes_from_root(bytes);
+  if (status == kMesh) return world_rank() == 0 ? std::move(mesh) : unpack_mesh(bytes);
+  const std::string message(bytes.begin(), bytes.end());
+  if (status == kInputError) throw InputError(message);
   throw std::runtime_error(message);
 }
 

@@ -145,11 +145,16 @@ def check_scene(binary, work, name):
     return failures
 
 
-def check_bad_scene(binary, work):
-    scene = os.path.join(work, "bad.yaml")
+def run_on_two_ranks(binary, work, name, scene_text):
+    """Writes NAME.yaml and runs it on 2 ranks with PETSc; the finished process."""
+    scene = os.path.join(work, name + ".yaml")
     with open(scene, "w") as f:
-        f.write(SCENES["static_stvk"].replace("load_steps: 3", "load_step: 3"))
-    result = run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc"], work, timeout=60)
+        f.write(scene_text)
+    return run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc"], work, timeout=60)
+
+
+def check_bad_scene(binary, work):
+    result = run_on_two_ranks(binary, work, "bad", SCENES["static_stvk"].replace("load_steps: 3", "load_step: 3"))
     count = result.stderr.count("unknown key")
     print(f"bad scene on 2 ranks: exit {result.returncode}, the key named {count} time(s)")
     failures = []
@@ -168,10 +173,7 @@ def check_bad_mesh(binary, work):
         head = f.read(3000)
     with open(os.path.join(work, "truncated.msh"), "wb") as f:
         f.write(head)
-    scene = os.path.join(work, "truncated.yaml")
-    with open(scene, "w") as f:
-        f.write(SCENES["static_stvk"].replace("beam.msh", "truncated.msh"))
-    result = run(mpirun(2) + [binary, "run", scene, "--set", "solver.backend=petsc"], work, timeout=60)
+    result = run_on_two_ranks(binary, work, "truncated", SCENES["static_stvk"].replace("beam.msh", "truncated.msh"))
     count = result.stderr.count("truncated.msh:")
     print(f"truncated mesh on 2 ranks: exit {result.returncode}, the file named {count} time(s)")
     if result.returncode != 2 or count != 1:
