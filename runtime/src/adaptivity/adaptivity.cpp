@@ -187,7 +187,6 @@ void Adaptivity::switch_law(int cell, const std::string& law) {
   const tm_kernel* before = &model_->kernel(cell);
   model_->set_law(cell, law);
   if (settings_.blend_steps > 0) model_->start_blend(cell, before);
-  ++total_switches_;
 }
 
 int Adaptivity::start(std::span<const double> u) {
@@ -235,6 +234,7 @@ void Adaptivity::refresh_rungs() {
     const int rung = rung_of(model_->kernel(cell));
     cell_rungs_[cell] = static_cast<signed char>(rung);
     set_movable(cell, can_move(cell, rung) ? kMustDecide : kStill);
+    if (!counts(cell)) continue;
     if (rung >= 0) ++cells_per_rung_[rung];
     else ++off_ladder_cells_;
   }
@@ -268,6 +268,8 @@ void Adaptivity::set_movable(int cell, unsigned char state) {
   if (screen_ && movable_[cell] == kStill && state != kStill) screen_->forget(cell);
   movable_[cell] = state;
 }
+
+bool Adaptivity::counts(int cell) const { return !distribution_ || distribution_->owns_cell(cell); }
 
 bool Adaptivity::can_move(int cell, int rung) const {
   if (distribution_ && !distribution_->owns_cell(cell)) return false;
@@ -340,11 +342,19 @@ void Adaptivity::assess(std::span<const double> u, AdaptivityRecord& record) {
   for (std::size_t c = 0; c < criteria_.size(); ++c) criterion_seconds_[c] += seconds[c];
   if (distribution_) share_decisions();
   if (moved > 0 || distribution_) switch_moved_cells(record);
-  rungs_revision_ = model_->law_revision();               // the switches above are in cell_rungs_ already
-  if (off_ladder_cells_ > 0) return record_laws(record);  // laws outside the ladder: count them all by name
+  rungs_revision_ = model_->law_revision();  // the switches above are in cell_rungs_ already
+  record_cells_per_law(record);
+}
+
+/// Counts of this rank's cells per rung, and off the ladder, summed over the ranks.
+void Adaptivity::record_cells_per_law(AdaptivityRecord& record) const {
+  std::vector<double> counted(cells_per_rung_.begin(), cells_per_rung_.end());
+  counted.push_back(off_ladder_cells_);
+  if (distribution_) parallel::sum_over_ranks(counted);
+  if (counted.back() > 0) return record_laws(record);  // laws outside the ladder: count them all by name
   std::map<std::string, int> per_law;
-  for (std::size_t r = 0; r < cells_per_rung_.size(); ++r)
-    if (cells_per_rung_[r] > 0) per_law[settings_.ladder[r]] += cells_per_rung_[r];
+  for (std::size_t r = 0; r + 1 < counted.size(); ++r)
+    if (counted[r] > 0) per_law[settings_.ladder[r]] += static_cast<int>(counted[r]);
   record.cells_per_law.assign(per_law.begin(), per_law.end());
 }
 
@@ -360,17 +370,25 @@ int Adaptivity::decide_cell(int cell, const unsigned char* flags) {
 }
 
 void Adaptivity::switch_moved_cells(AdaptivityRecord& record) {
+  // Counted on the cells' owners (every cell on one process), summed over the ranks.
+  double moves[2] = {0, 0};  // upgrades, downgrades
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
     const int move = moves_[cell];
     if (move == 0) continue;
-    record.upgrades += move > 0;
-    record.downgrades += move < 0;
-    --cells_per_rung_[cell_rungs_[cell]];
+    if (counts(cell)) {
+      moves[0] += move > 0;
+      moves[1] += move < 0;
+      --cells_per_rung_[cell_rungs_[cell]];
+      ++cells_per_rung_[cell_rungs_[cell] + move];
+    }
     cell_rungs_[cell] = static_cast<signed char>(cell_rungs_[cell] + move);
-    ++cells_per_rung_[cell_rungs_[cell]];
     set_movable(cell, can_move(cell, cell_rungs_[cell]) ? kMustDecide : kStill);
     switch_law(cell, settings_.ladder[cell_rungs_[cell]]);
   }
+  if (distribution_) parallel::sum_over_ranks(moves);
+  record.upgrades += static_cast<int>(moves[0]);
+  record.downgrades += static_cast<int>(moves[1]);
+  total_switches_ += static_cast<int>(moves[0] + moves[1]);
 }
 
 void Adaptivity::refresh_values() const {
@@ -385,13 +403,12 @@ void Adaptivity::refresh_values() const {
 }
 
 void Adaptivity::share_decisions() {
-  // One sum over the ranks of what each owner decided, a double per cell:
-  // 4 x its calm count + its move + 1 (exact), 0 from the other ranks.
+  // What each owner decided, a double per cell: 4 x its calm count + its
+  // move + 1 (exact).
   const int cells = model_->cell_count();
   std::vector<double> decided(cells, 0.0);
-  for (int cell = 0; cell < cells; ++cell)
-    if (distribution_->owns_cell(cell)) decided[cell] = 4.0 * calm_evaluations_[cell] + moves_[cell] + 1;
-  parallel::sum_over_ranks(decided);
+  for (int cell = 0; cell < cells; ++cell) decided[cell] = 4.0 * calm_evaluations_[cell] + moves_[cell] + 1;
+  distribution_->share_cell_values(decided);
   for (int cell = 0; cell < cells; ++cell) {
     const long packed = std::lround(decided[cell]);
     moves_[cell] = static_cast<signed char>(packed % 4 - 1);
@@ -402,25 +419,28 @@ void Adaptivity::share_decisions() {
 void Adaptivity::share_values() {
   refresh_values();
   if (!distribution_) return;
-  const int cells = model_->cell_count();
-  for (std::vector<double>& values : values_) {
-    for (int cell = 0; cell < cells; ++cell)
-      if (!distribution_->owns_cell(cell)) values[cell] = 0.0;
-    parallel::sum_over_ranks(values);
-  }
+  for (std::vector<double>& values : values_) distribution_->share_cell_values(values);
 }
 
-void Adaptivity::record_laws(AdaptivityRecord& record) {
+void Adaptivity::record_laws(AdaptivityRecord& record) const {
+  // Per law of the model's list (the same on every rank), this rank's cells.
+  const std::vector<std::string>& laws = model_->law_names();
   std::vector<std::pair<const tm_kernel*, int>> per_kernel;  // few distinct kernels
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    if (!counts(cell)) continue;
     const tm_kernel* kernel = &model_->kernel(cell);
     auto found = std::find_if(per_kernel.begin(), per_kernel.end(), [&](const auto& p) { return p.first == kernel; });
     if (found == per_kernel.end()) per_kernel.emplace_back(kernel, 1);
     else ++found->second;
   }
-  std::map<std::string, int> per_law;
-  for (const auto& [kernel, count] : per_kernel) per_law[kernel->law] += count;
-  record.cells_per_law.assign(per_law.begin(), per_law.end());
+  std::vector<double> per_law(laws.size(), 0.0);
+  for (const auto& [kernel, count] : per_kernel)
+    per_law[std::find(laws.begin(), laws.end(), kernel->law) - laws.begin()] += count;
+  if (distribution_) parallel::sum_over_ranks(per_law);
+  std::map<std::string, int> named;
+  for (std::size_t law = 0; law < laws.size(); ++law)
+    if (per_law[law] > 0) named[laws[law]] = static_cast<int>(per_law[law]);
+  record.cells_per_law.assign(named.begin(), named.end());
 }
 
 std::vector<io::Field> Adaptivity::cell_fields() const {

@@ -11,6 +11,20 @@
 
 namespace tensormass {
 
+double Model::cell_energy_scale(int cell) const {
+  const tm_kernel& kernel = *kernels_[cell];
+  const int n = static_cast<int>(cell_nodes(cell).size());
+  double volume = 0.0;
+  for (int q = 0; q < kernel.quadrature_points; ++q) volume += consts(cell)[kernel.derived_params + q * (1 + dim_ * n)];
+  return material_params_[cell_material_[cell]][0] * volume;
+}
+
+void Model::complete_partial_sums(const std::function<void(std::span<double>)>& complete_dofs, double energy_scale) {
+  complete_dofs(lumped_mass_);
+  complete_dofs(gravity_load_);
+  energy_scale_ = energy_scale;
+}
+
 namespace {
 
 /// The group a validated spec names (std::invalid_argument for an unvalidated one).
@@ -48,7 +62,7 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
           integral_n2[j] += w_det * N * N;
         }
       }
-      energy_scale_ += spec.materials[cell_material_[cell]].young * volume;
+      energy_scale_ += material_params_[cell_material_[cell]][0] * volume;
       double diagonal_sum = 0.0;
       for (int j = 0; j < n; ++j) diagonal_sum += integral_n2[j];
       const auto nodes = cell_nodes(cell);

@@ -18,14 +18,14 @@ void check(PetscErrorCode code, const char* what) {
 }
 }  // namespace
 
-std::vector<int> partition_cells(const Model& model, int parts) {
-  const int cells = model.cell_count();
+std::vector<int> partition_cells(const Mesh& mesh, int parts) {
+  const int cells = mesh.cell_count();
   if (parts <= 1 || cells == 0) return std::vector<int>(cells, 0);
   if (parts > cells)
     throw InputError("cannot share " + std::to_string(cells) + " cells among " + std::to_string(parts) +
                      " MPI ranks (run on fewer ranks)");
   detail::ensure_petsc_started();
-  const CellGraph graph = make_cell_graph(model);
+  const CellGraph graph = make_cell_graph(mesh);
   // MatCreateMPIAdj takes ownership of arrays from PetscMalloc.
   PetscInt *row_start = nullptr, *columns = nullptr;
   check(PetscMalloc1(graph.row_start.size(), &row_start), "PetscMalloc1");

@@ -1,6 +1,7 @@
 #include "tensormass/parallel/distribution.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -8,57 +9,97 @@
 
 namespace tensormass {
 
-Distribution::Distribution(const Model& model, std::vector<int> cell_owner, int rank, int size)
-    : model_(&model), rank_(rank), size_(size), cell_owner_(std::move(cell_owner)) {
+namespace {
+
+void check_ranks(int rank, int size) {
   if (size < 1 || rank < 0 || rank >= size)
     throw std::invalid_argument("Distribution: rank " + std::to_string(rank) + " of " + std::to_string(size));
-  if (static_cast<int>(cell_owner_.size()) != model.cell_count())
-    throw std::invalid_argument("Distribution: " + std::to_string(cell_owner_.size()) + " cell owners for " +
+}
+
+/// The cut of a model holding the whole mesh: every cell its own global index.
+CellCut whole_mesh_cut(const Model& model, std::vector<int> cell_owner, int size) {
+  if (static_cast<int>(cell_owner.size()) != model.cell_count())
+    throw std::invalid_argument("Distribution: " + std::to_string(cell_owner.size()) + " cell owners for " +
                                 std::to_string(model.cell_count()) + " cells");
-  const int nodes = model.mesh().node_count(), d = model.dim();
-  node_owner_.assign(nodes, size);
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    const int owner = cell_owner_[cell];
-    if (owner < 0 || owner >= size)
+  CellCut cut;
+  cut.node_owner = parallel::node_owners(model.mesh(), cell_owner, size);
+  cut.global_cell.resize(cell_owner.size());
+  std::iota(cut.global_cell.begin(), cut.global_cell.end(), 0);
+  cut.cell_owner = std::move(cell_owner);
+  cut.whole_cell_count = model.cell_count();
+  return cut;
+}
+
+}  // namespace
+
+Distribution::Distribution(const Model& model, std::vector<int> cell_owner, int rank, int size)
+    : model_(&model), rank_(rank), size_(size) {
+  check_ranks(rank, size);
+  cut_ = whole_mesh_cut(model, std::move(cell_owner), size);
+  build();
+}
+
+Distribution::Distribution(const Model& model, CellCut cut, int rank, int size)
+    : model_(&model), rank_(rank), size_(size), holds_part_(true), cut_(std::move(cut)) {
+  check_ranks(rank, size);
+  const std::size_t cells = static_cast<std::size_t>(model.cell_count());
+  if (cut_.global_cell.size() != cells || cut_.cell_owner.size() != cells ||
+      cut_.node_owner.size() != static_cast<std::size_t>(model.mesh().node_count()))
+    throw std::invalid_argument("Distribution: a cut of " + std::to_string(cut_.global_cell.size()) + " cells and " +
+                                std::to_string(cut_.node_owner.size()) + " nodes for a model of " +
+                                std::to_string(cells) + " cells and " + std::to_string(model.mesh().node_count()) +
+                                " nodes");
+  for (std::size_t cell = 0; cell < cells; ++cell)
+    if (cut_.global_cell[cell] < 0 || cut_.global_cell[cell] >= cut_.whole_cell_count ||
+        (cell > 0 && cut_.global_cell[cell] <= cut_.global_cell[cell - 1]))
+      throw std::invalid_argument("Distribution: the cut's global cell numbers are not increasing within the mesh");
+  build();
+}
+
+void Distribution::build() {
+  const int d = model_->dim();
+  for (std::size_t cell = 0; cell < cut_.cell_owner.size(); ++cell)
+    if (cut_.cell_owner[cell] < 0 || cut_.cell_owner[cell] >= size_)
       throw std::invalid_argument("Distribution: cell " + std::to_string(cell) + " owned by rank " +
-                                  std::to_string(owner));
-    for (int node : model.cell_nodes(cell)) node_owner_[node] = std::min(node_owner_[node], owner);
-  }
-  for (int& owner : node_owner_)
-    if (owner == size) owner = 0;  // a node in no cell: no rows to speak of, give it to rank 0
-  assembled_.assign(model.cell_count(), 0);
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    bool touches = cell_owner_[cell] == rank;
-    for (int node : model.cell_nodes(cell)) touches = touches || node_owner_[node] == rank;
+                                  std::to_string(cut_.cell_owner[cell]));
+  assembled_.assign(model_->cell_count(), 0);
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    bool touches = owns_cell(cell);
+    for (int node : model_->cell_nodes(cell)) touches = touches || owns_node(node);
     assembled_[cell] = touches;
     assembled_count_ += touches;
   }
   // Free dofs numbered rank by rank, each rank's in ascending free order.
-  const auto& free = model.free_dofs();
-  std::vector<int> rows_of_rank(size + 1, 0);
-  for (int dof : free) ++rows_of_rank[node_owner_[dof / d] + 1];
-  for (int r = 0; r < size; ++r) rows_of_rank[r + 1] += rows_of_rank[r];
-  first_global_row_ = rows_of_rank[rank];
+  const auto& free = model_->free_dofs();
+  std::vector<int> rows_of_rank(size_ + 1, 0);
+  for (int dof : free) ++rows_of_rank[node_owner(dof / d) + 1];
+  for (int r = 0; r < size_; ++r) rows_of_rank[r + 1] += rows_of_rank[r];
+  first_global_row_ = rows_of_rank[rank_];
   global_row_.resize(free.size());
   std::vector<int> next(rows_of_rank.begin(), rows_of_rank.end() - 1);
   for (std::size_t row = 0; row < free.size(); ++row) {
-    const int owner = node_owner_[free[row] / d];
+    const int owner = node_owner(free[row] / d);
     global_row_[row] = next[owner]++;
-    if (owner == rank) owned_free_rows_.push_back(static_cast<int>(row));
+    if (owner == rank_) owned_free_rows_.push_back(static_cast<int>(row));
   }
+}
+
+int Distribution::local_cell(int global) const {
+  const auto found = std::lower_bound(cut_.global_cell.begin(), cut_.global_cell.end(), global);
+  return found != cut_.global_cell.end() && *found == global ? static_cast<int>(found - cut_.global_cell.begin()) : -1;
 }
 
 void Distribution::keep_own_dofs(std::span<double> v) const {
   const int d = model_->dim();
   for (std::size_t dof = 0; dof < v.size(); ++dof)
-    if (node_owner_[dof / d] != rank_) v[dof] = 0.0;
+    if (!owns_node(static_cast<int>(dof) / d)) v[dof] = 0.0;
 }
 
 void Distribution::keep_own_free(std::span<double> v) const {
   const int d = model_->dim();
   const auto& free = model_->free_dofs();
   for (std::size_t row = 0; row < v.size(); ++row)
-    if (node_owner_[free[row] / d] != rank_) v[row] = 0.0;
+    if (!owns_node(free[row] / d)) v[row] = 0.0;
 }
 
 void Distribution::complete_dofs(std::span<double> v) const {
@@ -69,6 +110,16 @@ void Distribution::complete_dofs(std::span<double> v) const {
 void Distribution::complete_free(std::span<double> v) const {
   keep_own_free(v);
   parallel::sum_over_ranks(v);
+}
+
+void Distribution::share_cell_values(std::span<double> values) const {
+  // One value per cell of the whole mesh, from its owner alone: the sum
+  // over the ranks is exact, the same bits everywhere.
+  std::vector<double> whole(static_cast<std::size_t>(cut_.whole_cell_count), 0.0);
+  for (std::size_t cell = 0; cell < values.size(); ++cell)
+    if (owns_cell(static_cast<int>(cell))) whole[cut_.global_cell[cell]] = values[cell];
+  parallel::sum_over_ranks(whole);
+  for (std::size_t cell = 0; cell < values.size(); ++cell) values[cell] = whole[cut_.global_cell[cell]];
 }
 
 }  // namespace tensormass

@@ -71,11 +71,9 @@ class Unpacker {
 
 constexpr std::uint32_t kMagic = 0x544d4d31;  // "TMM1"
 
-}  // namespace
+constexpr std::uint32_t kPartMagic = 0x544d5031;  // "TMP1"
 
-std::vector<char> pack_mesh(const Mesh& mesh) {
-  Packer out;
-  out.value(kMagic);
+void pack_into(Packer& out, const Mesh& mesh) {
   out.value(mesh.dim);
   out.text(mesh.source);
   out.array(mesh.rest_positions);
@@ -97,13 +95,9 @@ std::vector<char> pack_mesh(const Mesh& mesh) {
     out.array(group.facets.nodes);
     out.array(group.facets.orders);
   }
-  return std::move(out.bytes);
 }
 
-Mesh unpack_mesh(std::span<const char> bytes) {
-  Unpacker in(bytes);
-  if (bytes.size() < sizeof kMagic || in.value<std::uint32_t>() != kMagic)
-    throw std::invalid_argument("unpack_mesh: bytes that pack_mesh did not make");
+Mesh unpack_from(Unpacker& in) {
   Mesh mesh;
   mesh.dim = in.value<int>();
   mesh.source = in.text();
@@ -128,32 +122,101 @@ Mesh unpack_mesh(std::span<const char> bytes) {
     group.facets.nodes = in.array<int>();
     group.facets.orders = in.array<int>();
   }
+  return mesh;
+}
+
+/// Checks the magic number that starts `bytes`.
+void expect_magic(Unpacker& in, std::span<const char> bytes, std::uint32_t magic) {
+  if (bytes.size() < sizeof magic || in.value<std::uint32_t>() != magic)
+    throw std::invalid_argument("unpack_mesh: bytes that pack_mesh did not make");
+}
+
+}  // namespace
+
+std::vector<char> pack_mesh(const Mesh& mesh) {
+  Packer out;
+  out.value(kMagic);
+  pack_into(out, mesh);
+  return std::move(out.bytes);
+}
+
+Mesh unpack_mesh(std::span<const char> bytes) {
+  Unpacker in(bytes);
+  expect_magic(in, bytes, kMagic);
+  Mesh mesh = unpack_from(in);
   if (!in.done()) throw std::invalid_argument("unpack_mesh: bytes left after the mesh");
   return mesh;
 }
 
+std::vector<char> pack_mesh_part(const MeshPart& part) {
+  Packer out;
+  out.value(kPartMagic);
+  pack_into(out, part.mesh);
+  out.array(part.cut.global_cell);
+  out.array(part.cut.cell_owner);
+  out.array(part.cut.node_owner);
+  out.value(part.cut.whole_cell_count);
+  return std::move(out.bytes);
+}
+
+MeshPart unpack_mesh_part(std::span<const char> bytes) {
+  Unpacker in(bytes);
+  expect_magic(in, bytes, kPartMagic);
+  MeshPart part{unpack_from(in), {}};
+  part.cut.global_cell = in.array<int>();
+  part.cut.cell_owner = in.array<int>();
+  part.cut.node_owner = in.array<int>();
+  part.cut.whole_cell_count = in.value<int>();
+  if (!in.done()) throw std::invalid_argument("unpack_mesh: bytes left after the mesh part");
+  return part;
+}
+
+MeshPart send_mesh_parts(const Mesh& whole, std::span<const int> cell_owner) {
+  const int ranks = world_size();
+  const std::vector<int> node_owner = node_owners(whole, cell_owner, ranks);
+  for (int rank = 1; rank < ranks; ++rank)  // one part packed at a time: rank 0 never holds them all
+    send_bytes_from_root(rank, pack_mesh_part(cut_mesh(whole, cell_owner, node_owner, rank)));
+  return cut_mesh(whole, cell_owner, node_owner, 0);
+}
+
+MeshPart receive_mesh_part() { return unpack_mesh_part(receive_bytes_from_root()); }
+
 Mesh read_mesh_on_root(const std::string& path) {
   if (world_size() == 1) return read_mesh(path);
-  // Rank 0 sends what it met, then the mesh's bytes or the error's message.
-  enum Status : int { kMesh, kInputError, kOtherError };
-  int status = kMesh;
-  std::vector<char> bytes;
   Mesh mesh;
+  std::vector<char> bytes;
+  on_root([&] {
+    mesh = read_mesh(path);
+    bytes = pack_mesh(mesh);
+  });
+  broadcast_bytes_from_root(bytes);
+  return world_rank() == 0 ? std::move(mesh) : unpack_mesh(bytes);
+}
+
+void on_root(const std::function<void()>& work) {
+  if (world_size() == 1) return work();
+  // Rank 0 sends what it met, then the error's message if any.
+  enum Status : int { kDone, kInputError, kNumericalError, kOtherError };
+  int status = kDone;
+  std::string message;
   if (world_rank() == 0) {
     try {
-      mesh = read_mesh(path);
-      bytes = pack_mesh(mesh);
+      work();
     } catch (const InputError& e) {
-      status = kInputError, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      status = kInputError, message = e.what();
+    } catch (const NumericalError& e) {
+      status = kNumericalError, message = e.what();
     } catch (const std::exception& e) {
-      status = kOtherError, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      status = kOtherError, message = e.what();
     }
   }
   broadcast_from_root(std::span<int>(&status, 1));
-  broadcast_bytes_from_root(bytes);
-  if (status == kMesh) return world_rank() == 0 ? std::move(mesh) : unpack_mesh(bytes);
-  const std::string message(bytes.begin(), bytes.end());
+  if (status == kDone) return;
+  std::vector<char> text(message.begin(), message.end());
+  broadcast_bytes_from_root(text);
+  message.assign(text.begin(), text.end());
   if (status == kInputError) throw InputError(message);
+  if (status == kNumericalError) throw NumericalError(message);
   throw std::runtime_error(message);
 }
 

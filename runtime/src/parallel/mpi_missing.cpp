@@ -1,6 +1,7 @@
 // A build without PETSc (and so without MPI): one rank.
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/parallel/cell_partition.hpp"
@@ -29,14 +30,22 @@ double sum_over_ranks(double value) { return value; }
 std::vector<double> gather_to_root(double value) { return {value}; }
 void broadcast_from_root(std::span<int>) {}
 void broadcast_bytes_from_root(std::vector<char>&) {}
+void broadcast_bytes_from(int, std::vector<char>&) {}
+void send_bytes_from_root(int, const std::vector<char>&) {
+  throw std::logic_error("send_bytes_from_root: one rank, nobody to send to");
+}
+std::vector<char> receive_bytes_from_root() {
+  throw std::logic_error("receive_bytes_from_root: one rank, nobody sends");
+}
+RankedValue min_over_ranks(int value) { return {value, 0}; }
 int end_after_error(const std::string& message, int exit_code) {
   std::fprintf(stderr, "%s\n", message.c_str());
   return exit_code;
 }
 
-std::vector<int> partition_cells(const Model& model, int parts) {
+std::vector<int> partition_cells(const Mesh& mesh, int parts) {
   if (parts > 1) throw InputError("cutting the mesh for MPI ranks needs PETSc, which this build lacks");
-  return std::vector<int>(model.cell_count(), 0);
+  return std::vector<int>(mesh.cell_count(), 0);
 }
 
 }  // namespace tensormass::parallel

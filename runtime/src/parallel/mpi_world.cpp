@@ -126,14 +126,46 @@ void broadcast_from_root(std::span<int> values) {
   MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_INT, 0, MPI_COMM_WORLD);
 }
 
-void broadcast_bytes_from_root(std::vector<char>& bytes) {
+void broadcast_bytes_from_root(std::vector<char>& bytes) { broadcast_bytes_from(0, bytes); }
+
+namespace {
+constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;  // MPI counts are ints
+constexpr int kBytesTag = 7101;
+}  // namespace
+
+void broadcast_bytes_from(int root, std::vector<char>& bytes) {
   if (world_size() == 1) return;
   std::uint64_t size = bytes.size();
-  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&size, 1, MPI_UINT64_T, root, MPI_COMM_WORLD);
   bytes.resize(size);
-  constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;  // MPI counts are ints
   for (std::uint64_t at = 0; at < size; at += kPiece)
-    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_CHAR, 0, MPI_COMM_WORLD);
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_CHAR, root, MPI_COMM_WORLD);
+}
+
+void send_bytes_from_root(int to, const std::vector<char>& bytes) {
+  std::uint64_t size = bytes.size();
+  MPI_Send(&size, 1, MPI_UINT64_T, to, kBytesTag, MPI_COMM_WORLD);
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Send(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_CHAR, to, kBytesTag, MPI_COMM_WORLD);
+}
+
+std::vector<char> receive_bytes_from_root() {
+  std::uint64_t size = 0;
+  MPI_Recv(&size, 1, MPI_UINT64_T, 0, kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::vector<char> bytes(size);
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Recv(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_CHAR, 0, kBytesTag, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+  return bytes;
+}
+
+RankedValue min_over_ranks(int value) {
+  if (world_size() == 1) return {value, 0};
+  struct {
+    int value, rank;
+  } mine{value, world_rank()}, least{};
+  MPI_Allreduce(&mine, &least, 1, MPI_2INT, MPI_MINLOC, MPI_COMM_WORLD);
+  return {least.value, least.rank};
 }
 
 int end_after_error(const std::string& message, int exit_code) {

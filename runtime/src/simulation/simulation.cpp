@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -90,9 +91,13 @@ std::string write_state(const std::string& directory, const std::string& name, c
   }
   const auto piece = [&](int rank) { return name + "_p" + std::to_string(rank) + ".vtu"; };
   std::vector<bool> own(model.cell_count());
-  for (int cell = 0; cell < model.cell_count(); ++cell) own[cell] = distribution->owns_cell(cell);
+  std::vector<int> numbers(model.cell_count());
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    own[cell] = distribution->owns_cell(cell);
+    numbers[cell] = distribution->global_cell(cell);
+  }
   io::write_vtu_piece((folder / piece(distribution->rank())).string(), model.mesh(), own, {}, fields.point_data,
-                      fields.cell_data);
+                      fields.cell_data, numbers);
   if (distribution->rank() == 0) {
     std::vector<std::string> pieces;
     for (int rank = 0; rank < distribution->size(); ++rank) pieces.push_back(piece(rank));
@@ -129,13 +134,36 @@ double peak_memory_mib() {
   return usage.ru_maxrss / 1024.0;  // KiB on Linux
 }
 
-void count_cells(const Model& model, RunReport& report) {
+/// Cells per law and per element type, of the whole mesh: over MPI ranks
+/// each counts its own cells, and the counts are summed.
+void count_cells(const Model& model, const Distribution* distribution, RunReport& report) {
+  const std::vector<std::string>& laws = model.law_names();
+  const auto elements = Registry::instance().elements();
+  std::vector<double> counted(laws.size() + elements.size(), 0.0);  // laws, then element types
+  for (const ElementBlock& block : model.mesh().blocks) {
+    const tm_kernel* last = nullptr;
+    std::size_t law = 0;
+    const std::size_t type =
+        laws.size() + (std::find(elements.begin(), elements.end(), block.element) - elements.begin());
+    for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
+      if (distribution && !distribution->owns_cell(cell)) continue;
+      if (&model.kernel(cell) != last) {  // the law's name looked up once per run of cells under one kernel
+        last = &model.kernel(cell);
+        law = std::find(laws.begin(), laws.end(), last->law) - laws.begin();
+      }
+      counted[law] += 1;
+      counted[type] += 1;
+    }
+  }
+  if (distribution) parallel::sum_over_ranks(counted);
   std::map<std::string, int> per_law;
-  for (int cell = 0; cell < model.cell_count(); ++cell) ++per_law[model.kernel(cell).law];
+  for (std::size_t law = 0; law < laws.size(); ++law)
+    if (counted[law] > 0) per_law[laws[law]] = static_cast<int>(counted[law]);
   report.cells_per_law.assign(per_law.begin(), per_law.end());
   report.cells_per_type.clear();
-  for (const ElementBlock& block : model.mesh().blocks)
-    report.cells_per_type.push_back({block.element->name, block.count()});
+  for (std::size_t type = 0; type < elements.size(); ++type)
+    if (const double count = counted[laws.size() + type]; count > 0)
+      report.cells_per_type.push_back({elements[type]->name, static_cast<int>(count)});
 }
 
 /// One track per `output.track` group (the groups were checked before).
@@ -192,25 +220,49 @@ std::unique_ptr<Distribution> cut_among_ranks(const Model& model) {
   const int ranks = parallel::world_size(), rank = parallel::world_rank();
   if (ranks <= 1) return nullptr;
   std::vector<int> cell_owner =
-      rank == 0 ? parallel::partition_cells(model, ranks) : std::vector<int>(model.cell_count(), 0);
+      rank == 0 ? parallel::partition_cells(model.mesh(), ranks) : std::vector<int>(model.cell_count(), 0);
   parallel::broadcast_from_root(cell_owner);
   return std::make_unique<Distribution>(model, std::move(cell_owner), rank, ranks);
 }
 
+/// The distribution of a model: over a rank's part of the mesh (`cut`), or
+/// of the whole mesh cut here (cut_among_ranks).
+std::unique_ptr<Distribution> distribute(const Model& model, std::optional<CellCut> cut) {
+  if (!cut) return cut_among_ranks(model);
+  return std::make_unique<Distribution>(model, std::move(*cut), parallel::world_rank(), parallel::world_size());
+}
+
+/// A model of a rank's part of the mesh: its node sums and energy scale
+/// completed from every rank's part.
+void complete_model_sums(Model& model, const Distribution& distribution) {
+  double energy_scale = 0.0;
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    if (distribution.owns_cell(cell)) energy_scale += model.cell_energy_scale(cell);
+  model.complete_partial_sums([&](std::span<double> v) { distribution.complete_dofs(v); },
+                              parallel::sum_over_ranks(energy_scale));
+}
+
 /// The mesh and everything built on it: replaced as a whole when
-/// refinement changes the mesh.
+/// refinement changes the mesh. `cut`: set when the mesh is this rank's part.
 struct Discretisation {
-  Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics)
+  Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics,
+                 std::optional<CellCut> cut = std::nullopt)
       : mesh(std::move(mesh_in)),
         model(mesh, scene.model),
-        distribution(cut_among_ranks(model)),
+        distribution(distribute(model, std::move(cut))),
         assembler(model, true, distribution.get()),
         linear(make_linear_solver(scene.solver.linear)),
-        integration{model, assembler, *linear, scene.solver, statistics} {}
+        integration{model, assembler, *linear, scene.solver, statistics} {
+    if (distribution && distribution->holds_part()) complete_model_sums(model, *distribution);
+  }
   /// What the solvers need before the first step (after any distribution).
   void prepare(const Scene& scene) {
     assembler.set_hessian_projection(scene.solver.project_hessian);
     describe_free_nodes(*linear, model);
+  }
+  /// Cells of the whole mesh.
+  int whole_cell_count() const {
+    return distribution && distribution->holds_part() ? distribution->whole_cell_count() : mesh.cell_count();
   }
 
   Mesh mesh;
@@ -228,10 +280,53 @@ struct Discretisation {
   std::unique_ptr<Integrator> integrator;
 };
 
-/// The scene's mesh checked against the scene.
-Mesh checked_mesh(const Scene& scene, Mesh mesh) {
-  validate_against_mesh(scene, mesh);
-  return mesh;
+/// What this rank starts from: the whole mesh, or over several MPI ranks
+/// its part of it, with what only the whole mesh tells.
+struct StartMesh {
+  Mesh mesh;
+  std::optional<CellCut> cut;      ///< set when `mesh` is this rank's part, checked against the scene on rank 0
+  std::uint64_t fingerprint = 0;   ///< with cut: the whole mesh's
+  std::vector<GroupTrack> tracks;  ///< with cut: rank 0's, made on the whole mesh (the others record none)
+};
+
+/// The scene's mesh checked against the scene (a part was checked whole, on rank 0).
+Mesh checked_mesh(const Scene& scene, StartMesh& start) {
+  if (!start.cut) validate_against_mesh(scene, start.mesh);
+  return std::move(start.mesh);
+}
+
+/// Whether each MPI rank holds only its part of the mesh. Runs that refine
+/// the mesh (every rank refines the whole of it alike) or that save or
+/// restore every cell's adaptive state keep the whole mesh on every rank.
+bool cuts_mesh(const Scene& scene, const RunOptions& options) {
+  if (parallel::world_size() == 1 || scene.refinement.enabled) return false;
+  return !(scene.adaptivity.enabled && (options.resume || scene.output.checkpoint_every > 0));
+}
+
+/// The scene's mesh as this rank holds it: rank 0 reads the file, checks it
+/// against the scene and cuts it (when cuts_mesh), then sends each rank its
+/// part; the reader's and the whole mesh's memory stay on rank 0, for a while.
+StartMesh read_start_mesh(const Scene& scene, const RunOptions& options) {
+  if (!cuts_mesh(scene, options)) return {parallel::read_mesh_on_root(scene.mesh)};
+  StartMesh start;
+  Mesh whole;
+  std::vector<int> cell_owner;
+  parallel::on_root([&] {
+    whole = read_mesh(scene.mesh);
+    validate_against_mesh(scene, whole);
+    start.fingerprint = mesh_fingerprint(whole);
+    start.tracks = make_tracks(scene, whole);
+    cell_owner = parallel::partition_cells(whole, parallel::world_size());
+  });
+  MeshPart part =
+      parallel::world_rank() == 0 ? parallel::send_mesh_parts(whole, cell_owner) : parallel::receive_mesh_part();
+  std::vector<char> fingerprint(sizeof start.fingerprint);
+  std::memcpy(fingerprint.data(), &start.fingerprint, sizeof start.fingerprint);
+  parallel::broadcast_bytes_from_root(fingerprint);
+  std::memcpy(&start.fingerprint, fingerprint.data(), sizeof start.fingerprint);
+  start.mesh = std::move(part.mesh);
+  start.cut = std::move(part.cut);
+  return start;
 }
 
 /// Per cell of a model: its kernel, and the kernel it blends from (nullptr
@@ -292,7 +387,7 @@ RefinementRecord refinement_record(int step, const detail::RunRefinement& refine
 }  // namespace
 
 struct Simulation::Impl {
-  Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options);
+  Impl(const Scene& scene_in, StartMesh start, const RunOptions& options);
   bool observe(const State& state);
   bool refine_load_step(const State& now);
   void apply_refinement();
@@ -309,6 +404,8 @@ struct Simulation::Impl {
   void share_among_ranks();
   /// Whether this process writes the files: the only one, or rank 0 of several.
   bool writes_files() const { return !distribution || distribution->rank() == 0; }
+  /// Whether this rank's model holds only its part of the mesh (read_start_mesh).
+  bool holds_part() const { return disc->distribution && disc->distribution->holds_part(); }
 
   /// Per cell, its level when refinement is on (empty otherwise).
   std::span<const int> levels() const { return refinement ? refinement->levels() : std::span<const int>(); }
@@ -358,18 +455,20 @@ struct Simulation::Impl {
 
 /// Mesh, model and solver, the resumed checkpoint or the first evaluation
 /// of the adaptive model, the output directory.
-Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& options)
+Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions& options)
     : scene(scene_in),
-      disc(std::make_unique<Discretisation>(checked_mesh(scene, std::move(mesh_in)), scene, report.statistics)),
+      disc(
+          std::make_unique<Discretisation>(checked_mesh(scene, start), scene, report.statistics, std::move(start.cut))),
       refinement(scene.refinement.enabled ? std::make_unique<detail::RunRefinement>(scene.refinement, disc->mesh)
                                           : nullptr),
       dynamic(scene.solver.is_dynamic()),
-      tracks(make_tracks(scene, disc->mesh)),
+      tracks(holds_part() ? std::move(start.tracks) : make_tracks(scene, disc->mesh)),
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
                options.progress && parallel::world_rank() == 0) {
   mark_memory("model and assembler");
-  fingerprints.mesh_fingerprint = mesh_fingerprint(disc->mesh);  // the scene's mesh, before any refinement
+  // The scene's mesh, before any refinement.
+  fingerprints.mesh_fingerprint = holds_part() ? start.fingerprint : mesh_fingerprint(disc->mesh);
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
   if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints);
@@ -388,7 +487,7 @@ Simulation::Impl::Impl(const Scene& scene_in, Mesh mesh_in, const RunOptions& op
 
   report.output_directory = scene.output.directory;
   report.nodes = disc->mesh.node_count();
-  report.cells = disc->mesh.cell_count();
+  report.cells = disc->whole_cell_count();
   report.dofs = disc->model.dof_count();
   report.mpi_ranks = distribution ? distribution->size() : 1;
   report.free_dofs = disc->model.free_dof_count();
@@ -679,15 +778,16 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   if (failure.empty()) report.files.push_back("summary.json");
   report.state = end;
   time_loop(scene, end, adaptivity_seconds, report);
-  count_cells(disc->model, report);
+  count_cells(disc->model, distribution, report);
   report.nodes = disc->mesh.node_count();
-  report.cells = disc->mesh.cell_count();
+  report.cells = disc->whole_cell_count();
   report.dofs = disc->model.dof_count();
   report.free_dofs = disc->model.free_dof_count();
   collect_adaptivity(adaptivity.get(), report);
   locate_max_displacement(disc->model, end, report);
   if (scene.solver.type != SolverType::explicit_euler)
     report.linear_solver = disc->linear->name();  // after any fallback
+  report.cells_per_rank = parallel::gather_to_root(disc->mesh.cell_count());
   report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
   report.peak_memory_mib_by_phase.clear();
   for (const auto& [phase, mib] : memory_marks)  // the same phases on every rank: collective
@@ -701,21 +801,21 @@ namespace {
 
 /// The scene's mesh, read and checked, with the thread count set before
 /// anything runs in parallel.
-Mesh read_scene_mesh(const Scene& scene) {
-  Mesh mesh = parallel::read_mesh_on_root(scene.mesh);
+StartMesh read_scene_mesh(const Scene& scene, const RunOptions& options) {
+  StartMesh start = read_start_mesh(scene, options);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  return mesh;
+  return start;
 }
 
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, const RunOptions& options)
-    : impl_(std::make_unique<Impl>(scene, read_scene_mesh(scene), options)) {}
+    : impl_(std::make_unique<Impl>(scene, read_scene_mesh(scene, options), options)) {}
 
 Simulation::Simulation(const Scene& scene, Mesh mesh, const RunOptions& options) {
   mesh.validate();
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  impl_ = std::make_unique<Impl>(scene, std::move(mesh), options);
+  impl_ = std::make_unique<Impl>(scene, StartMesh{std::move(mesh)}, options);
 }
 
 Simulation::~Simulation() = default;
@@ -736,15 +836,21 @@ const Mesh& Simulation::mesh() const { return impl_->disc->mesh; }
 const Model& Simulation::model() const { return impl_->disc->model; }
 
 void Simulation::set_law(const std::vector<int>& cells, const std::string& law) {
+  // `cells` number the whole mesh's cells; a rank holding part of it sets those it holds.
+  const Discretisation& disc = *impl_->disc;
   Model& model = impl_->disc->model;
+  const int whole = disc.whole_cell_count();
+  std::vector<int> held;
   for (int cell : cells) {  // all checked before any changes
-    if (cell < 0 || cell >= model.cell_count())
-      throw InputError("set_law: cell " + std::to_string(cell) + " is not in 0.." +
-                       std::to_string(model.cell_count() - 1));
-    if (!model.law_kernel(cell, law))
-      throw InputError("set_law: no kernel for law '" + law + "' on " + model.mesh().describe_cell(cell));
+    if (cell < 0 || cell >= whole)
+      throw InputError("set_law: cell " + std::to_string(cell) + " is not in 0.." + std::to_string(whole - 1));
+    const int local = impl_->holds_part() ? disc.distribution->local_cell(cell) : cell;
+    if (local < 0) continue;
+    if (!model.law_kernel(local, law))
+      throw InputError("set_law: no kernel for law '" + law + "' on " + model.mesh().describe_cell(local));
+    held.push_back(local);
   }
-  for (int cell : cells) model.set_law(cell, law);
+  for (int cell : held) model.set_law(cell, law);
 }
 
 void Simulation::set_prescribed(const std::string& group, const std::array<double, 3>& displacement,

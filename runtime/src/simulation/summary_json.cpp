@@ -81,6 +81,10 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   for (std::size_t i = 0; i < report.peak_memory_mib.size(); ++i)
     j << (i ? ", " : "") << number(report.peak_memory_mib[i]);
   j << "],\n";
+  j << "  \"cells_per_rank\": [";
+  for (std::size_t i = 0; i < report.cells_per_rank.size(); ++i)
+    j << (i ? ", " : "") << static_cast<long>(report.cells_per_rank[i]);
+  j << "],\n";
   j << "  \"peak_memory_mib_by_phase\": {";
   for (std::size_t p = 0; p < report.peak_memory_mib_by_phase.size(); ++p) {
     const auto& [phase, per_rank] = report.peak_memory_mib_by_phase[p];

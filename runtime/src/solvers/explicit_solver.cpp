@@ -156,7 +156,7 @@ void ExplicitIntegrator::step(State& state, const StepObserver& observer) {
 }
 
 void ExplicitIntegrator::finish(const State& state) {
-  detail::require_no_inversion(run_.model, state.displacement, "at the end of the explicit run");
+  detail::require_no_inversion(run_.assembler, state.displacement, "at the end of the explicit run");
 }
 
 void solve_explicit(Integration& run, State& state, const StepObserver& observer) {

@@ -92,7 +92,7 @@ std::vector<double> predict(const EulerStep& step, double t1) {
   if (step.run.settings.predictor == StepPredictor::none) return u;
   std::vector<double> ahead = u;
   for (int d : model.free_dofs()) ahead[d] += step.run.settings.dt * step.v0[d];
-  return model.first_inverted_cell(ahead) < 0 ? ahead : u;
+  return detail::any_cell_inverted(step.run.assembler, ahead) ? u : ahead;
 }
 
 /// What a line search did: the step length taken, and whether the new u
@@ -124,7 +124,7 @@ SearchResult line_search(const EulerStep& step, const SparseMatrix& K, double sl
   double length = 1.0;
   for (int halving = 0; halving <= 10; ++halving, length *= 0.5) {
     move(length);
-    if (model.first_inverted_cell(trial) >= 0) continue;
+    if (detail::any_cell_inverted(step.run.assembler, trial)) continue;
     if (!(slope < 0)) break;  // not a descent direction: only the inversion guard applies
     const double energy = step.potential(trial, K);
     if (std::isfinite(energy) && energy <= start + 1e-4 * length * slope + noise) break;
@@ -190,7 +190,7 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
     iterations = iteration;
   }
   detail::require_finite(u, "the displacement " + where);
-  if (!uninverted) detail::require_no_inversion(model, u, where);
+  if (!uninverted) detail::require_no_inversion(run.assembler, u, where);
   for (int d = 0; d < dofs; ++d) v_[d] = (u[d] - u0[d]) / dt;
   state.displacement = std::move(u);
   state.velocity = v_;

@@ -10,6 +10,7 @@
 
 #include "common/phase_timer.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/parallel/distribution.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/solvers/integrators.hpp"
 
@@ -52,12 +53,38 @@ inline void require_finite(std::span<const double> values, const std::string& wh
     if (!std::isfinite(x)) throw NumericalError(what + " is not finite (NaN or infinity)");
 }
 
-/// Throws NumericalError naming the first inverted element and its law.
-inline void require_no_inversion(const Model& model, std::span<const double> u, const std::string& where) {
+/// Model::first_inverted_cell over every rank's cells: the cell's index
+/// in the whole mesh and the rank that holds it, or value -1. The same
+/// answer on every rank (collective over MPI ranks).
+inline parallel::RankedValue first_inverted_cell(const Assembler& assembler, std::span<const double> u) {
+  const Model& model = assembler.model();
   const int cell = model.first_inverted_cell(u);
-  if (cell < 0) return;
-  throw NumericalError(model.mesh().describe_cell(cell) + " inverted (det F <= 0) under law " + model.kernel(cell).law +
-                       " " + where + " (a law that cannot invert; stable_neohookean is defined through inversion)");
+  const Distribution* distribution = assembler.distribution();
+  if (!distribution) return {cell, 0};
+  const int none = distribution->whole_cell_count();
+  const parallel::RankedValue first = parallel::min_over_ranks(cell < 0 ? none : distribution->global_cell(cell));
+  return first.value == none ? parallel::RankedValue{-1, 0} : first;
+}
+
+inline bool any_cell_inverted(const Assembler& assembler, std::span<const double> u) {
+  return first_inverted_cell(assembler, u).value >= 0;
+}
+
+/// Throws NumericalError naming the first inverted element and its law
+/// (on every rank, with the message of the rank holding the cell).
+inline void require_no_inversion(const Assembler& assembler, std::span<const double> u, const std::string& where) {
+  const parallel::RankedValue first = first_inverted_cell(assembler, u);
+  if (first.value < 0) return;
+  const Model& model = assembler.model();
+  std::string message;
+  if (first.rank == parallel::world_rank()) {
+    const int cell = model.first_inverted_cell(u);  // on this rank: the first in the whole mesh's order
+    message = model.mesh().describe_cell(cell) + " inverted (det F <= 0) under law " + model.kernel(cell).law + " " +
+              where + " (a law that cannot invert; stable_neohookean is defined through inversion)";
+  }
+  std::vector<char> text(message.begin(), message.end());
+  parallel::broadcast_bytes_from(first.rank, text);
+  throw NumericalError(std::string(text.begin(), text.end()));
 }
 
 }  // namespace tensormass::detail

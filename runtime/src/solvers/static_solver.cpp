@@ -153,7 +153,7 @@ void StaticIntegrator::step(State& state, const StepObserver& observer) {
       for (int d : model.free_dofs()) u[d] += state.displacement[d] - previous[d];
     model.apply_constraints(factor, u, true);
     const int iterations = newton(run, u, external_force(model, factor), where);
-    detail::require_no_inversion(model, u, where);
+    detail::require_no_inversion(run.assembler, u, where);
     run.statistics.newton_iterations += iterations;
     run.statistics.newton_per_step.push_back(carried_iterations + iterations);
     run.statistics.step_ms.push_back(carried_ms + 1e3 * detail::seconds_since(start));

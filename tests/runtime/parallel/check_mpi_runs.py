@@ -137,6 +137,14 @@ def check_scene(binary, work, name):
                 failures.append(f"{name}, {ranks} ranks: meshes {cells}, serial {serial_cells} (refined alike?)")
         if summary["mpi_ranks"] != ranks:
             failures.append(f"{name}, {ranks} ranks: summary.json says mpi_ranks {summary['mpi_ranks']}")
+        held = summary["cells_per_rank"]
+        whole = summary["elements"]
+        if "refinement" in summary or ranks == 1:  # refining runs keep the whole mesh on every rank
+            expected = "the whole mesh" if all(count == whole for count in held) else None
+        else:  # each rank its part: fewer cells than the mesh, together at least all of them
+            expected = "parts" if all(count < whole for count in held) and sum(held) >= whole else None
+        if len(held) != ranks or expected is None:
+            failures.append(f"{name}, {ranks} ranks: cells_per_rank {held} of {whole} cells")
         phases = summary["peak_memory_mib_by_phase"]
         if list(phases) != ["mesh", "model and assembler", "shared", "solver", "first step", "end"] or any(
                 len(per_rank) != ranks for per_rank in phases.values()) or phases["end"] != summary[

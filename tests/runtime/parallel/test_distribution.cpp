@@ -187,7 +187,7 @@ TEST(CellGraph, CellsSharingAFaceAreNeighbours) {
   const Mesh mesh = test::beam(3, "tet6", {2, 1, 1});
   const Scene scene = test::cantilever("hooke");
   const Model model(mesh, scene.model);
-  const parallel::CellGraph graph = parallel::make_cell_graph(model);
+  const parallel::CellGraph graph = parallel::make_cell_graph(model.mesh());
   ASSERT_EQ(static_cast<int>(graph.row_start.size()), model.cell_count() + 1);
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const auto begin = graph.columns.begin() + graph.row_start[cell],
@@ -208,7 +208,7 @@ TEST(CellPartition, CutsIntoBalancedNonEmptyParts) {
   const Scene scene = test::cantilever("hooke");
   const Model model(mesh, scene.model);
   for (int parts : {1, 2, 3}) {
-    const std::vector<int> owner = parallel::partition_cells(model, parts);
+    const std::vector<int> owner = parallel::partition_cells(model.mesh(), parts);
     std::vector<int> count(parts, 0);
     for (int p : owner) {
       ASSERT_GE(p, 0);
@@ -218,7 +218,7 @@ TEST(CellPartition, CutsIntoBalancedNonEmptyParts) {
     for (int p = 0; p < parts; ++p)
       EXPECT_NEAR(count[p], double(model.cell_count()) / parts, 0.1 * model.cell_count() / parts) << parts;
   }
-  EXPECT_THROW(parallel::partition_cells(model, model.cell_count() + 1), InputError);
+  EXPECT_THROW(parallel::partition_cells(model.mesh(), model.cell_count() + 1), InputError);
 }
 
 }  // namespace

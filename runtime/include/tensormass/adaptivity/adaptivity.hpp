@@ -129,7 +129,10 @@ class Adaptivity {
   void evaluate_criteria(const ElementBlock& block, std::span<const double> u, const unsigned char* flags,
                          std::vector<double>& seconds) const;
   signed char decide(int cell, int rung);
-  void record_laws(AdaptivityRecord& record);
+  void record_laws(AdaptivityRecord& record) const;
+  void record_cells_per_law(AdaptivityRecord& record) const;
+  /// Whether this rank counts the cell in the records: its owner does (every cell on one process).
+  bool counts(int cell) const;
   /// Applies moves_ (in cell order) and counts them in the record.
   void switch_moved_cells(AdaptivityRecord& record);
   /// moves_[cell] for one cell after its values were evaluated or kept

@@ -78,6 +78,7 @@ class Assembler {
   /// take copies of it after this call.
   void distribute(const Distribution* distribution);
   const Distribution* distribution() const { return distribution_; }
+  const Model& model() const { return *model_; }
   /// The free dofs (sorted) of the nodes of the cells that run kernels (not
   /// folded): the only rows and columns of K that change between
   /// assemblies while no law switches. Brought up to date with the folded

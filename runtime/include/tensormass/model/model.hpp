@@ -8,6 +8,7 @@
 #define TENSORMASS_MODEL_HPP
 
 #include <array>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -146,6 +147,13 @@ class Model {
   /// 2D): the size of energies whose round-off decides whether a change of
   /// the total energy is meaningful (line searches).
   double energy_scale() const { return energy_scale_; }
+  /// Young's modulus times rest volume of one cell (its term of energy_scale()).
+  double cell_energy_scale(int cell) const;
+  /// A model of one MPI rank's part of a mesh (Distribution::holds_part)
+  /// sums only its cells into the lumped mass, the gravity load and the
+  /// energy scale: `complete_dofs` completes the first two from every
+  /// rank's part, `energy_scale` is the whole mesh's.
+  void complete_partial_sums(const std::function<void(std::span<double>)>& complete_dofs, double energy_scale);
   /// Total strain energy at displacement u (dof_count).
   double strain_energy(std::span<const double> u) const;
   /// First cell whose deformation gradient has det <= 0 (or NaN) at a

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "tensormass/model/model.hpp"
+#include "tensormass/mesh/mesh.hpp"
 
 namespace tensormass::parallel {
 
@@ -16,13 +16,13 @@ struct CellGraph {
   std::vector<int> row_start;  ///< cell_count+1
   std::vector<int> columns;    ///< neighbour cells, sorted within each row
 };
-CellGraph make_cell_graph(const Model& model);
+CellGraph make_cell_graph(const Mesh& mesh);
 
 /// The part (0 .. parts-1) of every cell, computed by this process alone
 /// (PT-Scotch's cut may differ between processes: compute it on one rank
 /// and broadcast it). parts = 1 puts every cell in part 0; throws
 /// InputError without PETSc when parts > 1.
-std::vector<int> partition_cells(const Model& model, int parts);
+std::vector<int> partition_cells(const Mesh& mesh, int parts);
 
 }  // namespace tensormass::parallel
 

@@ -5,11 +5,13 @@
 #ifndef TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
 #define TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
 
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "tensormass/mesh/mesh.hpp"
+#include "tensormass/parallel/mesh_cut.hpp"
 
 namespace tensormass::parallel {
 
@@ -24,6 +26,21 @@ Mesh read_mesh_on_root(const std::string& path);
 std::vector<char> pack_mesh(const Mesh& mesh);
 /// Throws std::invalid_argument on bytes that pack_mesh did not make.
 Mesh unpack_mesh(std::span<const char> bytes);
+/// A mesh part as bytes, and back (unpack_mesh_part throws as unpack_mesh).
+std::vector<char> pack_mesh_part(const MeshPart& part);
+MeshPart unpack_mesh_part(std::span<const char> bytes);
+
+/// On rank 0 of several: cuts `whole` (cell_owner: per cell, its rank),
+/// sends every other rank its part (cut_mesh) and returns rank 0's. Every
+/// other rank calls receive_mesh_part() at the same time.
+MeshPart send_mesh_parts(const Mesh& whole, std::span<const int> cell_owner);
+MeshPart receive_mesh_part();
+
+/// Runs `work` on rank 0 alone; an exception it throws is thrown on every
+/// rank with the same message (InputError and NumericalError keep their
+/// type, others become std::runtime_error), so that no rank waits for what
+/// rank 0 will not send. On one rank, work().
+void on_root(const std::function<void()>& work);
 
 }  // namespace tensormass::parallel
 

@@ -34,6 +34,18 @@ void broadcast_from_root(std::span<int> values);
 /// Rank 0's bytes, sent to every rank: the others' `bytes` are resized to
 /// rank 0's length (any length: sent in pieces of at most 1 GiB).
 void broadcast_bytes_from_root(std::vector<char>& bytes);
+/// `root`'s bytes, sent to every rank, as broadcast_bytes_from_root.
+void broadcast_bytes_from(int root, std::vector<char>& bytes);
+/// Rank 0 sends `bytes` to rank `to` (1 .. world_size()-1), which takes them
+/// with receive_bytes_from_root(); any length, in pieces of at most 1 GiB.
+void send_bytes_from_root(int to, const std::vector<char>& bytes);
+std::vector<char> receive_bytes_from_root();
+/// The smallest `value` over the ranks and the lowest rank holding it, on every rank.
+struct RankedValue {
+  int value = 0;
+  int rank = 0;
+};
+RankedValue min_over_ranks(int value);
 /// The exit after an error caught on this rank: when every rank caught one
 /// (a bad scene, a numerical failure: the ranks hold the same state), rank 0
 /// prints `message` and all return `exit_code`; when the others do not

@@ -57,6 +57,9 @@ struct RunReport {
   int nodes = 0, cells = 0, dofs = 0, free_dofs = 0;
   int mpi_ranks = 1;                    ///< MPI ranks the run was shared among
   std::vector<double> peak_memory_mib;  ///< each rank's peak resident memory at the end (MiB)
+  /// Cells each rank's model holds: all of them on every rank, or its part
+  /// (its own cells and those touching its nodes) when the mesh was cut.
+  std::vector<double> cells_per_rank;
   /// Each rank's peak resident memory (MiB) when a phase of the run ended:
   /// "mesh" (read), "model and assembler" (built), "shared" (cut among the
   /// ranks), "solver" (ready for the first step), "first step", "end".
