@@ -5,14 +5,16 @@
 settings, one scene per size and integrator:
   static    `--load-steps` load steps, Newton tolerance 1e-8
   implicit  `--steps` steps of 0.01 s (one Newton iteration per step)
+  explicit  `--explicit-steps` steps of 10 us (lumped mass, no linear solve)
 each run with
   cholmod   the serial default (sparse Cholesky with factor reuse), not at 1M
   cg        serial Jacobi-preconditioned conjugate gradients
   petsc     PETSc CG + GAMG on one process (no mpirun)
+  serial    explicit only: one process, no backend
   petsc xN  the same over N MPI ranks (mpirun -n N), one thread each
 and prints, per run: wall time, mean ms per step and its assembly / solve
-split, linear iterations and every rank's peak resident memory (from each
-run's summary.json). A run past `--timeout` seconds is stopped and
+split, linear iterations, every rank's peak resident memory and the cells
+each rank holds (from each run's summary.json). A run past `--timeout` seconds is stopped and
 reported as such. Writes the rows as JSON with --json.
 
     /usr/bin/python3 bench/mpi_scaling.py [--binary build/tensormass] [--sizes 100k,1M] [--ranks 2]
@@ -44,6 +46,7 @@ output: {{directory: {out}}}
 SOLVERS = {
     "static": "{{type: static, load_steps: {load_steps}, tolerance: 1.0e-8}}",
     "implicit": "{{type: implicit, dt: 0.01, steps: {steps}}}",
+    "explicit": "{{type: explicit, dt: 1.0e-5, steps: {explicit_steps}}}",
 }
 
 
@@ -52,11 +55,12 @@ def run_one(args, work, mesh, size, kind, solver, ranks):
     scene = os.path.join(work, out + ".yaml")
     with open(scene, "w") as f:
         f.write(SCENE.format(mesh=mesh, out=out,
-                             solver=SOLVERS[kind].format(load_steps=args.load_steps, steps=args.steps)))
+                             solver=SOLVERS[kind].format(load_steps=args.load_steps, steps=args.steps,
+                                                         explicit_steps=args.explicit_steps)))
     command = [args.binary, "run", scene, "--quiet"]
     if solver in ("cholmod", "cg"):
         command += ["--set", f"solver.linear.type={solver}"]
-    else:
+    elif solver == "petsc":
         command += ["--set", "solver.backend=petsc"]
     if ranks > 1:
         command = ["mpirun", "-n", str(ranks)] + (["--oversubscribe"] if ranks > os.cpu_count() else []) + command
@@ -83,6 +87,7 @@ def run_one(args, work, mesh, size, kind, solver, ranks):
         "newton": summary["newton_iterations"]["total"],
         "linear_iterations": summary["linear_iterations"],
         "peak_mib_per_rank": summary["peak_memory_mib_per_rank"],
+        "cells_per_rank": summary["cells_per_rank"],
         "max_displacement": summary["max_displacement"]["value"],
     })
     shutil.rmtree(os.path.join(work, out), ignore_errors=True)
@@ -108,6 +113,7 @@ def main():
     parser.add_argument("--ranks", type=int, default=2, help="the largest rank count (runs 1 .. N)")
     parser.add_argument("--load-steps", type=int, default=2)
     parser.add_argument("--steps", type=int, default=5)
+    parser.add_argument("--explicit-steps", type=int, default=20)
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--json", help="write the rows here")
     parser.add_argument("--smoke", action="store_true", help="one 6k-tet run of each kind, 2 steps")
@@ -115,7 +121,7 @@ def main():
     args.binary = os.path.abspath(args.binary)
     sizes = ["6k"] if args.smoke else args.sizes.split(",")
     if args.smoke:
-        args.load_steps, args.steps, args.timeout = 1, 2, 120
+        args.load_steps, args.steps, args.explicit_steps, args.timeout = 1, 2, 5, 120
     if os.geteuid() == 0:
         os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
         os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
@@ -132,8 +138,11 @@ def main():
         mesh = os.path.join(work, f"beam-{size}.msh")
         subprocess.run([args.binary, "beam", "--dim", "3", "--type", "tet6", "--cells", ",".join(map(str, cells)),
                         "--size", ",".join(map(str, box)), "-o", mesh], check=True, capture_output=True)
-        for kind in ("static", "implicit"):
-            plan = ([] if size == "1M" else [("cholmod", 1)]) + [("cg", 1), ("petsc", 1)]
+        for kind in ("static", "implicit", "explicit"):
+            if kind == "explicit":
+                plan = [("serial", 1)]
+            else:
+                plan = ([] if size == "1M" else [("cholmod", 1)]) + [("cg", 1), ("petsc", 1)]
             plan += [("petsc", r) for r in range(2, args.ranks + 1)]
             for solver, ranks in plan:
                 row = run_one(args, work, mesh, size, kind, solver, ranks)

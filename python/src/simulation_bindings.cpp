@@ -156,7 +156,7 @@ void bind_simulation(py::module_& m) {
       .def(py::init([](const std::string& scene, const py::object& overrides, bool resume, bool progress) {
              const Scene loaded = load_scene(scene, override_texts(overrides));
              py::gil_scoped_release release;
-             return std::make_unique<Simulation>(loaded, RunOptions{progress, resume});
+             return std::make_unique<Simulation>(loaded, RunOptions{progress, resume, true});
            }),
            py::arg("scene"), py::arg("overrides") = py::none(), py::arg("resume") = false, py::arg("progress") = false)
       .def_static(
@@ -166,7 +166,7 @@ void bind_simulation(py::module_& m) {
             const Scene scene = parse_scene(scene_text(name, keys), name);
             Mesh mesh = mesh_from_arrays(mesh_arrays(points, cells, groups, cell_groups), name);
             py::gil_scoped_release release;
-            return std::make_unique<Simulation>(scene, std::move(mesh), RunOptions{progress, false});
+            return std::make_unique<Simulation>(scene, std::move(mesh), RunOptions{progress, false, true});
           },
           py::arg("points"), py::arg("cells"), py::arg("groups") = py::none(), py::arg("cell_groups") = py::none(),
           py::arg("name") = "from_arrays", py::arg("progress") = false,

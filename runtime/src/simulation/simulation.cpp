@@ -296,10 +296,11 @@ Mesh checked_mesh(const Scene& scene, StartMesh& start) {
 }
 
 /// Whether each MPI rank holds only its part of the mesh. Runs that refine
-/// the mesh (every rank refines the whole of it alike) or that save or
-/// restore every cell's adaptive state keep the whole mesh on every rank.
+/// the mesh (every rank refines the whole of it alike), that save or
+/// restore every cell's adaptive state, or whose caller asks for it
+/// (Python scripts) keep the whole mesh on every rank.
 bool cuts_mesh(const Scene& scene, const RunOptions& options) {
-  if (parallel::world_size() == 1 || scene.refinement.enabled) return false;
+  if (parallel::world_size() == 1 || scene.refinement.enabled || options.whole_mesh_on_every_rank) return false;
   return !(scene.adaptivity.enabled && (options.resume || scene.output.checkpoint_every > 0));
 }
 

@@ -23,6 +23,10 @@ struct RunOptions {
   /// Continue from the output directory's checkpoint.bin (checkpoint.hpp)
   /// when there is one; start afresh when there is none.
   bool resume = false;
+  /// Over several MPI ranks, every rank holds the whole mesh and model
+  /// instead of its part (the cells it assembles): mesh(), model(),
+  /// criteria() then cover every cell on every rank, as a script expects.
+  bool whole_mesh_on_every_rank = false;
 };
 
 /// The mesh after a refinement event (adaptivity.refine).
