@@ -129,6 +129,7 @@ Mesh GmshReader::read() {
   }
   if (!have_nodes_) throw InputError(in_.path() + ": no $Nodes section");
   if (!have_elements_) throw InputError(in_.path() + ": no $Elements section");
+  in_.release();  // the text is parsed: the mesh is built without it (36 MB at a million tets)
   return builder_.build([this](long key) { return describe(key); });
 }
 
@@ -305,6 +306,7 @@ void GmshReader::add_element(const GmshType& type, long id, std::span<const long
 
 void GmshReader::read_elements_22() {
   const long count = in_.count("elements", binary_ ? 12 : 8);
+  builder_.reserve_elements(static_cast<std::size_t>(count));
   if (binary_) {
     in_.skip_line_end();
     read_elements_22_binary(count);
@@ -371,11 +373,11 @@ void GmshReader::read_elements_41() {
   if (binary_) {
     in_.skip_line_end();
     blocks = binary_size("element blocks", 20);
-    binary_size("elements", 16);
+    builder_.reserve_elements(static_cast<std::size_t>(binary_size("elements", 16)));
     in_.bytes(16, "the element tag range");
   } else {
     blocks = in_.count("element blocks", 8);
-    in_.count("elements", 4);
+    builder_.reserve_elements(static_cast<std::size_t>(in_.count("elements", 4)));
     in_.integer("the minimum element tag");
     in_.integer("the maximum element tag");
   }

@@ -41,6 +41,12 @@ class InputCursor {
 
   const std::string& path() const { return path_; }
   std::string_view data() const { return data_; }
+  /// Frees the text once everything was read from it (a reader's last step
+  /// then runs without it); nothing may be read after.
+  void release() {
+    std::string().swap(data_);
+    pos_ = 0;
+  }
   std::size_t position() const { return pos_; }
   std::size_t remaining() const { return data_.size() - pos_; }
   long line() const { return line_; }

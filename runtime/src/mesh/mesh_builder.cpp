@@ -92,28 +92,40 @@ struct MeshBuilder::Resolved {
 
 namespace {
 
-/// Index of the first element with the same shape and nodes, for each element.
+/// Index of the first element with the same shape and nodes, for each
+/// element. Elements are sorted by a hash of their shape and nodes (16
+/// bytes each, against some 48 in a hash map at a million elements), and
+/// only those of one hash are compared.
 std::vector<int> find_duplicates(const std::vector<const Shape*>& shapes, const std::vector<std::size_t>& offsets,
                                  const std::vector<int>& nodes) {
-  std::vector<int> first(shapes.size());
-  std::unordered_multimap<std::size_t, int> seen;
-  seen.reserve(shapes.size());
+  const auto same = [&](std::size_t a, std::size_t b) {
+    return shapes[a] == shapes[b] && std::equal(nodes.begin() + static_cast<std::ptrdiff_t>(offsets[a]),
+                                                nodes.begin() + static_cast<std::ptrdiff_t>(offsets[a + 1]),
+                                                nodes.begin() + static_cast<std::ptrdiff_t>(offsets[b]),
+                                                nodes.begin() + static_cast<std::ptrdiff_t>(offsets[b + 1]));
+  };
+  std::vector<std::pair<std::size_t, int>> hashed(shapes.size());
   for (std::size_t e = 0; e < shapes.size(); ++e) {
-    const auto begin = nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e]);
-    const auto end = nodes.begin() + static_cast<std::ptrdiff_t>(offsets[e + 1]);
     std::size_t h = std::hash<const void*>()(shapes[e]);
-    for (auto it = begin; it != end; ++it) h = h * 1000003u ^ static_cast<std::size_t>(*it);
-    first[e] = static_cast<int>(e);
-    const auto [lo, hi] = seen.equal_range(h);
-    for (auto it = lo; it != hi; ++it) {
-      const auto other = static_cast<std::size_t>(it->second);
-      if (shapes[other] == shapes[e] &&
-          std::equal(begin, end, nodes.begin() + static_cast<std::ptrdiff_t>(offsets[other]))) {
-        first[e] = it->second;
-        break;
-      }
+    for (std::size_t k = offsets[e]; k < offsets[e + 1]; ++k) h = h * 1000003u ^ static_cast<std::size_t>(nodes[k]);
+    hashed[e] = {h, static_cast<int>(e)};
+  }
+  std::sort(hashed.begin(), hashed.end());  // by hash, then by element: the first of equals comes first
+  std::vector<int> first(shapes.size());
+  for (std::size_t run = 0; run < hashed.size();) {
+    std::size_t end = run + 1;
+    while (end < hashed.size() && hashed[end].first == hashed[run].first) ++end;
+    for (std::size_t i = run; i < end; ++i) {
+      const auto e = static_cast<std::size_t>(hashed[i].second);
+      first[e] = hashed[i].second;
+      for (std::size_t j = run; j < i; ++j)  // the earlier elements of this hash, in order
+        if (const auto other = static_cast<std::size_t>(hashed[j].second);
+            first[other] == hashed[j].second && same(e, other)) {
+          first[e] = hashed[j].second;
+          break;
+        }
     }
-    if (first[e] == static_cast<int>(e)) seen.emplace(h, static_cast<int>(e));
+    run = end;
   }
   return first;
 }
@@ -142,6 +154,15 @@ void MeshBuilder::add_node(long id, const double xyz[3], Location where) {
   node_ids_.push_back(id);
   xyz_.insert(xyz_.end(), xyz, xyz + 3);
   node_where_.push_back(where);
+}
+
+void MeshBuilder::reserve_elements(std::size_t count) {
+  const std::size_t total = shapes_.size() + count;
+  shapes_.reserve(total);
+  element_ids_.reserve(total);
+  node_offsets_.reserve(total + 1);
+  group_offsets_.reserve(total + 1);
+  element_where_.reserve(total);
 }
 
 void MeshBuilder::add_element(const Shape& shape, long id, std::span<const long> nodes, std::span<const long> groups,

@@ -55,6 +55,10 @@ class MeshBuilder {
 
   /// Reserves room for `count` nodes (counts already checked by the reader).
   void reserve_nodes(std::size_t count);
+  /// Reserves room for `count` more elements' own entries (counts already
+  /// checked by the reader): a million-element file then grows no array by
+  /// copying it.
+  void reserve_elements(std::size_t count);
   /// Adds node `id`; throws at `where` for a non-finite coordinate.
   void add_node(long id, const double xyz[3], Location where);
   /// Adds an element: `nodes` are file node ids in our node order,
