@@ -185,6 +185,7 @@ inline void expect_identical(const tensormass::Mesh& a, const tensormass::Mesh& 
     ASSERT_NEAR(a.rest_positions[i], b.rest_positions[i], 1e-15 * std::max(1.0, std::abs(a.rest_positions[i])))
         << "coordinate " << i;
   EXPECT_EQ(a.node_source_ids, b.node_source_ids);
+  EXPECT_EQ(a.cell_numbers, b.cell_numbers);
   ASSERT_EQ(a.blocks.size(), b.blocks.size());
   for (std::size_t k = 0; k < a.blocks.size(); ++k) {
     EXPECT_EQ(a.blocks[k].element, b.blocks[k].element);

@@ -43,7 +43,8 @@ std::pair<int, int> Mesh::locate(int cell) const {
 std::string Mesh::describe_cell(int cell) const {
   const auto [b, local] = locate(cell);
   std::ostringstream text;
-  text << "element " << cell;
+  const bool numbered = cell >= 0 && cell < static_cast<int>(cell_numbers.size());
+  text << "element " << (numbered ? cell_numbers[static_cast<std::size_t>(cell)] : cell);
   if (b >= 0) {
     const ElementBlock& block = blocks[b];
     text << " (" << block.element->name;
@@ -80,6 +81,9 @@ void Mesh::validate() const {
     next += block.count();
   }
   if (next == 0) throw InputError(where + ": no " + std::to_string(dim) + "D elements");
+  if (!cell_numbers.empty() && cell_numbers.size() != static_cast<std::size_t>(next))
+    throw InputError(where + ": " + std::to_string(cell_numbers.size()) + " whole-mesh cell numbers for " +
+                     std::to_string(next) + " cells");
   for (const Group& g : groups) {
     for (int node : g.nodes)
       if (node < 0 || node >= n) throw InputError(where + ": group '" + g.name + "' refers to a missing node");

@@ -12,6 +12,7 @@
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
+#include "tensormass/parallel/rank_errors.hpp"
 
 namespace tensormass::parallel {
 
@@ -85,6 +86,7 @@ void pack_into(Packer& out, const Mesh& mesh) {
     out.array(block.source_ids);
     out.value(block.first_cell);
   }
+  out.array(mesh.cell_numbers);
   out.value(static_cast<std::uint64_t>(mesh.groups.size()));
   for (const Group& group : mesh.groups) {
     out.text(group.name);
@@ -112,6 +114,7 @@ Mesh unpack_from(Unpacker& in) {
     block.source_ids = in.array<long>();
     block.first_cell = in.value<int>();
   }
+  mesh.cell_numbers = in.array<int>();
   mesh.groups.resize(in.value<std::uint64_t>());
   for (Group& group : mesh.groups) {
     group.name = in.text();
@@ -191,33 +194,6 @@ Mesh read_mesh_on_root(const std::string& path) {
   });
   broadcast_bytes_from_root(bytes);
   return world_rank() == 0 ? std::move(mesh) : unpack_mesh(bytes);
-}
-
-void on_root(const std::function<void()>& work) {
-  if (world_size() == 1) return work();
-  // Rank 0 sends what it met, then the error's message if any.
-  enum Status : int { kDone, kInputError, kNumericalError, kOtherError };
-  int status = kDone;
-  std::string message;
-  if (world_rank() == 0) {
-    try {
-      work();
-    } catch (const InputError& e) {
-      status = kInputError, message = e.what();
-    } catch (const NumericalError& e) {
-      status = kNumericalError, message = e.what();
-    } catch (const std::exception& e) {
-      status = kOtherError, message = e.what();
-    }
-  }
-  broadcast_from_root(std::span<int>(&status, 1));
-  if (status == kDone) return;
-  std::vector<char> text(message.begin(), message.end());
-  broadcast_bytes_from_root(text);
-  message.assign(text.begin(), text.end());
-  if (status == kInputError) throw InputError(message);
-  if (status == kNumericalError) throw NumericalError(message);
-  throw std::runtime_error(message);
 }
 
 }  // namespace tensormass::parallel

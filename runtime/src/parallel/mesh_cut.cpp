@@ -58,6 +58,7 @@ MeshPart cut_mesh(const Mesh& whole, std::span<const int> cell_owner, std::span<
       if (const int local = local_of[static_cast<std::size_t>(cell)]; local >= 0) kept.cells.push_back(local);
     mesh.groups.push_back(std::move(kept));
   }
+  mesh.cell_numbers = part.cut.global_cell;
   part.cut.node_owner.assign(node_owner.begin(), node_owner.end());
   part.cut.whole_cell_count = whole.cell_count();
   return part;

@@ -30,6 +30,7 @@
 #include "tensormass/parallel/distribution.hpp"
 #include "tensormass/parallel/mesh_broadcast.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
+#include "tensormass/parallel/rank_errors.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -242,13 +243,23 @@ void complete_model_sums(Model& model, const Distribution& distribution) {
                               parallel::sum_over_ranks(energy_scale));
 }
 
+/// The model of `mesh`. Over ranks that each hold their part of a mesh
+/// (`collective`), an error building one rank's (an element inverted at
+/// rest) is thrown on every rank, so none waits for it in the next step.
+Model build_model(const Mesh& mesh, const ModelSpec& spec, bool collective) {
+  if (!collective) return Model(mesh, spec);
+  std::optional<Model> model;
+  parallel::on_every_rank([&] { model.emplace(mesh, spec); });
+  return std::move(*model);
+}
+
 /// The mesh and everything built on it: replaced as a whole when
 /// refinement changes the mesh. `cut`: set when the mesh is this rank's part.
 struct Discretisation {
   Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics,
                  std::optional<CellCut> cut = std::nullopt)
       : mesh(std::move(mesh_in)),
-        model(mesh, scene.model),
+        model(build_model(mesh, scene.model, cut.has_value())),
         distribution(distribute(model, std::move(cut))),
         assembler(model, true, distribution.get()),
         linear(make_linear_solver(scene.solver.linear)),

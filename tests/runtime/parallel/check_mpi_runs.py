@@ -2,9 +2,11 @@
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
 whose cells switch laws, an explicit run, runs that refine their mesh (a
-tet beam, and the mixed beam with its pyramids); the .pvtu pieces hold every cell
-once; a bad scene, a truncated mesh (read by rank 0 alone) and a numerical
-failure exit non-zero on every rank with one message and no hang.
+tet beam, and the mixed beam with its pyramids); each rank holds its part
+of the mesh (the whole mesh in refining runs); the .pvtu pieces hold every
+cell once; a bad scene, a truncated mesh (read by rank 0 alone), an element
+inverted at rest (met by the rank building its part) and a numerical failure
+exit non-zero on every rank with one message and no hang.
 
 usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
 (--without-petsc: the build has no PETSc; the test says so and is skipped)
@@ -189,6 +191,41 @@ def check_bad_mesh(binary, work):
     return []
 
 
+def invert_last_volume_element(source, target):
+    """Copies the MSH 4.1 text mesh `source` to `target` with the last
+    element of its 3D blocks turned inside out (two nodes swapped)."""
+    with open(source) as f:
+        lines = f.read().split("\n")
+    start = lines.index("$Elements")
+    at, last = start + 2, None
+    while lines[at] != "$EndElements":
+        dim, _, _, count = map(int, lines[at].split())
+        if dim == 3:
+            last = at + count
+        at += count + 1
+    fields = lines[last].split()
+    fields[1], fields[2] = fields[2], fields[1]
+    lines[last] = " ".join(fields)
+    with open(target, "w") as f:
+        f.write("\n".join(lines))
+
+
+def check_inverted_at_rest(binary, work):
+    """An element inverted at rest, met while each rank builds its model on its
+    part: every rank stops at once, with the message of one process."""
+    invert_last_volume_element(os.path.join(work, "beam.msh"), os.path.join(work, "inverted.msh"))
+    text = SCENES["static_stvk"].replace("beam.msh", "inverted.msh")
+    result = run_on_two_ranks(binary, work, "inverted", text)
+    serial = run([binary, "run", os.path.join(work, "inverted.yaml")], work, timeout=60)
+    message = serial.stderr.strip().splitlines()[-1] if serial.stderr.strip() else "(no message)"
+    count = result.stderr.count(message)
+    print(f"element inverted at rest on 2 ranks: exit {result.returncode}, the serial message told {count} time(s)")
+    if result.returncode != 2 or serial.returncode != 2 or count != 1 or "at rest" not in message:
+        return [f"an element inverted at rest on 2 ranks: exit {result.returncode} (serial {serial.returncode}), "
+                f"'{message}' told {count} times: " + result.stderr]
+    return []
+
+
 def check_numerical_failure(binary, work):
     scene = os.path.join(work, "diverging.yaml")
     with open(scene, "w") as f:
@@ -232,6 +269,7 @@ def main():
         failures += check_scene(binary, work, name)
     failures += check_bad_scene(binary, work)
     failures += check_bad_mesh(binary, work)
+    failures += check_inverted_at_rest(binary, work)
     failures += check_numerical_failure(binary, work)
     for failure in failures:
         print("FAIL:", failure)

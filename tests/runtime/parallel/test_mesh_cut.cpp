@@ -13,6 +13,7 @@
 #include "support/cantilever.hpp"
 #include "support/test_meshes.hpp"
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/io/read_mesh.hpp"
 #include "tensormass/parallel/distribution.hpp"
 #include "tensormass/parallel/mesh_broadcast.hpp"
@@ -99,6 +100,17 @@ TEST(MeshCut, PartsHoldEveryNodeAndTheCellsTheirRankAssembles) {
     }
   }
   EXPECT_TRUE(std::all_of(owned_by.begin(), owned_by.end(), [](int n) { return n == 1; }));
+}
+
+TEST(MeshCut, PartsNameTheirCellsByTheWholeMeshsNumbers) {
+  const Mesh whole = mixed_beam();
+  const std::vector<int> owner = consecutive_parts(whole.cell_count(), 2);
+  MeshPart part = parallel::cut_mesh(whole, owner, parallel::node_owners(whole, owner, 2), 1);
+  EXPECT_EQ(part.mesh.cell_numbers, part.cut.global_cell);
+  for (int cell = 0; cell < part.mesh.cell_count(); ++cell)
+    ASSERT_EQ(part.mesh.describe_cell(cell), whole.describe_cell(part.cut.global_cell[cell]));
+  part.mesh.cell_numbers.pop_back();
+  EXPECT_THROW(part.mesh.validate(), InputError);
 }
 
 TEST(MeshCut, ModelsOnThePartsAssembleTheSerialOwnRows) {

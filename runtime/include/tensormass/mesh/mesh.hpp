@@ -62,6 +62,10 @@ struct Mesh {
   std::vector<ElementBlock> blocks;    ///< one per element type present, in registry order
   std::vector<Group> groups;
   std::string source;  ///< file the mesh came from, for messages
+  /// Empty, or for a mesh that is one MPI rank's part of a larger one
+  /// (parallel::cut_mesh): per cell, its number in the whole mesh, which
+  /// messages give (describe_cell).
+  std::vector<int> cell_numbers;
 
   int node_count() const { return static_cast<int>(rest_positions.size() / 3); }
   int cell_count() const;
@@ -69,7 +73,8 @@ struct Mesh {
   const Group* group(std::string_view name) const;
   /// Block index and local index of mesh-wide cell `cell`.
   std::pair<int, int> locate(int cell) const;
-  /// "element 12 (tet4, id 57 in beam.msh)": for messages.
+  /// "element 12 (tet4, id 57 in beam.msh)": for messages (12: the cell's
+  /// number in the whole mesh, cell_numbers[cell] when given).
   std::string describe_cell(int cell) const;
   /// Checks indices, finite coordinates and block numbering; throws InputError.
   void validate() const;

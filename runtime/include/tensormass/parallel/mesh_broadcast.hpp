@@ -5,7 +5,6 @@
 #ifndef TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
 #define TENSORMASS_PARALLEL_MESH_BROADCAST_HPP
 
-#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,12 +34,6 @@ MeshPart unpack_mesh_part(std::span<const char> bytes);
 /// other rank calls receive_mesh_part() at the same time.
 MeshPart send_mesh_parts(const Mesh& whole, std::span<const int> cell_owner);
 MeshPart receive_mesh_part();
-
-/// Runs `work` on rank 0 alone; an exception it throws is thrown on every
-/// rank with the same message (InputError and NumericalError keep their
-/// type, others become std::runtime_error), so that no rank waits for what
-/// rank 0 will not send. On one rank, work().
-void on_root(const std::function<void()>& work);
 
 }  // namespace tensormass::parallel
 
