@@ -80,8 +80,10 @@ void Distribution::build() {
   for (std::size_t row = 0; row < free.size(); ++row) {
     const int owner = node_owner(free[row] / d);
     global_row_[row] = next[owner]++;
-    if (owner == rank_) owned_free_rows_.push_back(static_cast<int>(row));
+    (owner == rank_ ? owned_free_rows_ : foreign_free_rows_).push_back(static_cast<int>(row));
   }
+  for (std::size_t node = 0; node < cut_.node_owner.size(); ++node)
+    if (cut_.node_owner[node] != rank_) foreign_nodes_.push_back(static_cast<int>(node));
 }
 
 int Distribution::local_cell(int global) const {
@@ -90,16 +92,20 @@ int Distribution::local_cell(int global) const {
 }
 
 void Distribution::keep_own_dofs(std::span<double> v) const {
-  const int d = model_->dim();
-  for (std::size_t dof = 0; dof < v.size(); ++dof)
-    if (!owns_node(static_cast<int>(dof) / d)) v[dof] = 0.0;
+  // By node from a list made once: a test per dof with its division by d
+  // took 6 % of a 1M-tet explicit step on 2 ranks.
+  const std::size_t d = static_cast<std::size_t>(model_->dim());
+  if (v.size() != d * cut_.node_owner.size())
+    throw std::invalid_argument("Distribution::keep_own_dofs: " + std::to_string(v.size()) + " values for " +
+                                std::to_string(d * cut_.node_owner.size()) + " dofs");
+  for (int node : foreign_nodes_) std::fill_n(v.begin() + static_cast<std::ptrdiff_t>(d * node), d, 0.0);
 }
 
 void Distribution::keep_own_free(std::span<double> v) const {
-  const int d = model_->dim();
-  const auto& free = model_->free_dofs();
-  for (std::size_t row = 0; row < v.size(); ++row)
-    if (!owns_node(free[row] / d)) v[row] = 0.0;
+  if (v.size() != global_row_.size())
+    throw std::invalid_argument("Distribution::keep_own_free: " + std::to_string(v.size()) + " values for " +
+                                std::to_string(global_row_.size()) + " free dofs");
+  for (int row : foreign_free_rows_) v[row] = 0.0;
 }
 
 void Distribution::complete_dofs(std::span<double> v) const {

@@ -56,7 +56,8 @@ class Distribution {
   const std::vector<int>& owned_free_rows() const { return owned_free_rows_; }
   int first_global_row() const { return first_global_row_; }
 
-  /// Zeroes the entries of other ranks' dofs: v is dof_count or free_dof_count long.
+  /// Zeroes the entries of other ranks' dofs: v is dof_count (keep_own_dofs)
+  /// or free_dof_count (keep_own_free) long, else std::invalid_argument.
   void keep_own_dofs(std::span<double> v) const;
   void keep_own_free(std::span<double> v) const;
   /// keep_own_* then the sum over ranks: every rank gets the complete vector.
@@ -76,6 +77,7 @@ class Distribution {
   std::vector<char> assembled_;
   int assembled_count_ = 0;
   std::vector<int> global_row_, owned_free_rows_;
+  std::vector<int> foreign_nodes_, foreign_free_rows_;  ///< other ranks' nodes and free rows
   int first_global_row_ = 0;
 };
 
