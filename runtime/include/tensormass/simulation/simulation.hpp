@@ -118,11 +118,15 @@ class Simulation {
 
   const Scene& scene() const;
   const State& state() const;
+  /// The mesh and model this rank holds: over several MPI ranks, unless
+  /// RunOptions::whole_mesh_on_every_rank, its part of the mesh (every node,
+  /// its cells; Mesh::cell_numbers gives their whole-mesh numbers).
   const Mesh& mesh() const;
   const Model& model() const;
   /// Sets cells' laws between steps (each cell keeps its element and split);
   /// InputError naming the cell when the registry has no such kernel. The
-  /// adaptive model, when on, goes on switching from the new laws.
+  /// adaptive model, when on, goes on switching from the new laws. `cells`
+  /// are the whole mesh's numbers; a rank holding a part sets those it holds.
   void set_law(const std::vector<int>& cells, const std::string& law);
   /// Model::hold between steps.
   void set_prescribed(const std::string& group, const std::array<double, 3>& displacement,
@@ -132,7 +136,8 @@ class Simulation {
   /// static equilibrium it is the force the constraint applies (the
   /// reaction; minus it, the force on the tool or support).
   std::vector<double> internal_force() const;
-  /// The adaptive criteria's last values, by name, per cell (empty without `adaptivity`).
+  /// The adaptive criteria's last values, by name, per cell of model()
+  /// (empty without `adaptivity`).
   std::vector<std::pair<std::string, std::vector<double>>> criteria() const;
 
  private:
