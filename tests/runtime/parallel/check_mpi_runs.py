@@ -1,7 +1,8 @@
 """`mpirun -n 1/2/3 tensormass run ... --set solver.backend=petsc` against the
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
-whose cells switch laws, an explicit run, runs that refine their mesh (a
+whose cells switch laws, an explicit run and one whose cells switch (the
+criteria screen on), runs that refine their mesh (a
 tet beam, and the mixed beam with its pyramids); each rank holds its part
 of the mesh (the whole mesh in refining runs); the .pvtu pieces hold every
 cell once; a bad scene, a truncated mesh (read by rank 0 alone), an element
@@ -60,6 +61,12 @@ adaptivity:
   ladder: [hooke, neohookean]
 """, law="hooke"),
     "explicit": clamped_beam("solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}\n"),
+    "explicit_switching": clamped_beam("""solver: {type: explicit, dt: 2.0e-4, steps: 300, damping: {mass: 0.1}}
+adaptivity:
+  criteria: [{name: R_NL, threshold: 1.0e-4}]
+  ladder: [hooke, neohookean]
+  every: 5
+""", law="hooke"),
     "implicit_refining": clamped_beam("""solver: {type: implicit, dt: 0.01, steps: 12, linear: {tolerance: 1.0e-12}}
 adaptivity:
   refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1, every: 4}
