@@ -2,7 +2,8 @@
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
 whose cells switch laws, an explicit run and one whose cells switch (the
-criteria screen on), runs that refine their mesh (a
+criteria screen on), a run resumed from its checkpoint, runs that refine
+their mesh (a
 tet beam, and the mixed beam with its pyramids); each rank holds its part
 of the mesh (the whole mesh in refining runs); the .pvtu pieces hold every
 cell once; a bad scene, a truncated mesh (read by rank 0 alone), an element
@@ -233,6 +234,33 @@ def check_inverted_at_rest(binary, work):
     return []
 
 
+def check_resume(binary, work):
+    """A run on parts of the mesh stopped after 10 steps and resumed from its
+    checkpoint to 20 ends where a run of 20 steps does, its track (kept by
+    rank 0, made from the whole mesh) one row per step."""
+    scene = os.path.join(work, "resumed.yaml")
+    with open(scene, "w") as f:
+        f.write(clamped_beam("solver: {type: implicit, dt: 0.01, steps: 10, linear: {tolerance: 1.0e-12}}\n"
+                             "output: {checkpoint_every: 5, track: [body]}\n"))
+    common = mpirun(2) + [binary, "run", scene, "--quiet", "--set", "solver.backend=petsc"]
+    runs = [common + ["--set", "output.directory=out-resumed"],
+            common + ["--set", "output.directory=out-resumed", "--set", "solver.steps=20", "--resume"],
+            common + ["--set", "output.directory=out-straight", "--set", "solver.steps=20"]]
+    for command in runs:
+        result = run(command, work)
+        if result.returncode != 0:
+            return [f"resume on 2 ranks: exit {result.returncode}: {result.stderr[-2000:]}"]
+    resumed, _ = read_result(os.path.join(work, "out-resumed"))
+    straight, _ = read_result(os.path.join(work, "out-straight"))
+    difference = np.abs(resumed - straight).max() / np.abs(straight).max()
+    rows = [len(open(os.path.join(work, d, "track_body.csv")).read().splitlines())
+            for d in ("out-resumed", "out-straight")]
+    print(f"resumed on 2 ranks: difference {difference:.2e} of the largest displacement; track rows {rows}")
+    if not difference <= TOLERANCE or rows[0] != rows[1]:
+        return [f"resume on 2 ranks: differs by {difference:.3e}, track rows {rows}"]
+    return []
+
+
 def check_numerical_failure(binary, work):
     scene = os.path.join(work, "diverging.yaml")
     with open(scene, "w") as f:
@@ -277,6 +305,7 @@ def main():
     failures += check_bad_scene(binary, work)
     failures += check_bad_mesh(binary, work)
     failures += check_inverted_at_rest(binary, work)
+    failures += check_resume(binary, work)
     failures += check_numerical_failure(binary, work)
     for failure in failures:
         print("FAIL:", failure)
