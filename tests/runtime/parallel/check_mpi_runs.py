@@ -2,13 +2,13 @@
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
 whose cells switch laws, an explicit run and one whose cells switch (the
-criteria screen on), a run resumed from its checkpoint, runs that refine
-their mesh (a
-tet beam, and the mixed beam with its pyramids); each rank holds its part
-of the mesh (the whole mesh in refining runs); the .pvtu pieces hold every
-cell once; a bad scene, a truncated mesh (read by rank 0 alone), an element
-inverted at rest (met by the rank building its part) and a numerical failure
-exit non-zero on every rank with one message and no hang.
+criteria screen on), runs that refine their mesh (a tet beam, and the mixed
+beam with its pyramids); each rank holds its part of the mesh (the whole mesh
+in refining runs); the .pvtu pieces hold every cell once; a run resumed from
+its checkpoint ends where a straight run does; a bad scene, a truncated mesh
+(read by rank 0 alone), an element inverted at rest (met by the rank building
+its part) and a numerical failure exit non-zero on every rank with one
+message and no hang.
 
 usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
 (--without-petsc: the build has no PETSc; the test says so and is skipped)
