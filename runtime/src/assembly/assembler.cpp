@@ -274,7 +274,11 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
     if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
   }
   if (folded < model_->cell_count()) assemble_kernels(u, gradient, stiffness);
-  if (distribution_) distribution_->complete_dofs(gradient);
+  if (!distribution_) return;
+  // A divided state reads its own rows only: its ghost rows are partial
+  // sums, zeroed; the other rows were never touched.
+  if (distribution_->divides_state()) distribution_->zero_ghost_dofs(gradient);
+  else distribution_->complete_dofs(gradient);
 }
 
 const std::vector<int>& Assembler::changing_rows() const {
@@ -299,7 +303,8 @@ const std::vector<int>& Assembler::changing_rows() const {
 
 void Assembler::tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const {
   K.multiply(x, y);
-  if (distribution_) distribution_->complete_free(y);
+  // K holds this rank's rows only: with a divided state y is complete there and zero elsewhere.
+  if (distribution_ && !distribution_->divides_state()) distribution_->complete_free(y);
 }
 
 void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const {

@@ -83,7 +83,58 @@ void Distribution::build() {
     (owner == rank_ ? owned_free_rows_ : foreign_free_rows_).push_back(static_cast<int>(row));
   }
   for (std::size_t node = 0; node < cut_.node_owner.size(); ++node)
-    if (cut_.node_owner[node] != rank_) foreign_nodes_.push_back(static_cast<int>(node));
+    (cut_.node_owner[node] != rank_ ? foreign_nodes_ : own_nodes_).push_back(static_cast<int>(node));
+  if (holds_part_) build_ghost_links();
+}
+
+void Distribution::build_ghost_links() {
+  // A rank's part holds every cell touching its nodes, so each rank can
+  // tell from its own cells who needs its nodes: rank q needs cell c when q
+  // owns c or one of c's nodes, and then needs all of c's nodes. What q
+  // sends here is found alike from q's side: the two lists agree.
+  std::vector<std::vector<int>> send(size_), receive(size_);
+  std::vector<int> needing;
+  for (int cell = 0; cell < model_->cell_count(); ++cell) {
+    const auto nodes = model_->cell_nodes(cell);
+    needing.assign(1, cell_owner(cell));
+    for (int node : nodes) needing.push_back(node_owner(node));
+    for (int node : nodes) {
+      if (!owns_node(node)) {
+        receive[node_owner(node)].push_back(node);
+        continue;
+      }
+      for (int q : needing)
+        if (q != rank_) send[q].push_back(node);
+    }
+  }
+  const int d = model_->dim();
+  const auto& free_index = model_->free_index();
+  const auto dofs_of = [&](const std::vector<int>& nodes, std::vector<int>& dofs, std::vector<int>& free) {
+    for (int node : nodes)
+      for (int a = 0; a < d; ++a) {
+        dofs.push_back(node * d + a);
+        if (free_index[node * d + a] >= 0) free.push_back(free_index[node * d + a]);
+      }
+  };
+  for (int q = 0; q < size_; ++q) {
+    for (std::vector<int>* list : {&send[q], &receive[q]}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    if (send[q].empty() && receive[q].empty()) continue;
+    GhostLink link;
+    link.rank = q;
+    link.send_nodes = std::move(send[q]);
+    link.receive_nodes = std::move(receive[q]);
+    dofs_of(link.send_nodes, link.send_dofs, link.send_free);
+    dofs_of(link.receive_nodes, link.receive_dofs, link.receive_free);
+    ghost_nodes_.insert(ghost_nodes_.end(), link.receive_nodes.begin(), link.receive_nodes.end());
+    neighbours_.push_back(q);
+    links_.push_back(std::move(link));
+  }
+  std::sort(ghost_nodes_.begin(), ghost_nodes_.end());
+  send_buffers_.resize(links_.size());
+  receive_buffers_.resize(links_.size());
 }
 
 int Distribution::local_cell(int global) const {
@@ -116,6 +167,41 @@ void Distribution::complete_dofs(std::span<double> v) const {
 void Distribution::complete_free(std::span<double> v) const {
   keep_own_free(v);
   parallel::sum_over_ranks(v);
+}
+
+void Distribution::exchange(std::span<double> a, std::span<double> b, bool free_rows) const {
+  if (!holds_part_) return;
+  const std::size_t length = free_rows ? global_row_.size() : model_->dim() * cut_.node_owner.size();
+  for (std::span<double> v : {a, b})
+    if (!v.empty() && v.size() != length)
+      throw std::invalid_argument("Distribution::share_ghost_" + std::string(free_rows ? "free" : "dofs") + ": " +
+                                  std::to_string(v.size()) + " values for " + std::to_string(length));
+  const int vectors = b.empty() ? 1 : 2;
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const GhostLink& link = links_[i];
+    const std::vector<int>& sent = free_rows ? link.send_free : link.send_dofs;
+    std::vector<double>& buffer = send_buffers_[i];
+    buffer.clear();
+    for (std::span<double> v : {a, b})
+      for (std::size_t k = 0; k < sent.size() && !v.empty(); ++k) buffer.push_back(v[sent[k]]);
+    receive_buffers_[i].resize(vectors * (free_rows ? link.receive_free : link.receive_dofs).size());
+  }
+  parallel::exchange_with_neighbours(neighbours_, send_buffers_, receive_buffers_);
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const std::vector<int>& received = free_rows ? links_[i].receive_free : links_[i].receive_dofs;
+    const double* value = receive_buffers_[i].data();
+    for (std::span<double> v : {a, b})
+      for (std::size_t k = 0; k < received.size() && !v.empty(); ++k) v[received[k]] = *value++;
+  }
+}
+
+void Distribution::share_ghost_dofs(std::span<double> a, std::span<double> b) const { exchange(a, b, false); }
+
+void Distribution::share_ghost_free(std::span<double> v) const { exchange(v, {}, true); }
+
+void Distribution::zero_ghost_dofs(std::span<double> v) const {
+  const std::size_t d = static_cast<std::size_t>(model_->dim());
+  for (int node : ghost_nodes_) std::fill_n(v.begin() + static_cast<std::ptrdiff_t>(d * node), d, 0.0);
 }
 
 void Distribution::share_cell_values(std::span<double> values) const {

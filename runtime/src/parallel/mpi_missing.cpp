@@ -27,6 +27,11 @@ int world_rank() { return 0; }
 int world_size() { return 1; }
 void sum_over_ranks(std::span<double>) {}
 double sum_over_ranks(double value) { return value; }
+double max_over_ranks(double value) { return value; }
+void exchange_with_neighbours(std::span<const int> neighbours, const std::vector<std::vector<double>>&,
+                              std::vector<std::vector<double>>&) {
+  if (!neighbours.empty()) throw std::logic_error("exchange_with_neighbours: one rank, no neighbours");
+}
 std::vector<double> gather_to_root(double value) { return {value}; }
 void broadcast_from_root(std::span<int>) {}
 void broadcast_bytes_from_root(std::vector<char>&) {}

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "parallel/petsc_start.hpp"
@@ -112,6 +113,29 @@ double sum_over_ranks(double value) {
   MPI_Reduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
   MPI_Bcast(&total, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   return total;
+}
+
+double max_over_ranks(double value) {
+  if (world_size() == 1) return value;
+  double largest = value;
+  MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return largest;
+}
+
+void exchange_with_neighbours(std::span<const int> neighbours, const std::vector<std::vector<double>>& send,
+                              std::vector<std::vector<double>>& receive) {
+  if (send.size() != neighbours.size() || receive.size() != neighbours.size())
+    throw std::invalid_argument("exchange_with_neighbours: one buffer per neighbour each way");
+  if (neighbours.empty()) return;
+  constexpr int kTag = 4242;
+  std::vector<MPI_Request> requests(2 * neighbours.size());
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    MPI_Irecv(receive[i].data(), static_cast<int>(receive[i].size()), MPI_DOUBLE, neighbours[i], kTag, MPI_COMM_WORLD,
+              &requests[i]);
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    MPI_Isend(send[i].data(), static_cast<int>(send[i].size()), MPI_DOUBLE, neighbours[i], kTag, MPI_COMM_WORLD,
+              &requests[neighbours.size() + i]);
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
 std::vector<double> gather_to_root(double value) {

@@ -418,6 +418,20 @@ struct Simulation::Impl {
   bool writes_files() const { return !distribution || distribution->rank() == 0; }
   /// Whether this rank's model holds only its part of the mesh (read_start_mesh).
   bool holds_part() const { return disc->distribution && disc->distribution->holds_part(); }
+  /// Whether each rank computes only its own rows of the state (Distribution::divides_state).
+  bool divides_state() const { return distribution && distribution->divides_state(); }
+  /// A divided state made whole on every rank (collective): each rank's own rows, summed.
+  State whole_state(const State& divided) const {
+    State whole = divided;
+    const std::size_t dofs = static_cast<std::size_t>(disc->model.dof_count());
+    for (std::vector<double>* v :
+         {&whole.displacement, &whole.velocity, &whole.previous_displacement, &whole.earlier_displacement})
+      if (v->size() == dofs) distribution->complete_dofs(*v);
+    if (whole.warm_start.size() == static_cast<std::size_t>(disc->model.free_dof_count()))
+      distribution->complete_free(whole.warm_start);
+    return whole;
+  }
+  std::vector<double> tracked;  ///< a divided state's displacement completed for the tracks
 
   /// Per cell, its level when refinement is on (empty otherwise).
   std::span<const int> levels() const { return refinement ? refinement->levels() : std::span<const int>(); }
@@ -595,11 +609,12 @@ SavedRefinement Simulation::Impl::save_refinement() const {
 }
 
 void Simulation::Impl::write_checkpoint_now(const State& state_now) {
-  if (adaptivity) adaptivity->share_values();  // on every rank: rank 0 saves all cells' values
+  if (adaptivity) adaptivity->share_values();                        // on every rank: rank 0 saves all cells' values
+  State whole = divides_state() ? whole_state(state_now) : State{};  // on every rank: collective
   if (!writes_files()) return;
   detail::PhaseTimer timer(report.output_seconds);
   Checkpoint saved = fingerprints;
-  saved.state = state_now;
+  saved.state = divides_state() ? std::move(whole) : state_now;
   saved.linear_solver = disc->linear->save_state();
   saved.statistics = report.statistics;
   saved.step_assembly_ms = report.step_assembly_ms;
@@ -643,9 +658,17 @@ bool Simulation::Impl::observe(const State& now) {
   refinement_passes = 0;
   last_good = now;
   if (memory_marks.back().first == "solver") mark_memory("first step");  // once, after the first step
-  if (!tracks.empty()) {
+  if (!scene.output.track.empty()) {  // every rank: completing a divided state is collective
     detail::PhaseTimer timer(report.output_seconds);
-    for (GroupTrack& track : tracks) track.record(now.time, now.displacement);
+    // Rank 0 records tracks of any nodes: a divided state is completed for
+    // it (a sum of the whole vector each step, only in runs with tracks).
+    const std::vector<double>* displacement = &now.displacement;
+    if (divides_state()) {
+      tracked = now.displacement;
+      distribution->complete_dofs(tracked);
+      displacement = &tracked;
+    }
+    for (GroupTrack& track : tracks) track.record(now.time, *displacement);
   }
   // Per-step phase times, from the running totals.
   const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
@@ -788,7 +811,7 @@ void Simulation::Impl::finish_run() {
 void Simulation::Impl::close_report(const State& end, const std::string& failure) {
   if (writes_files()) write_tracks(tracks, scene.output.directory, report);
   if (failure.empty()) report.files.push_back("summary.json");
-  report.state = end;
+  report.state = divides_state() ? whole_state(end) : end;
   time_loop(scene, end, adaptivity_seconds, report);
   count_cells(disc->model, distribution, report);
   report.nodes = disc->mesh.node_count();
@@ -796,7 +819,7 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   report.dofs = disc->model.dof_count();
   report.free_dofs = disc->model.free_dof_count();
   collect_adaptivity(adaptivity.get(), report);
-  locate_max_displacement(disc->model, end, report);
+  locate_max_displacement(disc->model, report.state, report);
   if (scene.solver.type != SolverType::explicit_euler)
     report.linear_solver = disc->linear->name();  // after any fallback
   report.cells_per_rank = parallel::gather_to_root(disc->mesh.cell_count());

@@ -61,15 +61,18 @@ double estimate_stable_time_step(const Model& model, const Assembler& assembler,
     if (high > low) size = std::max(size, high - low);
   }
   if (size == 0.0) size = 1.0;
+  const detail::StateRows rows(assembler);
   std::vector<double> inverse_sqrt_mass(n);
   for (int i = 0; i < n; ++i) inverse_sqrt_mass[i] = 1.0 / std::sqrt(model.lumped_mass()[free[i]]);
   std::vector<double> u(model.dof_count(), 0.0), g_plus(model.dof_count()), g_minus(model.dof_count());
   // y = M^-1/2 K M^-1/2 q over the free dofs.
+  // With a divided state only this rank's rows of q, w and y are computed.
+  std::vector<double> scaled(n);
   const auto apply = [&](const std::vector<double>& q, std::vector<double>& y) {
-    double largest = 0.0;
-    for (int i = 0; i < n; ++i) largest = std::max(largest, std::abs(inverse_sqrt_mass[i] * q[i]));
-    const double h = 1e-7 * size / largest;
-    for (int i = 0; i < n; ++i) u[free[i]] = h * inverse_sqrt_mass[i] * q[i];
+    for (int i = 0; i < n; ++i) scaled[i] = inverse_sqrt_mass[i] * q[i];
+    const double h = 1e-7 * size / rows.max_abs_free(scaled);
+    for (int i = 0; i < n; ++i) u[free[i]] = h * scaled[i];
+    rows.share_ghost_dofs(u);
     assembler.assemble(u, g_plus, nullptr);
     for (int i = 0; i < n; ++i) u[free[i]] = -u[free[i]];
     assembler.assemble(u, g_minus, nullptr);
@@ -80,18 +83,18 @@ double estimate_stable_time_step(const Model& model, const Assembler& assembler,
   // power iterations.
   std::vector<double> q(n), previous(n, 0.0), w(n), alpha, beta;
   for (int i = 0; i < n; ++i) q[i] = 1.0 + 0.5 * std::sin(1.0 + 12.9898 * i);
-  const double start = norm(q);
+  const double start = rows.norm_free(q);
   for (double& value : q) value /= start;
   double lambda = 0.0, coupling = 0.0;
   for (int it = 0; it < iterations; ++it) {
     apply(q, w);
     for (int i = 0; i < n; ++i) w[i] -= coupling * previous[i];
-    alpha.push_back(dot(q, w));
+    alpha.push_back(rows.dot_free(q, w));
     for (int i = 0; i < n; ++i) w[i] -= alpha.back() * q[i];
     const double estimate = largest_tridiagonal_eigenvalue(alpha, beta);
     const bool settled = it > 0 && estimate - lambda <= 1e-8 * estimate;
     lambda = estimate;
-    coupling = norm(w);
+    coupling = rows.norm_free(w);
     if (settled || coupling <= 1e-12 * std::abs(lambda)) break;
     beta.push_back(coupling);
     previous.swap(q);
@@ -134,20 +137,24 @@ void ExplicitIntegrator::step(State& state, const StepObserver& observer) {
   const double factor = model.load_factor(t);
   const auto& gravity = model.gravity_load();
   const auto& surface = model.surface_load();
+  const detail::StateRows rows(run.assembler);
   bool finite = true;
-  for (int d : free) {
+  rows.for_each_free([&](int i) {
+    const int d = free[i];
     v[d] += dt * ((factor * (gravity[d] + surface[d]) - g_[d]) / mass[d] - alpha * v[d]);
     u[d] += dt * v[d];
     finite = finite && std::isfinite(u[d]);
-  }
+  });
   // Constrained dofs follow their prescribed path.
   for (const PrescribedDof& p : model.prescribed()) {
     const double next = model.prescribed_value(p, t1);
     v[p.dof] = (next - u[p.dof]) / dt;
     u[p.dof] = next;
   }
-  if (!finite)
-    detail::require_finite(u, "the displacement in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)");
+  if (!rows.on_every_rank(finite))
+    throw NumericalError("the displacement in step " + std::to_string(s) + " (t = " + std::to_string(t1) +
+                         " s) is not finite (NaN or infinity)");
+  rows.share_ghost_dofs(u, v);
   state.time = t1;
   state.step = s;
   run.statistics.newton_per_step.push_back(0);

@@ -27,6 +27,7 @@ struct EulerStep {
   const std::vector<double>& u0;
   const std::vector<double>& v0;
   const std::vector<double>& f;  ///< external force at t1 (dof_count)
+  const detail::StateRows& rows;
 
   int free_count() const { return run.model.free_dof_count(); }
   /// Scratch vectors over the free dofs, sized once (the Newton loop allocates nothing).
@@ -44,11 +45,11 @@ struct EulerStep {
     v_free.resize(n), kv.assign(n, 0.0);
     for (int i = 0; i < n; ++i) v_free[i] = (u[free[i]] - u0[free[i]]) / s.dt;
     if (s.damping_stiffness != 0.0) run.assembler.tangent_product(K, v_free, kv);
-    for (int i = 0; i < n; ++i) {
+    rows.for_each_free([&](int i) {
       const int d = free[i];
       r[i] = mass[d] * ((v_free[i] - v0[d]) / s.dt + s.damping_mass * v_free[i]) + s.damping_stiffness * kv[i] + g[d] -
              f[d];
-    }
+    });
   }
 
   /// Phi(u) with K the tangent of the current iterate.
@@ -61,17 +62,18 @@ struct EulerStep {
     std::vector<double>& du = scratch_a;
     std::vector<double>& kdu = scratch_b;
     du.resize(n), kdu.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n; ++i) du[i] = u[free[i]] - u0[free[i]];
+    rows.for_each_free([&](int i) {
       const int d = free[i];
-      du[i] = u[d] - u0[d];
       const double ahead = du[i] - s.dt * v0[d];
       inertia += 0.5 * mass[d] * (ahead * ahead / (s.dt * s.dt) + s.damping_mass * du[i] * du[i] / s.dt);
       external += f[d] * u[d];
-    }
+    });
+    if (rows.divided()) inertia = parallel::sum_over_ranks(inertia), external = parallel::sum_over_ranks(external);
     double damping = 0.0;
     if (s.damping_stiffness != 0.0) {
       run.assembler.tangent_product(K, du, kdu);
-      damping = 0.5 * s.damping_stiffness / s.dt * dot(du, kdu);
+      damping = 0.5 * s.damping_stiffness / s.dt * rows.dot_free(du, kdu);
     }
     double energy = 0.0;
     {
@@ -163,7 +165,8 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
   const std::string where = "in step " + std::to_string(s) + " (t = " + std::to_string(t1) + " s)";
   const std::vector<double> u0 = state.displacement, v0 = state.velocity;
   const std::vector<double> f = external_force(model, model.load_factor(t1));
-  const EulerStep step{run, u0, v0, f, {}, {}};
+  const detail::StateRows rows(run.assembler);
+  const EulerStep step{run, u0, v0, f, rows, {}, {}};
   std::vector<double> u = predict(step, t1);
   double reference = 0.0;
   int iterations = 0;
@@ -171,8 +174,8 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
   for (int iteration = 1; iteration <= settings.newton_iterations; ++iteration) {
     detail::assemble(run, u, g_, &K_);
     step.residual(u, g_, K_, r_);
-    detail::require_finite(r_, "the residual " + where);
-    const double residual = norm(r_);
+    const double residual = rows.norm_free(r_);
+    if (!std::isfinite(residual)) throw NumericalError("the residual " + where + " is not finite (NaN or infinity)");
     if (iteration == 1) reference = std::max(residual, 1e-300);
     else if (residual <= settings.tolerance * reference) break;
     // J = (1/dt^2 + alpha/dt) M + (1 + beta/dt) K, in K's storage when beta = 0 (K is not read again)
@@ -183,13 +186,14 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
       if (J.diagonal[i] >= 0) J.values[J.diagonal[i]] += mass_factor * mass[free[i]];
     for (double& x : r_) x = -x;
     detail::linear_solve(run, J, r_, direction);  // warm start: the previous correction
-    const double slope = -dot(r_, direction);     // r holds -residual here
+    rows.share_ghost_free(direction);
+    const double slope = -rows.dot_free(r_, direction);  // r holds -residual here
     const SearchResult search = line_search(step, K_, slope, direction, u);
     if (search.length < 1.0) ++run.statistics.shortened_steps;
     uninverted = search.uninverted;
     iterations = iteration;
   }
-  detail::require_finite(u, "the displacement " + where);
+  detail::require_finite(rows, u, "the displacement " + where);
   if (!uninverted) detail::require_no_inversion(run.assembler, u, where);
   for (int d = 0; d < dofs; ++d) v_[d] = (u[d] - u0[d]) / dt;
   state.displacement = std::move(u);

@@ -2,6 +2,7 @@
 #ifndef TENSORMASS_SOLVERS_INTEGRATION_SUPPORT_HPP
 #define TENSORMASS_SOLVERS_INTEGRATION_SUPPORT_HPP
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <span>
@@ -15,6 +16,68 @@
 #include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass::detail {
+
+/// The rows of the state this rank computes and the sums over them. On one
+/// process, or with the whole state on every rank: every row, and the sums
+/// of the serial code (the same bits). With a divided state
+/// (Distribution::divides_state): this rank's own rows, each sum taken here
+/// and then over the ranks (the same bits on every rank), and the ghost
+/// rows received from their owners after each update that needs them.
+class StateRows {
+ public:
+  explicit StateRows(const Assembler& assembler)
+      : model_(assembler.model()),
+        divided_(assembler.distribution() && assembler.distribution()->divides_state() ? assembler.distribution()
+                                                                                       : nullptr) {}
+
+  bool divided() const { return divided_ != nullptr; }
+  /// f(i) for each free index i this rank computes, ascending.
+  template <class F>
+  void for_each_free(F&& f) const {
+    if (!divided_) {
+      for (int i = 0; i < model_.free_dof_count(); ++i) f(i);
+      return;
+    }
+    for (int i : divided_->owned_free_rows()) f(i);
+  }
+  /// a.b over the free dofs (vectors free_dof_count long).
+  double dot_free(std::span<const double> a, std::span<const double> b) const {
+    if (!divided_) return dot(a, b);
+    double sum = 0.0;
+    for (int i : divided_->owned_free_rows()) sum += a[i] * b[i];
+    return parallel::sum_over_ranks(sum);
+  }
+  double norm_free(std::span<const double> a) const { return std::sqrt(dot_free(a, a)); }
+  /// a.b over all dofs (vectors dof_count long).
+  double dot_dofs(std::span<const double> a, std::span<const double> b) const {
+    if (!divided_) return dot(a, b);
+    const std::size_t d = static_cast<std::size_t>(model_.dim());
+    double sum = 0.0;
+    for (int node : divided_->own_nodes())
+      for (std::size_t k = d * node; k < d * node + d; ++k) sum += a[k] * b[k];
+    return parallel::sum_over_ranks(sum);
+  }
+  double norm_dofs(std::span<const double> a) const { return std::sqrt(dot_dofs(a, a)); }
+  /// The largest |a_i| over the free dofs.
+  double max_abs_free(std::span<const double> a) const {
+    double largest = 0.0;
+    for_each_free([&](int i) { largest = std::max(largest, std::abs(a[i])); });
+    return divided_ ? parallel::max_over_ranks(largest) : largest;
+  }
+  /// Whether `ok` holds on every rank.
+  bool on_every_rank(bool ok) const { return divided_ ? parallel::sum_over_ranks(ok ? 0.0 : 1.0) == 0.0 : ok; }
+  /// The ghost rows of dof vectors (one or two) and of free-dof vectors, from their owners.
+  void share_ghost_dofs(std::span<double> a, std::span<double> b = {}) const {
+    if (divided_) divided_->share_ghost_dofs(a, b);
+  }
+  void share_ghost_free(std::span<double> v) const {
+    if (divided_) divided_->share_ghost_free(v);
+  }
+
+ private:
+  const Model& model_;
+  const Distribution* divided_;
+};
 
 /// Assembles g(u) (and K when given), timed as assembly.
 inline void assemble(Integration& run, std::span<const double> u, std::span<double> g, SparseMatrix* K) {
@@ -51,6 +114,14 @@ inline double max_abs(std::span<const double> v) {
 inline void require_finite(std::span<const double> values, const std::string& what) {
   for (double x : values)
     if (!std::isfinite(x)) throw NumericalError(what + " is not finite (NaN or infinity)");
+}
+
+/// require_finite on every rank when one rank's values fail: with a
+/// divided state each rank checks the rows it holds.
+inline void require_finite(const StateRows& rows, std::span<const double> values, const std::string& what) {
+  bool finite = true;
+  for (double x : values) finite = finite && std::isfinite(x);
+  if (!rows.on_every_rank(finite)) throw NumericalError(what + " is not finite (NaN or infinity)");
 }
 
 /// Model::first_inverted_cell over every rank's cells: the cell's index

@@ -239,7 +239,8 @@ class PetscSolver final : public LinearSolver {
     check(MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
     if (blocks) set_rigid_body_modes();
     check(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
-    check(VecScatterCreateToAll(x_, &gather_, &x_all_), "VecScatterCreateToAll");
+    // A divided state takes the solution's own rows only: no gathering.
+    if (!dist.divides_state()) check(VecScatterCreateToAll(x_, &gather_, &x_all_), "VecScatterCreateToAll");
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
   }
@@ -336,8 +337,8 @@ class PetscSolver final : public LinearSolver {
     return reason;
   }
 
-  /// run_ksp over the ranks: b and x are complete on every rank; each rank
-  /// gives its own rows, and the solution comes back to all.
+  /// run_ksp over the ranks: each rank gives its own rows of b and x, and
+  /// the solution comes back to all (with a divided state: to its own rows).
   KSPConvergedReason run_distributed_ksp(std::span<const double> b, std::span<double> x) {
     const auto& own = distribution_->owned_free_rows();
     PetscScalar *b_local = nullptr, *x_local = nullptr;
@@ -349,6 +350,13 @@ class PetscSolver final : public LinearSolver {
     check(KSPSolve(ksp_, b_, x_), "KSPSolve");
     KSPConvergedReason reason;
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    if (distribution_->divides_state()) {
+      const PetscScalar* mine = nullptr;
+      check(VecGetArrayRead(x_, &mine), "VecGetArrayRead");
+      for (std::size_t i = 0; i < own.size(); ++i) x[own[i]] = mine[i];
+      VecRestoreArrayRead(x_, &mine);
+      return reason;
+    }
     check(VecScatterBegin(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
     check(VecScatterEnd(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
     const PetscScalar* all = nullptr;

@@ -36,9 +36,10 @@ std::string format_number(double x) {
 }
 
 /// Potential energy W(u) - f.u of the static problem (W as assembled: blends, folded cells).
-double potential(Integration& run, const std::vector<double>& u, const std::vector<double>& f) {
+double potential(Integration& run, const detail::StateRows& rows, const std::vector<double>& u,
+                 const std::vector<double>& f) {
   detail::PhaseTimer timer(run.statistics.assembly_seconds);
-  return run.assembler.energy(u) - dot(f, u);
+  return run.assembler.energy(u) - rows.dot_dofs(f, u);
 }
 
 /// The relative residual a Newton step's linear solve must reach (inexact
@@ -69,17 +70,18 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   // line search assembles the trial point's tangent into it (the accepted
   // trial's is the next iteration's).
   SparseMatrix K = run.assembler.pattern();
+  const detail::StateRows rows(run.assembler);
   for (int i = 0; i < n; ++i) f_free[i] = f[free[i]];
   detail::assemble(run, u, g, &K);
   free_residual(model, g, f, r);
-  detail::require_finite(r, "the residual " + where);
+  double residual = rows.norm_free(r);
+  if (!std::isfinite(residual)) throw NumericalError("the residual " + where + " is not finite (NaN or infinity)");
   // The force scale the residual is measured against: the loads, or the
   // internal forces (with the reactions at fixed and prescribed dofs) when
   // those are larger. Without the latter, a load step whose start is
   // already the solution (a linear law under prescribed displacements,
   // extrapolated from the last steps) would compare round-off with itself.
-  const double reference = std::max({norm(f_free), norm(r), norm(g), 1e-300});
-  double residual = norm(r);
+  const double reference = std::max({rows.norm_free(f_free), residual, rows.norm_dofs(g), 1e-300});
   const bool debug = std::getenv("TENSORMASS_DEBUG_NEWTON") != nullptr;
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
     if (residual <= settings.tolerance * reference) return iteration - 1;
@@ -87,21 +89,22 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     for (int i = 0; i < n; ++i) rhs[i] = -r[i];
     std::fill(step.begin(), step.end(), 0.0);
     detail::linear_solve(run, K, rhs, step, forcing(residual / reference, settings.linear.tolerance));
-    const double slope = dot(r, step);  // dPhi/dalpha at alpha = 0, negative for a descent step
+    rows.share_ghost_free(step);
+    const double slope = rows.dot_free(r, step);  // dPhi/dalpha at alpha = 0, negative for a descent step
     double alpha = 1.0, trial_residual = 0.0, energy = NAN;
     for (int halving = 0;; ++halving) {
       trial_u = u;
       for (int i = 0; i < n; ++i) trial_u[free[i]] += alpha * step[i];
       detail::assemble(run, trial_u, trial_g, &K);
       free_residual(model, trial_g, f, trial_r);
-      trial_residual = norm(trial_r);
+      trial_residual = rows.norm_free(trial_r);
       if (!std::isfinite(trial_residual)) {
         if (halving == 8) throw NumericalError("Newton produced a NaN residual " + where);
       } else if (trial_residual <= residual || halving == 8 || !(slope < 0)) {
         break;
       } else {
-        if (std::isnan(energy)) energy = potential(run, u, f);
-        if (potential(run, trial_u, f) <= energy + 1e-4 * alpha * slope) break;
+        if (std::isnan(energy)) energy = potential(run, rows, u, f);
+        if (potential(run, rows, trial_u, f) <= energy + 1e-4 * alpha * slope) break;
       }
       alpha *= 0.5;
     }

@@ -69,7 +69,9 @@ class Assembler {
   LinearPart* linear_part() const { return linear_.get(); }
   /// Shares the work among MPI ranks (nullptr: every cell here, the
   /// default). assemble() then runs the kernels of the cells touching this
-  /// rank's nodes and completes the gradient over the ranks; the stiffness
+  /// rank's nodes and completes the gradient over the ranks (with a divided
+  /// state, Distribution::divides_state(): u is read on this part's nodes,
+  /// and the gradient is this rank's rows, zero elsewhere); the stiffness
   /// has this rank's rows complete and the others partial; energy() adds
   /// each cell on its owner's rank and sums over the ranks. The
   /// distribution must outlive the assembler.
@@ -85,7 +87,8 @@ class Assembler {
   /// set; changing_rows_revision() changes when the set does.
   const std::vector<int>& changing_rows() const;
   long changing_rows_revision() const { return changing_revision_; }
-  /// y = K x over the free dofs for a stiffness from assemble(), complete on every rank.
+  /// y = K x over the free dofs for a stiffness from assemble(), complete on
+  /// every rank (with a divided state: this rank's rows, zero elsewhere).
   void tangent_product(const SparseMatrix& K, std::span<const double> x, std::span<double> y) const;
   /// When on (the default), runs of consecutive cells with the same kernel
   /// go through its batched entry points (tm_kernel::batch_width cells per

@@ -1,12 +1,17 @@
 /// \file distribution.hpp
 /// How a model's work is shared among MPI ranks. Every rank holds every
-/// node and the whole state; its model holds either the whole mesh
-/// (replicated) or its part of it (MeshPart: the cells it assembles). Each
-/// rank owns the cells of its part of the cut and the nodes whose
-/// lowest-ranked cell is its own. A rank assembles every cell that touches
-/// one of its nodes, so its rows (its nodes' dofs) of the forces and of the
-/// tangent are complete with no communication; other rows are partial and
-/// are never read: complete_* keep a rank's own rows and sum over ranks.
+/// node; its model holds either the whole mesh (replicated) or its part of
+/// it (MeshPart: the cells it assembles). Each rank owns the cells of its
+/// part of the cut and the nodes whose lowest-ranked cell is its own. A
+/// rank assembles every cell that touches one of its nodes, so its rows
+/// (its nodes' dofs) of the forces and of the tangent are complete with no
+/// communication; other rows are partial and are never read.
+///
+/// With the whole mesh every rank holds the whole state: complete_* keep a
+/// rank's own rows and sum over ranks. With a part the state is divided
+/// (divides_state()): a rank computes its own rows only and receives its
+/// ghost nodes' values (the other nodes of its part's cells) from their
+/// owners (share_ghost_*); other nodes' entries are stale and never read.
 /// The linear solver numbers the free dofs rank by rank (global_row) so
 /// that each rank's rows are one contiguous range.
 #ifndef TENSORMASS_PARALLEL_DISTRIBUTION_HPP
@@ -67,8 +72,41 @@ class Distribution {
   /// (collective: every rank calls it; the same bits on every rank).
   void share_cell_values(std::span<double> values) const;
 
+  /// Whether each rank computes only its own rows of the state (its model
+  /// holds a part of the mesh): see the file's comment.
+  bool divides_state() const { return holds_part_; }
+  /// This rank's nodes, ascending.
+  const std::vector<int>& own_nodes() const { return own_nodes_; }
+  /// The nodes of this part's cells that other ranks own, ascending (empty
+  /// unless divides_state()).
+  const std::vector<int>& ghost_nodes() const { return ghost_nodes_; }
+  /// The ranks this one exchanges ghost values with, ascending, and the
+  /// nodes it sends to and receives from neighbours()[i] (ascending).
+  const std::vector<int>& neighbours() const { return neighbours_; }
+  const std::vector<int>& sent_nodes(int i) const { return links_[i].send_nodes; }
+  const std::vector<int>& received_nodes(int i) const { return links_[i].receive_nodes; }
+  /// Sets the ghost nodes' entries of `a` (and of `b`, when not empty; both
+  /// dof_count long) to their owners' values, in one message per
+  /// neighbour. Collective over the neighbours; a no-op unless divides_state().
+  void share_ghost_dofs(std::span<double> a, std::span<double> b = {}) const;
+  /// The same for a vector over the free dofs (free_dof_count long).
+  void share_ghost_free(std::span<double> v) const;
+  /// Zeroes the ghost nodes' entries of `v` (dof_count long).
+  void zero_ghost_dofs(std::span<double> v) const;
+
  private:
   void build();
+  void build_ghost_links();
+
+  /// What this rank sends to and receives from one neighbour.
+  struct GhostLink {
+    int rank = 0;
+    std::vector<int> send_nodes, receive_nodes;
+    std::vector<int> send_dofs, receive_dofs;  ///< dofs of those nodes
+    std::vector<int> send_free, receive_free;  ///< their free rows
+  };
+  /// Sends values[send] to each neighbour and writes what comes back at receive.
+  void exchange(std::span<double> a, std::span<double> b, bool free_rows) const;
 
   const Model* model_;
   int rank_, size_;
@@ -79,6 +117,9 @@ class Distribution {
   std::vector<int> global_row_, owned_free_rows_;
   std::vector<int> foreign_nodes_, foreign_free_rows_;  ///< other ranks' nodes and free rows
   int first_global_row_ = 0;
+  std::vector<int> own_nodes_, ghost_nodes_, neighbours_;
+  std::vector<GhostLink> links_;
+  mutable std::vector<std::vector<double>> send_buffers_, receive_buffers_;
 };
 
 }  // namespace tensormass

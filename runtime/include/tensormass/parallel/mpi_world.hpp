@@ -27,6 +27,14 @@ int world_size();
 /// In-place sums over all ranks, the same bits on every rank (a no-op on one rank).
 void sum_over_ranks(std::span<double> values);
 double sum_over_ranks(double value);
+/// The largest `value` over the ranks, on every rank.
+double max_over_ranks(double value);
+/// Point-to-point exchange with the ranks in `neighbours` (not this one):
+/// sends send[i] to neighbours[i] and receives receive[i] from it. The
+/// caller sizes receive[i] (each side knows what the other sends); every
+/// neighbour must call it with this rank among its neighbours.
+void exchange_with_neighbours(std::span<const int> neighbours, const std::vector<std::vector<double>>& send,
+                              std::vector<std::vector<double>>& receive);
 /// Every rank's `value`, in rank order, on rank 0 (other ranks get an empty vector).
 std::vector<double> gather_to_root(double value);
 /// Rank 0's values, sent to every rank (a no-op on one rank).

@@ -48,8 +48,9 @@ class LinearSolver {
   virtual void set_node_blocks(int /*dim*/, std::span<const double> /*coordinates*/) {}
   /// Shares the solve among MPI ranks (the distribution must outlive the
   /// solver). factorize() then gets this rank's partial assembly, whose own
-  /// rows are complete (Distribution); b is complete on every rank, and x
-  /// comes back complete on every rank. Throws InputError for the solvers
+  /// rows are complete (Distribution); b is read in this rank's rows, and x
+  /// comes back complete on every rank (with a divided state,
+  /// Distribution::divides_state: in this rank's rows). Throws InputError for the solvers
   /// that run on one process (all but PETSc's).
   virtual void distribute(const Distribution& distribution);
   /// The free dofs (sorted) whose rows and columns are the only ones that
