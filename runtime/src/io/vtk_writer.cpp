@@ -193,13 +193,17 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
 
 void write_vtu_piece(const std::string& path, const Mesh& mesh, const std::vector<bool>& cells,
                      const std::vector<double>& displacement, const std::vector<Field>& point_data,
-                     const std::vector<Field>& cell_data, std::span<const int> cell_numbers) {
+                     const std::vector<Field>& cell_data, std::span<const int> cell_numbers,
+                     std::span<const int> node_numbers) {
   if (cells.size() != static_cast<std::size_t>(mesh.cell_count()))
     throw std::invalid_argument(path + ": the piece's cell mask has " + std::to_string(cells.size()) + " entries for " +
                                 std::to_string(mesh.cell_count()) + " cells");
   if (!cell_numbers.empty() && cell_numbers.size() != cells.size())
     throw std::invalid_argument(path + ": " + std::to_string(cell_numbers.size()) + " cell numbers for " +
                                 std::to_string(cells.size()) + " cells");
+  if (!node_numbers.empty() && node_numbers.size() != static_cast<std::size_t>(mesh.node_count()))
+    throw std::invalid_argument(path + ": " + std::to_string(node_numbers.size()) + " node numbers for " +
+                                std::to_string(mesh.node_count()) + " nodes");
   for (const Field& field : point_data) check_field(field, mesh.node_count(), path, "point");
   for (const Field& field : cell_data) check_field(field, mesh.cell_count(), path, "cell");
   // The points the piece's cells use, numbered in mesh order.
@@ -212,7 +216,8 @@ void write_vtu_piece(const std::string& path, const Mesh& mesh, const std::vecto
   Field global_node{"global_node", 1, {}}, global_cell{"global_cell", 1, {}};
   for (int node = 0; node < mesh.node_count(); ++node)
     if (used[node])
-      number[node] = static_cast<std::int64_t>(global_node.values.size()), global_node.values.push_back(node);
+      number[node] = static_cast<std::int64_t>(global_node.values.size()),
+      global_node.values.push_back(node_numbers.empty() ? node : node_numbers[node]);
   for (int cell = 0; cell < mesh.cell_count(); ++cell)
     if (cells[cell]) global_cell.values.push_back(cell_numbers.empty() ? cell : cell_numbers[cell]);
   std::vector<Field> piece_points{global_node}, piece_cells{global_cell};

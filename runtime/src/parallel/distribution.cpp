@@ -43,16 +43,21 @@ Distribution::Distribution(const Model& model, CellCut cut, int rank, int size)
     : model_(&model), rank_(rank), size_(size), holds_part_(true), cut_(std::move(cut)) {
   check_ranks(rank, size);
   const std::size_t cells = static_cast<std::size_t>(model.cell_count());
-  if (cut_.global_cell.size() != cells || cut_.cell_owner.size() != cells ||
-      cut_.node_owner.size() != static_cast<std::size_t>(model.mesh().node_count()))
+  const std::size_t nodes = static_cast<std::size_t>(model.mesh().node_count());
+  if (cut_.global_cell.size() != cells || cut_.cell_owner.size() != cells || cut_.node_owner.size() != nodes ||
+      cut_.global_node.size() != nodes)
     throw std::invalid_argument("Distribution: a cut of " + std::to_string(cut_.global_cell.size()) + " cells and " +
-                                std::to_string(cut_.node_owner.size()) + " nodes for a model of " +
-                                std::to_string(cells) + " cells and " + std::to_string(model.mesh().node_count()) +
-                                " nodes");
-  for (std::size_t cell = 0; cell < cells; ++cell)
-    if (cut_.global_cell[cell] < 0 || cut_.global_cell[cell] >= cut_.whole_cell_count ||
-        (cell > 0 && cut_.global_cell[cell] <= cut_.global_cell[cell - 1]))
-      throw std::invalid_argument("Distribution: the cut's global cell numbers are not increasing within the mesh");
+                                std::to_string(cut_.global_node.size()) + " nodes for a model of " +
+                                std::to_string(cells) + " cells and " + std::to_string(nodes) + " nodes");
+  const auto increasing_below = [](const std::vector<int>& numbers, int count) {
+    for (std::size_t i = 0; i < numbers.size(); ++i)
+      if (numbers[i] < 0 || numbers[i] >= count || (i > 0 && numbers[i] <= numbers[i - 1])) return false;
+    return true;
+  };
+  if (!increasing_below(cut_.global_cell, cut_.whole_cell_count))
+    throw std::invalid_argument("Distribution: the cut's global cell numbers are not increasing within the mesh");
+  if (!increasing_below(cut_.global_node, cut_.whole_node_count))
+    throw std::invalid_argument("Distribution: the cut's global node numbers are not increasing within the mesh");
   build();
 }
 
@@ -69,22 +74,57 @@ void Distribution::build() {
     assembled_[cell] = touches;
     assembled_count_ += touches;
   }
+  const auto& free = model_->free_dofs();
+  for (std::size_t row = 0; row < free.size(); ++row)
+    (node_owner(free[row] / d) == rank_ ? owned_free_rows_ : foreign_free_rows_).push_back(static_cast<int>(row));
+  if (!holds_part_) number_whole_mesh_rows();
+  for (std::size_t node = 0; node < cut_.node_owner.size(); ++node)
+    (cut_.node_owner[node] != rank_ ? foreign_nodes_ : own_nodes_).push_back(static_cast<int>(node));
+  if (holds_part_) build_ghost_links();
+}
+
+void Distribution::number_whole_mesh_rows() {
   // Free dofs numbered rank by rank, each rank's in ascending free order.
+  const int d = model_->dim();
   const auto& free = model_->free_dofs();
   std::vector<int> rows_of_rank(size_ + 1, 0);
   for (int dof : free) ++rows_of_rank[node_owner(dof / d) + 1];
   for (int r = 0; r < size_; ++r) rows_of_rank[r + 1] += rows_of_rank[r];
   first_global_row_ = rows_of_rank[rank_];
+  global_row_count_ = static_cast<int>(free.size());
   global_row_.resize(free.size());
   std::vector<int> next(rows_of_rank.begin(), rows_of_rank.end() - 1);
-  for (std::size_t row = 0; row < free.size(); ++row) {
-    const int owner = node_owner(free[row] / d);
-    global_row_[row] = next[owner]++;
-    (owner == rank_ ? owned_free_rows_ : foreign_free_rows_).push_back(static_cast<int>(row));
+  for (std::size_t row = 0; row < free.size(); ++row) global_row_[row] = next[node_owner(free[row] / d)]++;
+}
+
+void Distribution::number_global_rows() {
+  if (!holds_part_) return;
+  std::vector<double> rows_of_rank(size_, 0.0);
+  rows_of_rank[rank_] = static_cast<double>(owned_free_rows_.size());
+  parallel::sum_over_ranks(rows_of_rank);
+  first_global_row_ = static_cast<int>(std::accumulate(rows_of_rank.begin(), rows_of_rank.begin() + rank_, 0.0));
+  global_row_count_ = static_cast<int>(std::accumulate(rows_of_rank.begin(), rows_of_rank.end(), 0.0));
+  const std::size_t free_count = model_->free_dofs().size();
+  std::vector<double> row(free_count, -1.0);  // ghost rows from their owners, as doubles (exact below 2^53)
+  for (std::size_t i = 0; i < owned_free_rows_.size(); ++i) row[owned_free_rows_[i]] = first_global_row_ + i;
+  share_ghost_free(row);
+  global_row_.assign(row.begin(), row.end());
+  // The whole mesh's free order: a flag per whole dof from its owner, then a running count.
+  const int d = model_->dim();
+  const auto& free_index = model_->free_index();
+  std::vector<double> index(static_cast<std::size_t>(d) * cut_.whole_node_count, 0.0);
+  for (int node : own_nodes_)
+    for (int a = 0; a < d; ++a) index[d * global_node(node) + a] = free_index[node * d + a] >= 0;
+  parallel::sum_over_ranks(index);
+  double count = 0.0;
+  for (double& entry : index) std::swap(entry, count), count += entry;  // entry: free dofs before it
+  std::fill(row.begin(), row.end(), -1.0);
+  for (int r : owned_free_rows_) {
+    const int dof = model_->free_dofs()[r];
+    row[r] = index[d * global_node(dof / d) + dof % d];
   }
-  for (std::size_t node = 0; node < cut_.node_owner.size(); ++node)
-    (cut_.node_owner[node] != rank_ ? foreign_nodes_ : own_nodes_).push_back(static_cast<int>(node));
-  if (holds_part_) build_ghost_links();
+  share_ghost_free(row);
+  whole_free_row_.assign(row.begin(), row.end());
 }
 
 void Distribution::build_ghost_links() {
@@ -153,25 +193,83 @@ void Distribution::keep_own_dofs(std::span<double> v) const {
 }
 
 void Distribution::keep_own_free(std::span<double> v) const {
-  if (v.size() != global_row_.size())
+  if (v.size() != model_->free_dofs().size())
     throw std::invalid_argument("Distribution::keep_own_free: " + std::to_string(v.size()) + " values for " +
-                                std::to_string(global_row_.size()) + " free dofs");
+                                std::to_string(model_->free_dofs().size()) + " free dofs");
   for (int row : foreign_free_rows_) v[row] = 0.0;
 }
 
 void Distribution::complete_dofs(std::span<double> v) const {
   keep_own_dofs(v);
-  parallel::sum_over_ranks(v);
+  if (holds_part_) share_ghost_dofs(v);
+  else parallel::sum_over_ranks(v);
 }
 
 void Distribution::complete_free(std::span<double> v) const {
   keep_own_free(v);
-  parallel::sum_over_ranks(v);
+  if (holds_part_) share_ghost_free(v);
+  else parallel::sum_over_ranks(v);
+}
+
+std::vector<double> Distribution::whole_dofs(std::span<const double> v) const {
+  std::vector<double> whole;
+  if (!holds_part_) {
+    whole.assign(v.begin(), v.end());
+    complete_dofs(whole);
+    return whole;
+  }
+  const std::size_t d = static_cast<std::size_t>(model_->dim());
+  if (v.size() != d * cut_.node_owner.size())
+    throw std::invalid_argument("Distribution::whole_dofs: " + std::to_string(v.size()) + " values for " +
+                                std::to_string(d * cut_.node_owner.size()) + " dofs");
+  whole.assign(d * cut_.whole_node_count, 0.0);
+  for (int node : own_nodes_) std::copy_n(v.begin() + d * node, d, whole.begin() + d * cut_.global_node[node]);
+  parallel::sum_over_ranks(whole);
+  return whole;
+}
+
+std::vector<double> Distribution::whole_free(std::span<const double> v) const {
+  std::vector<double> whole;
+  if (!holds_part_) {
+    whole.assign(v.begin(), v.end());
+    complete_free(whole);
+    return whole;
+  }
+  if (v.size() != whole_free_row_.size())
+    throw std::invalid_argument("Distribution::whole_free: " + std::to_string(v.size()) + " values for " +
+                                std::to_string(whole_free_row_.size()) + " free dofs (rows numbered?)");
+  whole.assign(static_cast<std::size_t>(global_row_count_), 0.0);
+  for (int r : owned_free_rows_) whole[whole_free_row_[r]] = v[r];
+  parallel::sum_over_ranks(whole);
+  return whole;
+}
+
+std::vector<double> Distribution::local_dofs(std::span<const double> whole) const {
+  if (!holds_part_) return {whole.begin(), whole.end()};
+  const std::size_t d = static_cast<std::size_t>(model_->dim());
+  if (whole.size() != d * cut_.whole_node_count)
+    throw std::invalid_argument("Distribution::local_dofs: " + std::to_string(whole.size()) + " values for " +
+                                std::to_string(d * cut_.whole_node_count) + " dofs of the whole mesh");
+  std::vector<double> v(d * cut_.node_owner.size());
+  for (std::size_t node = 0; node < cut_.node_owner.size(); ++node)
+    std::copy_n(whole.begin() + d * cut_.global_node[node], d, v.begin() + d * node);
+  return v;
+}
+
+std::vector<double> Distribution::local_free(std::span<const double> whole) const {
+  if (!holds_part_) return {whole.begin(), whole.end()};
+  if (whole.size() != static_cast<std::size_t>(global_row_count_) ||
+      whole_free_row_.size() != model_->free_dofs().size())
+    throw std::invalid_argument("Distribution::local_free: " + std::to_string(whole.size()) + " values for " +
+                                std::to_string(global_row_count_) + " free dofs of the whole mesh (rows numbered?)");
+  std::vector<double> v(whole_free_row_.size());
+  for (std::size_t r = 0; r < v.size(); ++r) v[r] = whole[whole_free_row_[r]];
+  return v;
 }
 
 void Distribution::exchange(std::span<double> a, std::span<double> b, bool free_rows) const {
   if (!holds_part_) return;
-  const std::size_t length = free_rows ? global_row_.size() : model_->dim() * cut_.node_owner.size();
+  const std::size_t length = free_rows ? model_->free_dofs().size() : model_->dim() * cut_.node_owner.size();
   for (std::span<double> v : {a, b})
     if (!v.empty() && v.size() != length)
       throw std::invalid_argument("Distribution::share_ghost_" + std::string(free_rows ? "free" : "dofs") + ": " +

@@ -157,8 +157,10 @@ std::vector<char> pack_mesh_part(const MeshPart& part) {
   pack_into(out, part.mesh);
   out.array(part.cut.global_cell);
   out.array(part.cut.cell_owner);
+  out.array(part.cut.global_node);
   out.array(part.cut.node_owner);
   out.value(part.cut.whole_cell_count);
+  out.value(part.cut.whole_node_count);
   return std::move(out.bytes);
 }
 
@@ -168,8 +170,10 @@ MeshPart unpack_mesh_part(std::span<const char> bytes) {
   MeshPart part{unpack_from(in), {}};
   part.cut.global_cell = in.array<int>();
   part.cut.cell_owner = in.array<int>();
+  part.cut.global_node = in.array<int>();
   part.cut.node_owner = in.array<int>();
   part.cut.whole_cell_count = in.value<int>();
+  part.cut.whole_node_count = in.value<int>();
   if (!in.done()) throw std::invalid_argument("unpack_mesh: bytes left after the mesh part");
   return part;
 }

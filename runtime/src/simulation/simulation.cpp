@@ -98,7 +98,7 @@ std::string write_state(const std::string& directory, const std::string& name, c
     numbers[cell] = distribution->global_cell(cell);
   }
   io::write_vtu_piece((folder / piece(distribution->rank())).string(), model.mesh(), own, {}, fields.point_data,
-                      fields.cell_data, numbers);
+                      fields.cell_data, numbers, distribution->global_nodes());
   if (distribution->rank() == 0) {
     std::vector<std::string> pieces;
     for (int rank = 0; rank < distribution->size(); ++rank) pieces.push_back(piece(rank));
@@ -107,10 +107,11 @@ std::string write_state(const std::string& directory, const std::string& name, c
   return name + ".pvtu";
 }
 
+/// `state`: the whole mesh's.
 void locate_max_displacement(const Model& model, const State& state, RunReport& report) {
   const int d = model.dim();
   report.max_displacement = 0;
-  for (int i = 0; i < model.mesh().node_count(); ++i) {
+  for (int i = 0; i < static_cast<int>(state.displacement.size()) / d; ++i) {
     double length2 = 0;
     for (int a = 0; a < d; ++a) length2 += state.displacement[i * d + a] * state.displacement[i * d + a];
     if (std::sqrt(length2) > report.max_displacement || report.max_displacement_node < 0) {
@@ -201,8 +202,8 @@ std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Sce
 }
 
 /// InputError unless the checkpoint's state fits the model's dofs.
-void check_checkpoint_state(const Checkpoint& checkpoint, const std::string& path, const Model& model) {
-  const std::size_t dofs = model.dof_count();
+/// `dofs`: the whole mesh's.
+void check_checkpoint_state(const Checkpoint& checkpoint, const std::string& path, std::size_t dofs) {
   if (checkpoint.state.displacement.size() != dofs || checkpoint.state.velocity.size() != dofs)
     throw InputError("checkpoint " + path + ": its state does not fit the model's " + std::to_string(dofs) + " dofs");
 }
@@ -264,16 +265,23 @@ struct Discretisation {
         assembler(model, true, distribution.get()),
         linear(make_linear_solver(scene.solver.linear)),
         integration{model, assembler, *linear, scene.solver, statistics} {
-    if (distribution && distribution->holds_part()) complete_model_sums(model, *distribution);
+    if (distribution && distribution->holds_part()) {
+      complete_model_sums(model, *distribution);
+      distribution->number_global_rows();
+    }
   }
   /// What the solvers need before the first step (after any distribution).
   void prepare(const Scene& scene) {
     assembler.set_hessian_projection(scene.solver.project_hessian);
     describe_free_nodes(*linear, model);
   }
-  /// Cells of the whole mesh.
+  /// Cells, nodes and free dofs of the whole mesh.
   int whole_cell_count() const {
     return distribution && distribution->holds_part() ? distribution->whole_cell_count() : mesh.cell_count();
+  }
+  int whole_node_count() const { return distribution ? distribution->whole_node_count() : mesh.node_count(); }
+  int whole_free_dof_count() const {
+    return distribution && distribution->holds_part() ? distribution->global_row_count() : model.free_dof_count();
   }
 
   Mesh mesh;
@@ -426,12 +434,30 @@ struct Simulation::Impl {
     const std::size_t dofs = static_cast<std::size_t>(disc->model.dof_count());
     for (std::vector<double>* v :
          {&whole.displacement, &whole.velocity, &whole.previous_displacement, &whole.earlier_displacement})
-      if (v->size() == dofs) distribution->complete_dofs(*v);
+      if (v->size() == dofs) *v = distribution->whole_dofs(*v);
     if (whole.warm_start.size() == static_cast<std::size_t>(disc->model.free_dof_count()))
-      distribution->complete_free(whole.warm_start);
+      whole.warm_start = distribution->whole_free(whole.warm_start);
     return whole;
   }
-  std::vector<double> tracked;  ///< a divided state's displacement completed for the tracks
+  /// This rank's part of a whole state (a checkpoint's), the inverse of whole_state.
+  State divided_state(const State& whole) const {
+    State divided = whole;
+    const std::size_t dofs = static_cast<std::size_t>(disc->model.dim()) * distribution->whole_node_count();
+    for (std::vector<double>* v :
+         {&divided.displacement, &divided.velocity, &divided.previous_displacement, &divided.earlier_displacement})
+      if (v->size() == dofs) *v = distribution->local_dofs(*v);
+    if (divided.warm_start.size() == static_cast<std::size_t>(distribution->global_row_count()))
+      divided.warm_start = distribution->local_free(divided.warm_start);
+    return divided;
+  }
+  std::vector<double> tracked;  ///< a divided state's displacement made whole for the tracks
+  /// The report's nodes, cells and dofs: the whole mesh's.
+  void count_whole_mesh() {
+    report.nodes = disc->whole_node_count();
+    report.cells = disc->whole_cell_count();
+    report.dofs = disc->model.dim() * report.nodes;
+    report.free_dofs = disc->whole_free_dof_count();
+  }
 
   /// Per cell, its level when refinement is on (empty otherwise).
   std::span<const int> levels() const { return refinement ? refinement->levels() : std::span<const int>(); }
@@ -508,15 +534,15 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
     adaptivity = std::make_unique<Adaptivity>(settings, disc->model, disc->assembler);
     adaptivity->distribute(distribution);
   }
-  if (checkpoint) check_checkpoint_state(*checkpoint, checkpoint_path, disc->model);
+  if (checkpoint)
+    check_checkpoint_state(*checkpoint, checkpoint_path,
+                           static_cast<std::size_t>(disc->model.dim()) * disc->whole_node_count());
+  if (checkpoint && divides_state()) checkpoint->state = divided_state(checkpoint->state);
   mark_memory("solver");
 
   report.output_directory = scene.output.directory;
-  report.nodes = disc->mesh.node_count();
-  report.cells = disc->whole_cell_count();
-  report.dofs = disc->model.dof_count();
   report.mpi_ranks = distribution ? distribution->size() : 1;
-  report.free_dofs = disc->model.free_dof_count();
+  count_whole_mesh();
   report.linear_solver = scene.solver.type == SolverType::explicit_euler ? "none (lumped mass)" : disc->linear->name();
   std::error_code error;
   fs::create_directories(scene.output.directory, error);
@@ -664,8 +690,7 @@ bool Simulation::Impl::observe(const State& now) {
     // it (a sum of the whole vector each step, only in runs with tracks).
     const std::vector<double>* displacement = &now.displacement;
     if (divides_state()) {
-      tracked = now.displacement;
-      distribution->complete_dofs(tracked);
+      tracked = distribution->whole_dofs(now.displacement);
       displacement = &tracked;
     }
     for (GroupTrack& track : tracks) track.record(now.time, *displacement);
@@ -814,10 +839,7 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   report.state = divides_state() ? whole_state(end) : end;
   time_loop(scene, end, adaptivity_seconds, report);
   count_cells(disc->model, distribution, report);
-  report.nodes = disc->mesh.node_count();
-  report.cells = disc->whole_cell_count();
-  report.dofs = disc->model.dof_count();
-  report.free_dofs = disc->model.free_dof_count();
+  count_whole_mesh();
   collect_adaptivity(adaptivity.get(), report);
   locate_max_displacement(disc->model, report.state, report);
   if (scene.solver.type != SolverType::explicit_euler)

@@ -40,6 +40,8 @@ class StateRows {
     }
     for (int i : divided_->owned_free_rows()) f(i);
   }
+  /// Free index i's index among the whole mesh's free dofs (i on one process).
+  int whole_free_row(int i) const { return divided_ ? divided_->whole_free_row(i) : i; }
   /// a.b over the free dofs (vectors free_dof_count long).
   double dot_free(std::span<const double> a, std::span<const double> b) const {
     if (!divided_) return dot(a, b);

@@ -227,7 +227,8 @@ class PetscSolver final : public LinearSolver {
         row_start.push_back(static_cast<PetscInt>(columns.size()));
       }
       check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
-      check(MatSetSizes(matrix_, local, local, A.rows, A.rows), "MatSetSizes");
+      const PetscInt rows = dist.global_row_count();
+      check(MatSetSizes(matrix_, local, local, rows, rows), "MatSetSizes");
       check(MatSetType(matrix_, MATMPIAIJ), "MatSetType");
       check(MatMPIAIJSetPreallocationCSR(matrix_, row_start.data(), columns.data(), nullptr),
             "MatMPIAIJSetPreallocationCSR");

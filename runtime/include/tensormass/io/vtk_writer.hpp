@@ -29,12 +29,13 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
 /// (cell_count) is true and the points they use, renumbered in mesh order.
 /// Point and cell data are given for the whole mesh, as for write_vtu, and
 /// cut the same way; each piece also holds `global_node` (point data) and
-/// `global_cell` (cell data), the whole mesh's numbers: a cell's index in
-/// `mesh`, or `cell_numbers[cell]` when given (a mesh that is part of a
-/// larger one, cell_count long).
+/// `global_cell` (cell data), the whole mesh's numbers: a node's or cell's
+/// index in `mesh`, or `node_numbers[node]` and `cell_numbers[cell]` when
+/// given (a mesh that is part of a larger one; node_count and cell_count long).
 void write_vtu_piece(const std::string& path, const Mesh& mesh, const std::vector<bool>& cells,
                      const std::vector<double>& displacement, const std::vector<Field>& point_data,
-                     const std::vector<Field>& cell_data, std::span<const int> cell_numbers = {});
+                     const std::vector<Field>& cell_data, std::span<const int> cell_numbers = {},
+                     std::span<const int> node_numbers = {});
 /// The .pvtu that joins `pieces` (file names relative to it) written by
 /// write_vtu_piece with these fields (only their names and components are read).
 void write_pvtu(const std::string& path, const std::vector<std::string>& pieces, const std::vector<Field>& point_data,

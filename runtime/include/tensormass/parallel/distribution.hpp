@@ -1,19 +1,21 @@
 /// \file distribution.hpp
-/// How a model's work is shared among MPI ranks. Every rank holds every
-/// node; its model holds either the whole mesh (replicated) or its part of
-/// it (MeshPart: the cells it assembles). Each rank owns the cells of its
-/// part of the cut and the nodes whose lowest-ranked cell is its own. A
-/// rank assembles every cell that touches one of its nodes, so its rows
-/// (its nodes' dofs) of the forces and of the tangent are complete with no
-/// communication; other rows are partial and are never read.
+/// How a model's work is shared among MPI ranks. A rank's model holds
+/// either the whole mesh (replicated) or its part of it (MeshPart: the
+/// cells it assembles and their nodes, numbered in the part). Each rank
+/// owns the cells of its part of the cut and the nodes whose lowest-ranked
+/// cell is its own. A rank assembles every cell that touches one of its
+/// nodes, so its rows (its nodes' dofs) of the forces and of the tangent
+/// are complete with no communication; other rows are partial and are
+/// never read.
 ///
 /// With the whole mesh every rank holds the whole state: complete_* keep a
 /// rank's own rows and sum over ranks. With a part the state is divided
-/// (divides_state()): a rank computes its own rows only and receives its
-/// ghost nodes' values (the other nodes of its part's cells) from their
-/// owners (share_ghost_*); other nodes' entries are stale and never read.
-/// The linear solver numbers the free dofs rank by rank (global_row) so
-/// that each rank's rows are one contiguous range.
+/// (divides_state()): its vectors run over the part's nodes, a rank
+/// computes its own rows only and receives its ghost nodes' values (the
+/// other nodes of its part) from their owners (share_ghost_*); whole_* and
+/// local_* move a state between the part and the whole mesh. The linear
+/// solver numbers the free dofs rank by rank (global_row) so that each
+/// rank's rows are one contiguous range.
 #ifndef TENSORMASS_PARALLEL_DISTRIBUTION_HPP
 #define TENSORMASS_PARALLEL_DISTRIBUTION_HPP
 
@@ -44,6 +46,11 @@ class Distribution {
   int whole_cell_count() const { return cut_.whole_cell_count; }
   /// The model's cell of the whole mesh's cell `global`, or -1 when this rank does not hold it.
   int local_cell(int global) const;
+  /// A node's index in the whole mesh, and the whole mesh's node count.
+  int global_node(int node) const { return holds_part_ ? cut_.global_node[node] : node; }
+  int whole_node_count() const { return holds_part_ ? cut_.whole_node_count : model_->mesh().node_count(); }
+  /// Per node of the part, its index in the whole mesh (empty for the whole mesh).
+  const std::vector<int>& global_nodes() const { return cut_.global_node; }
   /// Cells of this rank's part: its energy terms and output piece.
   bool owns_cell(int cell) const { return cut_.cell_owner[cell] == rank_; }
   int cell_owner(int cell) const { return cut_.cell_owner[cell]; }
@@ -55,7 +62,16 @@ class Distribution {
   int node_owner(int node) const { return cut_.node_owner[node]; }
 
   /// free_dof_count: each free dof's row in the rank-by-rank numbering.
+  /// With a part, only after number_global_rows().
   const std::vector<int>& global_row() const { return global_row_; }
+  /// A free dof's index among the whole mesh's free dofs (serial order);
+  /// with a part, only after number_global_rows().
+  int whole_free_row(int row) const { return holds_part_ ? whole_free_row_[row] : row; }
+  /// The free dofs of the whole mesh: the rank-by-rank numbering's size.
+  int global_row_count() const { return global_row_count_; }
+  /// With a part: numbers the free dofs rank by rank and in the whole
+  /// mesh's order (whole_free, local_free). Collective; a no-op with the whole mesh.
+  void number_global_rows();
   /// This rank's free dofs (free indices, ascending): global rows
   /// first_global_row() .. first_global_row() + size - 1, in this order.
   const std::vector<int>& owned_free_rows() const { return owned_free_rows_; }
@@ -65,7 +81,8 @@ class Distribution {
   /// or free_dof_count (keep_own_free) long, else std::invalid_argument.
   void keep_own_dofs(std::span<double> v) const;
   void keep_own_free(std::span<double> v) const;
-  /// keep_own_* then the sum over ranks: every rank gets the complete vector.
+  /// keep_own_* then the sum over ranks: every rank gets the complete vector
+  /// (with a part: keep_own_* then share_ghost_*, the part's entries complete).
   void complete_dofs(std::span<double> v) const;
   void complete_free(std::span<double> v) const;
   /// values: one per cell of the model. Every cell gets its owner's value
@@ -94,9 +111,21 @@ class Distribution {
   /// Zeroes the ghost nodes' entries of `v` (dof_count long).
   void zero_ghost_dofs(std::span<double> v) const;
 
+  /// A divided vector over the part's dofs (dof_count) or free dofs
+  /// (free_dof_count) made whole: the whole mesh's dofs, or its free dofs in
+  /// their serial order, each from its owner, the same bits on every rank.
+  /// Collective (a sum over the ranks of a whole-length vector: for
+  /// checkpoints, tracks and the report). With the whole mesh: complete_*.
+  std::vector<double> whole_dofs(std::span<const double> v) const;
+  std::vector<double> whole_free(std::span<const double> v) const;
+  /// The part's entries of a whole vector (the inverse of whole_*).
+  std::vector<double> local_dofs(std::span<const double> whole) const;
+  std::vector<double> local_free(std::span<const double> whole) const;
+
  private:
   void build();
   void build_ghost_links();
+  void number_whole_mesh_rows();
 
   /// What this rank sends to and receives from one neighbour.
   struct GhostLink {
@@ -116,7 +145,8 @@ class Distribution {
   int assembled_count_ = 0;
   std::vector<int> global_row_, owned_free_rows_;
   std::vector<int> foreign_nodes_, foreign_free_rows_;  ///< other ranks' nodes and free rows
-  int first_global_row_ = 0;
+  int first_global_row_ = 0, global_row_count_ = 0;
+  std::vector<int> whole_free_row_;  ///< with a part: each free dof's index among the whole mesh's free dofs
   std::vector<int> own_nodes_, ghost_nodes_, neighbours_;
   std::vector<GhostLink> links_;
   mutable std::vector<std::vector<double>> send_buffers_, receive_buffers_;
