@@ -132,10 +132,16 @@ void Distribution::build_ghost_links() {
   // tell from its own cells who needs its nodes: rank q needs cell c when q
   // owns c or one of c's nodes, and then needs all of c's nodes. What q
   // sends here is found alike from q's side: the two lists agree.
-  std::vector<std::vector<int>> send(size_), receive(size_);
+  std::vector<std::vector<int>> send(size_), receive(size_), send_cells(size_), receive_cells(size_);
   std::vector<int> needing;
   for (int cell = 0; cell < model_->cell_count(); ++cell) {
     const auto nodes = model_->cell_nodes(cell);
+    // Rank q holds a cell it does not own when it owns one of its nodes.
+    if (!owns_cell(cell)) receive_cells[cell_owner(cell)].push_back(cell);
+    else
+      for (int node : nodes)
+        if (const int q = node_owner(node); q != rank_ && (send_cells[q].empty() || send_cells[q].back() != cell))
+          send_cells[q].push_back(cell);
     needing.assign(1, cell_owner(cell));
     for (int node : nodes) needing.push_back(node_owner(node));
     for (int node : nodes) {
@@ -157,15 +163,17 @@ void Distribution::build_ghost_links() {
       }
   };
   for (int q = 0; q < size_; ++q) {
-    for (std::vector<int>* list : {&send[q], &receive[q]}) {
+    for (std::vector<int>* list : {&send[q], &receive[q], &send_cells[q]}) {
       std::sort(list->begin(), list->end());
       list->erase(std::unique(list->begin(), list->end()), list->end());
     }
-    if (send[q].empty() && receive[q].empty()) continue;
+    if (send[q].empty() && receive[q].empty() && send_cells[q].empty() && receive_cells[q].empty()) continue;
     GhostLink link;
     link.rank = q;
     link.send_nodes = std::move(send[q]);
     link.receive_nodes = std::move(receive[q]);
+    link.send_cells = std::move(send_cells[q]);
+    link.receive_cells = std::move(receive_cells[q]);
     dofs_of(link.send_nodes, link.send_dofs, link.send_free);
     dofs_of(link.receive_nodes, link.receive_dofs, link.receive_free);
     ghost_nodes_.insert(ghost_nodes_.end(), link.receive_nodes.begin(), link.receive_nodes.end());
@@ -267,35 +275,47 @@ std::vector<double> Distribution::local_free(std::span<const double> whole) cons
   return v;
 }
 
-void Distribution::exchange(std::span<double> a, std::span<double> b, bool free_rows) const {
+const std::vector<int>& Distribution::sent(const GhostLink& link, Entries entries) {
+  return entries == Entries::dofs ? link.send_dofs : entries == Entries::free ? link.send_free : link.send_cells;
+}
+
+const std::vector<int>& Distribution::received(const GhostLink& link, Entries entries) {
+  return entries == Entries::dofs   ? link.receive_dofs
+         : entries == Entries::free ? link.receive_free
+                                    : link.receive_cells;
+}
+
+void Distribution::exchange(std::span<double> a, std::span<double> b, Entries entries) const {
   if (!holds_part_) return;
-  const std::size_t length = free_rows ? model_->free_dofs().size() : model_->dim() * cut_.node_owner.size();
+  const std::size_t length = entries == Entries::dofs   ? model_->dim() * cut_.node_owner.size()
+                             : entries == Entries::free ? model_->free_dofs().size()
+                                                        : cut_.cell_owner.size();
+  static constexpr const char* kNames[] = {"share_ghost_dofs", "share_ghost_free", "share_cell_values"};
   for (std::span<double> v : {a, b})
     if (!v.empty() && v.size() != length)
-      throw std::invalid_argument("Distribution::share_ghost_" + std::string(free_rows ? "free" : "dofs") + ": " +
+      throw std::invalid_argument("Distribution::" + std::string(kNames[static_cast<int>(entries)]) + ": " +
                                   std::to_string(v.size()) + " values for " + std::to_string(length));
   const int vectors = b.empty() ? 1 : 2;
   for (std::size_t i = 0; i < links_.size(); ++i) {
-    const GhostLink& link = links_[i];
-    const std::vector<int>& sent = free_rows ? link.send_free : link.send_dofs;
+    const std::vector<int>& indices = sent(links_[i], entries);
     std::vector<double>& buffer = send_buffers_[i];
     buffer.clear();
     for (std::span<double> v : {a, b})
-      for (std::size_t k = 0; k < sent.size() && !v.empty(); ++k) buffer.push_back(v[sent[k]]);
-    receive_buffers_[i].resize(vectors * (free_rows ? link.receive_free : link.receive_dofs).size());
+      for (std::size_t k = 0; k < indices.size() && !v.empty(); ++k) buffer.push_back(v[indices[k]]);
+    receive_buffers_[i].resize(vectors * received(links_[i], entries).size());
   }
   parallel::exchange_with_neighbours(neighbours_, send_buffers_, receive_buffers_);
   for (std::size_t i = 0; i < links_.size(); ++i) {
-    const std::vector<int>& received = free_rows ? links_[i].receive_free : links_[i].receive_dofs;
+    const std::vector<int>& indices = received(links_[i], entries);
     const double* value = receive_buffers_[i].data();
     for (std::span<double> v : {a, b})
-      for (std::size_t k = 0; k < received.size() && !v.empty(); ++k) v[received[k]] = *value++;
+      for (std::size_t k = 0; k < indices.size() && !v.empty(); ++k) v[indices[k]] = *value++;
   }
 }
 
-void Distribution::share_ghost_dofs(std::span<double> a, std::span<double> b) const { exchange(a, b, false); }
+void Distribution::share_ghost_dofs(std::span<double> a, std::span<double> b) const { exchange(a, b, Entries::dofs); }
 
-void Distribution::share_ghost_free(std::span<double> v) const { exchange(v, {}, true); }
+void Distribution::share_ghost_free(std::span<double> v) const { exchange(v, {}, Entries::free); }
 
 void Distribution::zero_ghost_dofs(std::span<double> v) const {
   const std::size_t d = static_cast<std::size_t>(model_->dim());
@@ -303,6 +323,10 @@ void Distribution::zero_ghost_dofs(std::span<double> v) const {
 }
 
 void Distribution::share_cell_values(std::span<double> values) const {
+  if (holds_part_) {
+    exchange(values, {}, Entries::cells);
+    return;
+  }
   // One value per cell of the whole mesh, from its owner alone: the sum
   // over the ranks is exact, the same bits everywhere.
   std::vector<double> whole(static_cast<std::size_t>(cut_.whole_cell_count), 0.0);

@@ -246,11 +246,6 @@ TEST(MeshCut, DistributionMapsCellsAndRefusesCutsThatDoNotFit) {
   int held = 0;
   for (int global = 0; global < whole.cell_count(); ++global) held += shared.local_cell(global) >= 0;
   EXPECT_EQ(held, model.cell_count());
-  std::vector<double> values(model.cell_count());
-  for (int cell = 0; cell < model.cell_count(); ++cell) values[cell] = 1.0 + shared.global_cell(cell);
-  shared.share_cell_values(values);  // one process: other ranks' cells get nothing
-  for (int cell = 0; cell < model.cell_count(); ++cell)
-    EXPECT_EQ(values[cell], shared.owns_cell(cell) ? 1.0 + shared.global_cell(cell) : 0.0);
   CellCut short_cut = cut;
   short_cut.global_cell.pop_back();
   EXPECT_THROW(Distribution(model, short_cut, 1, 2), std::invalid_argument);
@@ -312,7 +307,7 @@ struct PartsOfThree {
   }
 };
 
-TEST(MeshCut, GhostLinksOfNeighboursMatchAndCoverEveryNodeOfAPart) {
+TEST(MeshCut, GhostLinksOfNeighboursMatchAndCoverEveryNodeAndCellOfAPart) {
   const PartsOfThree cut;
   for (int rank = 0; rank < cut.ranks; ++rank) {
     SCOPED_TRACE(rank);
@@ -335,7 +330,7 @@ TEST(MeshCut, GhostLinksOfNeighboursMatchAndCoverEveryNodeOfAPart) {
     EXPECT_EQ(shared.ghost_nodes(), ghosts);
     EXPECT_FALSE(ghosts.empty());
     EXPECT_FALSE(shared.neighbours().empty());
-    std::vector<int> received;
+    std::vector<int> received, received_cells;
     for (std::size_t i = 0; i < shared.neighbours().size(); ++i) {
       const int other = shared.neighbours()[i];
       ASSERT_NE(other, rank);
@@ -344,12 +339,29 @@ TEST(MeshCut, GhostLinksOfNeighboursMatchAndCoverEveryNodeOfAPart) {
       const CellCut& other_cut = cut.parts[other].cut;
       EXPECT_EQ(to_whole(part_cut, shared.sent_nodes(i)), to_whole(other_cut, cut.shared[other].received_nodes(back)));
       EXPECT_EQ(to_whole(part_cut, shared.received_nodes(i)), to_whole(other_cut, cut.shared[other].sent_nodes(back)));
+      const auto cells_to_whole = [](const Distribution& of, const std::vector<int>& cells) {
+        std::vector<int> whole;
+        for (int cell : cells) whole.push_back(of.global_cell(cell));
+        return whole;
+      };
+      EXPECT_EQ(cells_to_whole(shared, shared.sent_cells(i)),
+                cells_to_whole(cut.shared[other], cut.shared[other].received_cells(back)));
+      EXPECT_EQ(cells_to_whole(shared, shared.received_cells(i)),
+                cells_to_whole(cut.shared[other], cut.shared[other].sent_cells(back)));
+      for (int cell : shared.received_cells(i)) EXPECT_EQ(shared.cell_owner(cell), other);
+      for (int cell : shared.sent_cells(i)) EXPECT_TRUE(shared.owns_cell(cell));
+      received_cells.insert(received_cells.end(), shared.received_cells(i).begin(), shared.received_cells(i).end());
       for (int node : shared.received_nodes(i)) EXPECT_EQ(shared.node_owner(node), other);
       for (int node : shared.sent_nodes(i)) EXPECT_TRUE(shared.owns_node(node));
       received.insert(received.end(), shared.received_nodes(i).begin(), shared.received_nodes(i).end());
     }
     std::sort(received.begin(), received.end());
     EXPECT_EQ(received, ghosts);  // each ghost comes once, from its owner
+    std::sort(received_cells.begin(), received_cells.end());
+    std::vector<int> foreign_cells;  // each held cell another rank owns comes once, from its owner
+    for (int cell = 0; cell < mesh.cell_count(); ++cell)
+      if (!shared.owns_cell(cell)) foreign_cells.push_back(cell);
+    EXPECT_EQ(received_cells, foreign_cells);
   }
 }
 

@@ -86,7 +86,9 @@ class Distribution {
   void complete_dofs(std::span<double> v) const;
   void complete_free(std::span<double> v) const;
   /// values: one per cell of the model. Every cell gets its owner's value
-  /// (collective: every rank calls it; the same bits on every rank).
+  /// (collective: every rank calls it; the same bits on every rank). With a
+  /// part: one message per neighbour, else a sum over the ranks of one
+  /// value per cell of the whole mesh.
   void share_cell_values(std::span<double> values) const;
 
   /// Whether each rank computes only its own rows of the state (its model
@@ -102,6 +104,10 @@ class Distribution {
   const std::vector<int>& neighbours() const { return neighbours_; }
   const std::vector<int>& sent_nodes(int i) const { return links_[i].send_nodes; }
   const std::vector<int>& received_nodes(int i) const { return links_[i].receive_nodes; }
+  /// The cells this rank owns that neighbours()[i] holds, and the cells it
+  /// holds that neighbours()[i] owns (ascending).
+  const std::vector<int>& sent_cells(int i) const { return links_[i].send_cells; }
+  const std::vector<int>& received_cells(int i) const { return links_[i].receive_cells; }
   /// Sets the ghost nodes' entries of `a` (and of `b`, when not empty; both
   /// dof_count long) to their owners' values, in one message per
   /// neighbour. Collective over the neighbours; a no-op unless divides_state().
@@ -133,9 +139,14 @@ class Distribution {
     std::vector<int> send_nodes, receive_nodes;
     std::vector<int> send_dofs, receive_dofs;  ///< dofs of those nodes
     std::vector<int> send_free, receive_free;  ///< their free rows
+    std::vector<int> send_cells, receive_cells;
   };
-  /// Sends values[send] to each neighbour and writes what comes back at receive.
-  void exchange(std::span<double> a, std::span<double> b, bool free_rows) const;
+  /// What a vector exchanged with the neighbours runs over.
+  enum class Entries { dofs, free, cells };
+  static const std::vector<int>& sent(const GhostLink& link, Entries entries);
+  static const std::vector<int>& received(const GhostLink& link, Entries entries);
+  /// Sends values[sent] to each neighbour and writes what comes back at received.
+  void exchange(std::span<double> a, std::span<double> b, Entries entries) const;
 
   const Model* model_;
   int rank_, size_;
