@@ -16,7 +16,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx
 # PETSc with OpenMPI (solver.linear.type: petsc, cmake/petsc.cmake; the build
 # goes on without it when missing), found through pkg-config.
-$SUDO apt-get install -y -qq --no-install-recommends pkg-config libpetsc-real-dev libopenmpi-dev openmpi-bin
+$SUDO apt-get install -y -qq --no-install-recommends pkg-config libpetsc-real-dev libopenmpi-dev openmpi-bin libscotch-dev
 # The fuzzers (scripts/run-fuzzers.sh): clang with libFuzzer and the
 # sanitizer runtimes, LLVM's OpenMP for the runtime library built by clang,
 # llvm-symbolizer for readable stacks in clang's sanitizer reports.

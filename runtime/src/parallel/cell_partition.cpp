@@ -1,21 +1,41 @@
-// PT-Scotch through PETSc's MatPartitioning, run by one process on
-// PETSC_COMM_SELF.
+// Scotch, sequential, in a context made deterministic with a fixed seed:
+// PT-Scotch through PETSc's MatPartitioning cut the same mesh differently
+// from run to run (its threaded algorithms), so runs did not repeat bit for bit.
 #include "tensormass/parallel/cell_partition.hpp"
 
-#include <petscmat.h>
-
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <string>
 
-#include "parallel/petsc_start.hpp"
 #include "tensormass/common/errors.hpp"
+
+extern "C" {
+#include <scotch.h>
+}
 
 namespace tensormass::parallel {
 
 namespace {
-void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw NumericalError(std::string("PETSc: ") + what + " failed while cutting the mesh for MPI ranks");
+
+void check(int code, const char* what) {
+  if (code != 0) throw NumericalError(std::string("Scotch: ") + what + " failed while cutting the mesh for MPI ranks");
 }
+
+/// Scotch's graph, strategy and context, released in reverse order.
+struct ScotchCut {
+  SCOTCH_Context context;
+  SCOTCH_Graph graph, bound;
+  SCOTCH_Strat strategy;
+  bool context_ready = false, graph_ready = false, bound_ready = false, strategy_ready = false;
+  ~ScotchCut() {
+    if (strategy_ready) SCOTCH_stratExit(&strategy);
+    if (bound_ready) SCOTCH_graphExit(&bound);
+    if (graph_ready) SCOTCH_graphExit(&graph);
+    if (context_ready) SCOTCH_contextExit(&context);
+  }
+};
+
 }  // namespace
 
 std::vector<int> partition_cells(const Mesh& mesh, int parts) {
@@ -24,31 +44,28 @@ std::vector<int> partition_cells(const Mesh& mesh, int parts) {
   if (parts > cells)
     throw InputError("cannot share " + std::to_string(cells) + " cells among " + std::to_string(parts) +
                      " MPI ranks (run on fewer ranks)");
-  detail::ensure_petsc_started();
   const CellGraph graph = make_cell_graph(mesh);
-  // MatCreateMPIAdj takes ownership of arrays from PetscMalloc.
-  PetscInt *row_start = nullptr, *columns = nullptr;
-  check(PetscMalloc1(graph.row_start.size(), &row_start), "PetscMalloc1");
-  check(PetscMalloc1(std::max<std::size_t>(1, graph.columns.size()), &columns), "PetscMalloc1");
-  std::copy(graph.row_start.begin(), graph.row_start.end(), row_start);
-  std::copy(graph.columns.begin(), graph.columns.end(), columns);
-  Mat adjacency;
-  check(MatCreateMPIAdj(PETSC_COMM_SELF, cells, cells, row_start, columns, nullptr, &adjacency), "MatCreateMPIAdj");
-  MatPartitioning partitioning;
-  check(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning), "MatPartitioningCreate");
-  check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
-  check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
-  check(MatPartitioningSetNParts(partitioning, parts), "MatPartitioningSetNParts");
-  IS part_of_cell;
-  const PetscErrorCode applied = MatPartitioningApply(partitioning, &part_of_cell);
-  MatPartitioningDestroy(&partitioning);
-  MatDestroy(&adjacency);
-  check(applied, "MatPartitioningApply (PT-Scotch)");
-  const PetscInt* part = nullptr;
-  ISGetIndices(part_of_cell, &part);
-  std::vector<int> owner(part, part + cells);
-  ISRestoreIndices(part_of_cell, &part);
-  ISDestroy(&part_of_cell);
+  static_assert(sizeof(SCOTCH_Num) == sizeof(int), "the cell graph's integers are Scotch's");
+  ScotchCut cut;
+  check(SCOTCH_contextInit(&cut.context), "SCOTCH_contextInit");
+  cut.context_ready = true;
+  check(SCOTCH_contextOptionSetNum(&cut.context, SCOTCH_OPTIONNUMDETERMINISTIC, 1), "SCOTCH_contextOptionSetNum");
+  check(SCOTCH_contextOptionSetNum(&cut.context, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1), "SCOTCH_contextOptionSetNum");
+  SCOTCH_contextRandomSeed(&cut.context, 1);
+  check(SCOTCH_graphInit(&cut.graph), "SCOTCH_graphInit");
+  cut.graph_ready = true;
+  check(SCOTCH_graphBuild(&cut.graph, 0, cells, graph.row_start.data(), nullptr, nullptr, nullptr,
+                          static_cast<SCOTCH_Num>(graph.columns.size()), graph.columns.data(), nullptr),
+        "SCOTCH_graphBuild");
+  check(SCOTCH_graphInit(&cut.bound), "SCOTCH_graphInit");
+  cut.bound_ready = true;
+  check(SCOTCH_contextBindGraph(&cut.context, &cut.graph, &cut.bound), "SCOTCH_contextBindGraph");
+  check(SCOTCH_stratInit(&cut.strategy), "SCOTCH_stratInit");
+  cut.strategy_ready = true;
+  constexpr double kImbalance = 0.01;  // PETSc's PT-Scotch default
+  check(SCOTCH_stratGraphMapBuild(&cut.strategy, SCOTCH_STRATDEFAULT, parts, kImbalance), "SCOTCH_stratGraphMapBuild");
+  std::vector<int> owner(static_cast<std::size_t>(cells), 0);
+  check(SCOTCH_graphPart(&cut.bound, parts, &cut.strategy, owner.data()), "SCOTCH_graphPart");
   for (int p = 0; p < parts; ++p)
     if (std::find(owner.begin(), owner.end(), p) == owner.end())
       throw NumericalError("the mesh cut for " + std::to_string(parts) + " MPI ranks left rank " + std::to_string(p) +

@@ -2,7 +2,7 @@
 // each rank's own rows of the forces and the tangent equal the serial
 // assembly bit for bit, the ranks' own rows cover every dof once, the
 // energies add up, and the rank-by-rank numbering is a permutation with one
-// contiguous range per rank. Also the cell graph and the PT-Scotch cut.
+// contiguous range per rank. Also the cell graph and the Scotch cut.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -203,7 +203,7 @@ TEST(CellGraph, CellsSharingAFaceAreNeighbours) {
 }
 
 TEST(CellPartition, CutsIntoBalancedNonEmptyParts) {
-  if (!petsc_available()) GTEST_SKIP() << "this build has no PETSc (PT-Scotch comes with it)";
+  if (!petsc_available()) GTEST_SKIP() << "this build has no PETSc and Scotch";
   const Mesh mesh = test::beam(3, "tet6", {12, 3, 3});
   const Scene scene = test::cantilever("hooke");
   const Model model(mesh, scene.model);
@@ -217,6 +217,7 @@ TEST(CellPartition, CutsIntoBalancedNonEmptyParts) {
     }
     for (int p = 0; p < parts; ++p)
       EXPECT_NEAR(count[p], double(model.cell_count()) / parts, 0.1 * model.cell_count() / parts) << parts;
+    EXPECT_EQ(parallel::partition_cells(model.mesh(), parts), owner) << "the cut repeats";
   }
   EXPECT_THROW(parallel::partition_cells(model.mesh(), model.cell_count() + 1), InputError);
 }

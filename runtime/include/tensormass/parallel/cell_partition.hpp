@@ -1,6 +1,7 @@
 /// \file cell_partition.hpp
 /// Cuts a mesh's cells into parts of nearly equal size with short borders:
-/// PT-Scotch (through PETSc's MatPartitioning) on the cells' face graph.
+/// Scotch on the cells' face graph, in a deterministic context: the same
+/// mesh gets the same cut on every run.
 #ifndef TENSORMASS_PARALLEL_CELL_PARTITION_HPP
 #define TENSORMASS_PARALLEL_CELL_PARTITION_HPP
 
@@ -19,8 +20,7 @@ struct CellGraph {
 CellGraph make_cell_graph(const Mesh& mesh);
 
 /// The part (0 .. parts-1) of every cell, computed by this process alone
-/// (PT-Scotch's cut may differ between processes: compute it on one rank
-/// and broadcast it). parts = 1 puts every cell in part 0; throws
+/// (compute it on one rank and broadcast it). parts = 1 puts every cell in part 0; throws
 /// InputError without PETSc when parts > 1.
 std::vector<int> partition_cells(const Mesh& mesh, int parts);
 
