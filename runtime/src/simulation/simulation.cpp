@@ -450,7 +450,15 @@ struct Simulation::Impl {
       divided.warm_start = distribution->local_free(divided.warm_start);
     return divided;
   }
-  std::vector<double> tracked;  ///< a divided state's displacement made whole for the tracks
+  /// A divided state's tracks: the tracked nodes' displacements gathered to
+  /// rank 0 each step (tracked_rows: per tracked node, its local node if
+  /// this rank owns it, else -1) into `tracked`, rank 0's whole-length
+  /// displacement of which only the tracked nodes' entries are kept.
+  std::vector<int> tracked_nodes, tracked_rows;
+  std::vector<double> tracked;
+  bool tracked_nodes_known = false;
+  void gather_tracked_nodes();
+  const std::vector<double>& tracked_displacement(const State& now);
   /// The report's nodes, cells and dofs: the whole mesh's.
   void count_whole_mesh() {
     report.nodes = disc->whole_node_count();
@@ -559,7 +567,10 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
     detail::PhaseTimer timer(adaptivity_seconds);
     adaptivity->start(last_good.displacement);
   }
-  for (GroupTrack& track : tracks) track.record(state.time, state.displacement);
+  if (!scene.output.track.empty()) {  // every rank: gathering a divided state's tracked nodes is collective
+    const std::vector<double>& displacement = divides_state() ? tracked_displacement(state) : state.displacement;
+    for (GroupTrack& track : tracks) track.record(state.time, displacement);
+  }
   if (refinement) report.refinement.push_back(refinement_record(0, *refinement));
 }
 
@@ -654,6 +665,44 @@ void Simulation::Impl::write_checkpoint_now(const State& state_now) {
   write_checkpoint(checkpoint_path, saved);
 }
 
+/// Which nodes rank 0's tracks read (made from the whole mesh) and which of
+/// them this rank owns: collective, once.
+void Simulation::Impl::gather_tracked_nodes() {
+  if (writes_files())
+    for (const GroupTrack& track : tracks)
+      tracked_nodes.insert(tracked_nodes.end(), track.nodes().begin(), track.nodes().end());
+  std::sort(tracked_nodes.begin(), tracked_nodes.end());
+  tracked_nodes.erase(std::unique(tracked_nodes.begin(), tracked_nodes.end()), tracked_nodes.end());
+  int count = static_cast<int>(tracked_nodes.size());
+  parallel::broadcast_from_root(std::span<int>(&count, 1));
+  tracked_nodes.resize(static_cast<std::size_t>(count));
+  parallel::broadcast_from_root(tracked_nodes);
+  const std::vector<int>& global = distribution->global_nodes();
+  for (int node : tracked_nodes) {
+    const auto found = std::lower_bound(global.begin(), global.end(), node);
+    const int local = found != global.end() && *found == node ? static_cast<int>(found - global.begin()) : -1;
+    tracked_rows.push_back(local >= 0 && distribution->owns_node(local) ? local : -1);
+  }
+  if (writes_files())
+    tracked.assign(static_cast<std::size_t>(disc->model.dim()) * distribution->whole_node_count(), 0.0);
+  tracked_nodes_known = true;
+}
+
+/// The displacement rank 0's tracks read, with only the tracked nodes'
+/// entries set (collective: a sum over the ranks of those entries only).
+const std::vector<double>& Simulation::Impl::tracked_displacement(const State& now) {
+  if (!tracked_nodes_known) gather_tracked_nodes();
+  const std::size_t d = static_cast<std::size_t>(disc->model.dim());
+  std::vector<double> values(d * tracked_nodes.size(), 0.0);
+  for (std::size_t k = 0; k < tracked_rows.size(); ++k)
+    if (const int local = tracked_rows[k]; local >= 0)
+      std::copy_n(now.displacement.begin() + static_cast<std::ptrdiff_t>(d * local), d, values.begin() + d * k);
+  parallel::sum_over_ranks(values);
+  for (std::size_t k = 0; k < tracked_nodes.size() && writes_files(); ++k)
+    std::copy_n(values.begin() + d * k, d, tracked.begin() + static_cast<std::ptrdiff_t>(d * tracked_nodes[k]));
+  return tracked;
+}
+
 /// After each finished step: the adaptive model (a static load step is
 /// solved again when it switched laws: returns true), tracks, per-step
 /// phase times, frames, checkpoints and progress.
@@ -688,12 +737,8 @@ bool Simulation::Impl::observe(const State& now) {
     detail::PhaseTimer timer(report.output_seconds);
     // Rank 0 records tracks of any nodes: a divided state is completed for
     // it (a sum of the whole vector each step, only in runs with tracks).
-    const std::vector<double>* displacement = &now.displacement;
-    if (divides_state()) {
-      tracked = distribution->whole_dofs(now.displacement);
-      displacement = &tracked;
-    }
-    for (GroupTrack& track : tracks) track.record(now.time, *displacement);
+    const std::vector<double>& displacement = divides_state() ? tracked_displacement(now) : now.displacement;
+    for (GroupTrack& track : tracks) track.record(now.time, displacement);
   }
   // Per-step phase times, from the running totals.
   const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;

@@ -57,6 +57,8 @@ class GroupTrack {
   /// Appends the state at `time`; the first call sets the reference of the displacements.
   void record(double time, std::span<const double> u);
   const std::vector<TrackRow>& rows() const { return rows_; }
+  /// The nodes whose displacement the track reads (sorted, unique).
+  const std::vector<int>& nodes() const { return nodes_; }
   /// The weighted displacement of the first row, which later rows are measured from.
   const std::array<double, 3>& first_shift() const { return first_; }
   /// Replaces the rows and the first shift by saved ones (a resumed run).
