@@ -2,10 +2,12 @@
 serial solver (ctest parallel.mpirun): static StVK (CG + GAMG, and MUMPS's
 direct Cholesky) and implicit runs of a 3D beam, a mixed-element beam, a run
 whose cells switch laws, an explicit run and one whose cells switch (the
-criteria screen on), runs that refine their mesh (a tet beam, and the mixed
-beam with its pyramids); each rank holds its part of the mesh (the whole mesh
-in refining runs); the .pvtu pieces hold every cell once; a run resumed from
-its checkpoint ends where a straight run does; a bad scene, a truncated mesh
+criteria screen on), a tet10 beam and a 2D quad plate under pressure and
+nodal forces on their tips, runs that refine their mesh (a tet beam, and the
+mixed beam with its pyramids); each rank holds its part of the mesh (the
+whole mesh in refining runs); the .pvtu pieces hold every cell once; a run
+resumed from its checkpoint ends where a straight run does, its track the
+serial run's; the same run twice gives the same bytes; a bad scene, a truncated mesh
 (read by rank 0 alone), an element inverted at rest (met by the rank building
 its part) and a numerical failure exit non-zero on every rank with one
 message and no hang.
@@ -33,6 +35,20 @@ materials: [{{region: all, law: {law}, young: 2.0e6, poisson: 0.3, density: 1000
 fixed: [clamp]
 loads: {{gravity: [0, -9.81, 0]}}
 {rest}"""
+
+
+def loaded_beam(mesh, solver, pressure, force):
+    """A clamped beam under gravity, a pressure on its tip's facets and a
+    force on each tip node: the facets and nodes of a group cut among ranks."""
+    return f"""mesh: {mesh}
+materials: [{{region: all, law: stvk, young: 2.0e6, poisson: 0.3, density: 1000}}]
+fixed: [clamp]
+loads:
+  gravity: [0, -9.81, 0]
+  pressure: [{{region: tip, pressure: {pressure}}}]
+  nodal_forces: [{{region: tip, force: {force}}}]
+solver: {solver}
+"""
 
 
 SCENES = {
@@ -73,6 +89,11 @@ adaptivity:
   refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1, every: 4}
 output: {every: 4}
 """, law="hooke"),
+    "static_loads_tet10": loaded_beam(
+        "tet10.msh", "{type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}",
+        2000, "[0, -5, 0]"),
+    "implicit_loads_2d": loaded_beam(
+        "plate.msh", "{type: implicit, dt: 0.01, steps: 10, linear: {tolerance: 1.0e-12}}", 2000, "[0, -5]"),
     "static_refining_mixed": clamped_beam("""solver: {type: static, load_steps: 2, tolerance: 1.0e-11, linear: {tolerance: 1.0e-12}}
 adaptivity:
   refine: {criteria: [{name: R_ZZ, threshold: 0.5}], max_level: 1}
@@ -318,9 +339,13 @@ def main():
         os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    for args, name in ((["--cells", "12,3,3", "--type", "tet6"], "beam.msh"),
-                       (["--cells", "10,2,2", "--mix", "hex8:0.4,tet6:0.3,prism6:0.3"], "mixed.msh")):
-        made = run([binary, "beam", "--dim", "3", "--size", "4,1,1", *args, "-o", name], work)
+    for args, name in ((["--dim", "3", "--size", "4,1,1", "--cells", "12,3,3", "--type", "tet6"], "beam.msh"),
+                       (["--dim", "3", "--size", "4,1,1", "--cells", "10,2,2", "--mix", "hex8:0.4,tet6:0.3,prism6:0.3"],
+                        "mixed.msh"),
+                       (["--dim", "3", "--size", "4,1,1", "--cells", "8,2,2", "--type", "tet6", "--order", "2"],
+                        "tet10.msh"),
+                       (["--dim", "2", "--size", "4,1", "--cells", "24,4", "--type", "quad4"], "plate.msh")):
+        made = run([binary, "beam", *args, "-o", name], work)
         if made.returncode != 0:
             print(made.stderr)
             return 1
