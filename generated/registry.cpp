@@ -324,6 +324,8 @@ void tm_neohookean_prism6_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
+void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_prism6_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_prism6_terms_energy(const double*, const double*);
 void tm_neohookean_prism6_terms_gradient(const double*, const double*, double*);
@@ -336,6 +338,8 @@ void tm_neohookean_pyramid5_whole_gradient(const double*, const double*, double*
 void tm_neohookean_pyramid5_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_pyramid5_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_pyramid5_terms_energy(const double*, const double*);
 void tm_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
@@ -348,6 +352,8 @@ void tm_neohookean_quad4_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_whole_stress(const double*, const double*, double*);
+void tm_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_quad4_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_quad4_terms_energy(const double*, const double*);
 void tm_neohookean_quad4_terms_gradient(const double*, const double*, double*);
@@ -360,6 +366,8 @@ void tm_neohookean_quad8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_whole_stress(const double*, const double*, double*);
+void tm_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_quad8_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_quad8_terms_energy(const double*, const double*);
 void tm_neohookean_quad8_terms_gradient(const double*, const double*, double*);
@@ -384,6 +392,8 @@ void tm_neohookean_tet4_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_whole_stress(const double*, const double*, double*);
+void tm_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_tet4_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_tet4_terms_energy(const double*, const double*);
 void tm_neohookean_tet4_terms_gradient(const double*, const double*, double*);
@@ -396,6 +406,8 @@ void tm_neohookean_tri3_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_whole_stress(const double*, const double*, double*);
+void tm_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_tri3_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_tri3_terms_energy(const double*, const double*);
 void tm_neohookean_tri3_terms_gradient(const double*, const double*, double*);
@@ -408,6 +420,8 @@ void tm_neohookean_tri6_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_whole_stress(const double*, const double*, double*);
+void tm_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_neohookean_tri6_terms_precompute(const double*, const double*, double*);
 double tm_neohookean_tri6_terms_energy(const double*, const double*);
 void tm_neohookean_tri6_terms_gradient(const double*, const double*, double*);
@@ -1032,7 +1046,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
    tm_neohookean_prism6_whole_hessian, tm_neohookean_prism6_whole_gradient_hessian, tm_neohookean_prism6_whole_stress, 972, 2034, 14790,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch},
 
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
@@ -1044,7 +1058,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
    tm_neohookean_pyramid5_whole_hessian, tm_neohookean_pyramid5_whole_gradient_hessian, tm_neohookean_pyramid5_whole_stress, 1152, 2424, 15688,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch},
 
   {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
@@ -1056,7 +1070,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
    tm_neohookean_quad4_whole_hessian, tm_neohookean_quad4_whole_gradient_hessian, tm_neohookean_quad4_whole_stress, 216, 404, 1728,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch},
 
   {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
@@ -1068,7 +1082,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
    tm_neohookean_quad8_whole_hessian, tm_neohookean_quad8_whole_gradient_hessian, tm_neohookean_quad8_whole_stress, 774, 1485, 10008,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch},
 
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
@@ -1092,7 +1106,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
    tm_neohookean_tet4_whole_hessian, tm_neohookean_tet4_whole_gradient_hessian, tm_neohookean_tet4_whole_stress, 126, 267, 1529,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch},
 
   {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
@@ -1104,7 +1118,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
    tm_neohookean_tri3_whole_hessian, tm_neohookean_tri3_whole_gradient_hessian, tm_neohookean_tri3_whole_stress, 46, 85, 322,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch},
 
   {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
@@ -1116,7 +1130,7 @@ const tm_kernel kKernels[] = {
    kNeohookeanParameters, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
    tm_neohookean_tri6_whole_hessian, tm_neohookean_tri6_whole_gradient_hessian, tm_neohookean_tri6_whole_stress, 210, 399, 2172,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch},
 
   {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,

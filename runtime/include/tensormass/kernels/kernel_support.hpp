@@ -18,6 +18,15 @@
 #define TENSORMASS_SIMD_LOOP
 #endif
 
+// log with glibc's vector variants (libmvec), as <math.h> declares it under
+// -ffast-math: a SIMD loop over a batch's lanes then takes the log of all of
+// them in one call instead of one scalar call per lane (neo-Hookean's batched
+// kernels). Set by the build (with -fno-math-errno and libmvec) for the
+// kernels only; libmvec's log is within 4 ulp.
+#if defined(TENSORMASS_VECTOR_LOG)
+extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
+#endif
+
 namespace tensormass::kernel {
 
 /// Fills, for each quadrature point, w*det(J) and G^T (D by N) from the rest
