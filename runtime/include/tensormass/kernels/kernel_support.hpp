@@ -22,8 +22,9 @@
 // -ffast-math: a SIMD loop over a batch's lanes then takes the log of all of
 // them in one call instead of one scalar call per lane (neo-Hookean's batched
 // kernels). Set by the build (with -fno-math-errno and libmvec) for the
-// kernels only; libmvec's log is within 4 ulp.
-#if defined(TENSORMASS_VECTOR_LOG)
+// kernels only; libmvec's log is within 4 ulp. Clang has no such attribute
+// (its lanes call log one by one).
+#if defined(TENSORMASS_VECTOR_LOG) && !defined(__clang__)
 extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
 #endif
 
