@@ -140,8 +140,7 @@ void Distribution::build_ghost_links() {
     if (!owns_cell(cell)) receive_cells[cell_owner(cell)].push_back(cell);
     else
       for (int node : nodes)
-        if (const int q = node_owner(node); q != rank_ && (send_cells[q].empty() || send_cells[q].back() != cell))
-          send_cells[q].push_back(cell);
+        if (const int q = node_owner(node); q != rank_) send_cells[q].push_back(cell);  // made unique below
     needing.assign(1, cell_owner(cell));
     for (int node : nodes) needing.push_back(node_owner(node));
     for (int node : nodes) {

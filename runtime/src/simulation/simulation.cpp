@@ -459,6 +459,12 @@ struct Simulation::Impl {
   bool tracked_nodes_known = false;
   void gather_tracked_nodes();
   const std::vector<double>& tracked_displacement(const State& now);
+  /// A row of every track at `now` (collective on every rank of a divided state).
+  void record_tracks(const State& now) {
+    if (scene.output.track.empty()) return;
+    const std::vector<double>& displacement = divides_state() ? tracked_displacement(now) : now.displacement;
+    for (GroupTrack& track : tracks) track.record(now.time, displacement);
+  }
   /// The report's nodes, cells and dofs: the whole mesh's.
   void count_whole_mesh() {
     report.nodes = disc->whole_node_count();
@@ -567,10 +573,7 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
     detail::PhaseTimer timer(adaptivity_seconds);
     adaptivity->start(last_good.displacement);
   }
-  if (!scene.output.track.empty()) {  // every rank: gathering a divided state's tracked nodes is collective
-    const std::vector<double>& displacement = divides_state() ? tracked_displacement(state) : state.displacement;
-    for (GroupTrack& track : tracks) track.record(state.time, displacement);
-  }
+  record_tracks(state);
   if (refinement) report.refinement.push_back(refinement_record(0, *refinement));
 }
 
@@ -733,12 +736,9 @@ bool Simulation::Impl::observe(const State& now) {
   refinement_passes = 0;
   last_good = now;
   if (memory_marks.back().first == "solver") mark_memory("first step");  // once, after the first step
-  if (!scene.output.track.empty()) {  // every rank: completing a divided state is collective
+  if (!scene.output.track.empty()) {
     detail::PhaseTimer timer(report.output_seconds);
-    // Rank 0 records tracks of any nodes: a divided state is completed for
-    // it (a sum of the whole vector each step, only in runs with tracks).
-    const std::vector<double>& displacement = divides_state() ? tracked_displacement(now) : now.displacement;
-    for (GroupTrack& track : tracks) track.record(now.time, displacement);
+    record_tracks(now);
   }
   // Per-step phase times, from the running totals.
   const double criteria_now = adaptivity ? adaptivity->criteria_seconds() : 0.0;
