@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "tensormass/kernels/kernel_support.hpp"
 #include "tensormass/kernels/polar_decomposition.hpp"
 
 namespace tensormass::bench {
@@ -80,29 +81,67 @@ double median_ns(Polar polar, const std::vector<double>& H, std::vector<double>&
   return samples[samples.size() / 2];
 }
 
+/// H (9 per matrix) regrouped as batches of W lanes in structure of arrays (kernel_abi.h).
+template <int W>
+std::vector<double> in_batches(const std::vector<double>& H) {
+  const std::size_t batches = H.size() / (9 * W);
+  std::vector<double> packed(batches * 9 * W);
+  for (std::size_t b = 0; b < batches; ++b)
+    for (int l = 0; l < W; ++l)
+      for (int i = 0; i < 9; ++i) packed[(b * 9 + i) * W + l] = H[(b * W + l) * 9 + i];
+  return packed;
+}
+
+/// polar_rotation_batch over packed batches: ns per matrix (median), and
+/// the rotations unpacked back to 9 per matrix.
+template <int W>
+double median_batch_ns(const std::vector<double>& H, std::vector<double>& R, int repetitions) {
+  const std::vector<double> packed = in_batches<W>(H);
+  std::vector<double> rotations(packed.size());
+  const int batches = static_cast<int>(packed.size() / (9 * W));
+  std::vector<double> samples;
+  for (int r = 0; r < repetitions; ++r) {
+    const auto start = Clock::now();
+    for (int b = 0; b < batches; ++b) kernel::polar_rotation_batch<3, W>(&packed[9 * W * b], &rotations[9 * W * b]);
+    samples.push_back(1e9 * std::chrono::duration<double>(Clock::now() - start).count() / (batches * W));
+  }
+  for (int b = 0; b < batches; ++b)
+    for (int l = 0; l < W; ++l)
+      for (int i = 0; i < 9; ++i) R[(b * W + l) * 9 + i] = rotations[(b * 9 + i) * W + l];
+  std::sort(samples.begin(), samples.end());
+  return samples[samples.size() / 2];
+}
+
 }  // namespace
 
 bool print_polar_rotation_timings(int matrices, int repetitions) {
   std::printf("\n## 3D polar rotation (corotational kernels), ns per call, median of %d over %d matrices\n\n",
               repetitions, matrices);
-  std::printf("| strain | now | scaled every step, stop 1e-10 (before) | now / before | largest difference |\n");
-  std::printf("|---:|---:|---:|---:|---:|\n");
+  std::printf(
+      "| strain | now | scaled every step, stop 1e-10 (before) | now / before | largest difference "
+      "| batched, %d lanes (Newton-Schulz) | batched / now | its largest difference |\n",
+      kernel::kBatchWidth);
+  std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::mt19937_64 rng(20261126);
   bool agree = true;
   for (double strain : {0.001, 0.01, 0.1, 0.3}) {
     const std::vector<double> H = random_gradients(matrices, strain, rng);
-    std::vector<double> now(H.size()), before(H.size());
-    // Alternate the two so that a drift of the machine touches both alike.
-    double now_ns = 0.0, before_ns = 0.0;
+    std::vector<double> now(H.size()), before(H.size()), batched(H.size());
+    // Alternate them so that a drift of the machine touches all alike.
+    double now_ns = 0.0, before_ns = 0.0, batched_ns = 0.0;
     for (int round = 0; round < 2; ++round) {
       before_ns += median_ns(polar_rotation_scaled_every_step, H, before, repetitions);
       now_ns += median_ns(kernel::polar_rotation<3>, H, now, repetitions);
+      batched_ns += median_batch_ns<kernel::kBatchWidth>(H, batched, repetitions);
     }
-    double difference = 0.0;
-    for (std::size_t i = 0; i < H.size(); ++i) difference = std::max(difference, std::abs(now[i] - before[i]));
-    agree = agree && difference <= 1e-12;
-    std::printf("| %g | %.1f | %.1f | %.2f | %.1e |\n", strain, now_ns / 2, before_ns / 2, now_ns / before_ns,
-                difference);
+    double difference = 0.0, batched_difference = 0.0;
+    for (std::size_t i = 0; i < H.size(); ++i) {
+      difference = std::max(difference, std::abs(now[i] - before[i]));
+      batched_difference = std::max(batched_difference, std::abs(batched[i] - now[i]));
+    }
+    agree = agree && difference <= 1e-12 && batched_difference <= 1e-12;
+    std::printf("| %g | %.1f | %.1f | %.2f | %.1e | %.1f | %.2f | %.1e |\n", strain, now_ns / 2, before_ns / 2,
+                now_ns / before_ns, difference, batched_ns / 2, batched_ns / now_ns, batched_difference);
   }
   return agree;
 }

@@ -34,6 +34,8 @@ void tm_corotational_prism6_whole_gradient(const double*, const double*, double*
 void tm_corotational_prism6_whole_hessian(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
+void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_prism6_terms_precompute(const double*, const double*, double*);
 double tm_corotational_prism6_terms_energy(const double*, const double*);
 void tm_corotational_prism6_terms_gradient(const double*, const double*, double*);
@@ -46,6 +48,8 @@ void tm_corotational_pyramid5_whole_gradient(const double*, const double*, doubl
 void tm_corotational_pyramid5_whole_hessian(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_corotational_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_pyramid5_terms_precompute(const double*, const double*, double*);
 double tm_corotational_pyramid5_terms_energy(const double*, const double*);
 void tm_corotational_pyramid5_terms_gradient(const double*, const double*, double*);
@@ -58,6 +62,8 @@ void tm_corotational_quad4_whole_gradient(const double*, const double*, double*)
 void tm_corotational_quad4_whole_hessian(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
+void tm_corotational_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_quad4_terms_precompute(const double*, const double*, double*);
 double tm_corotational_quad4_terms_energy(const double*, const double*);
 void tm_corotational_quad4_terms_gradient(const double*, const double*, double*);
@@ -70,6 +76,8 @@ void tm_corotational_quad8_whole_gradient(const double*, const double*, double*)
 void tm_corotational_quad8_whole_hessian(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad8_whole_stress(const double*, const double*, double*);
+void tm_corotational_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_quad8_terms_precompute(const double*, const double*, double*);
 double tm_corotational_quad8_terms_energy(const double*, const double*);
 void tm_corotational_quad8_terms_gradient(const double*, const double*, double*);
@@ -94,6 +102,8 @@ void tm_corotational_tet4_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tet4_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet4_whole_stress(const double*, const double*, double*);
+void tm_corotational_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_tet4_terms_precompute(const double*, const double*, double*);
 double tm_corotational_tet4_terms_energy(const double*, const double*);
 void tm_corotational_tet4_terms_gradient(const double*, const double*, double*);
@@ -106,6 +116,8 @@ void tm_corotational_tri3_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tri3_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri3_whole_stress(const double*, const double*, double*);
+void tm_corotational_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_tri3_terms_precompute(const double*, const double*, double*);
 double tm_corotational_tri3_terms_energy(const double*, const double*);
 void tm_corotational_tri3_terms_gradient(const double*, const double*, double*);
@@ -118,6 +130,8 @@ void tm_corotational_tri6_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tri6_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri6_whole_stress(const double*, const double*, double*);
+void tm_corotational_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 int tm_corotational_tri6_terms_precompute(const double*, const double*, double*);
 double tm_corotational_tri6_terms_energy(const double*, const double*);
 void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
@@ -770,7 +784,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
    tm_corotational_prism6_whole_hessian, tm_corotational_prism6_whole_gradient_hessian, tm_corotational_prism6_whole_stress, 3906, 4704, 23898,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch},
 
   {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
@@ -782,7 +796,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
    tm_corotational_pyramid5_whole_hessian, tm_corotational_pyramid5_whole_gradient_hessian, tm_corotational_pyramid5_whole_stress, 5064, 5984, 27832,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch},
 
   {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
@@ -794,7 +808,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
    tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch},
 
   {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
@@ -806,7 +820,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
    tm_corotational_quad8_whole_hessian, tm_corotational_quad8_whole_gradient_hessian, tm_corotational_quad8_whole_stress, 936, 1593, 10683,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch},
 
   {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
@@ -830,7 +844,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
    tm_corotational_tet4_whole_hessian, tm_corotational_tet4_whole_gradient_hessian, tm_corotational_tet4_whole_stress, 615, 712, 3047,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch},
 
   {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
@@ -842,7 +856,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
    tm_corotational_tri3_whole_hessian, tm_corotational_tri3_whole_gradient_hessian, tm_corotational_tri3_whole_stress, 64, 97, 397,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch},
 
   {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
@@ -854,7 +868,7 @@ const tm_kernel kKernels[] = {
    kCorotationalParameters, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
    tm_corotational_tri6_whole_hessian, tm_corotational_tri6_whole_gradient_hessian, tm_corotational_tri6_whole_stress, 264, 435, 2397,
    0, 0,
-   0, nullptr, nullptr},
+   tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch},
 
   {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,

@@ -463,3 +463,51 @@ extern "C" void tm_corotational_pyramid5_whole_gradient_hessian(const double* u,
 extern "C" void tm_corotational_pyramid5_whole_hessian(const double* u, const double* consts, double* hessian) {
   tm_corotational_pyramid5_whole_gradient_hessian(u, consts, nullptr, hessian);
 }
+
+// Batches of kBatchWidth elements (kernel_abi.h): inputs in structure of
+// arrays, the law block once per lane inside a SIMD loop over the lanes,
+// outputs element by element.
+// The lanes' polar rotations are computed together before that loop
+// (polar_rotation_batch), and each lane's law block reads its own.
+namespace {
+constexpr int kLanes = tensormass::kernel::kBatchWidth;
+using InLane = tensormass::kernel::Lane<kLanes, const double>;
+using OutLane = tensormass::kernel::Lane<kLanes, double>;
+using HLane = tensormass::kernel::RotatedLane<kLanes, const double>;
+}  // namespace
+
+extern "C" void tm_corotational_pyramid5_whole_gradient_batch(const double* u, const double* consts, double* gradient) {
+  alignas(64) double g[kDofs * kLanes] = {};
+  for (int q = 0; q < kPoints; ++q) {
+    const double* point = consts + (kDerived + q * kStride) * kLanes;
+    alignas(64) double H[kDim * kDim * kLanes], wP[kDim * kDim * kLanes];
+    tensormass::kernel::displacement_gradient_batch<kLanes, kDim, kNodes>(u, point + kLanes, H);
+    alignas(64) double R[kDim * kDim * kLanes];
+    tensormass::kernel::polar_rotation_batch<kDim, kLanes>(H, R);
+    TENSORMASS_SIMD_LOOP
+    for (int l = 0; l < kLanes; ++l) law_weighted_stress(HLane{H + l, R + l}, point[l], InLane{consts + l}, OutLane{wP + l});
+    tensormass::kernel::accumulate_gradient_batch<kLanes, kDim, kNodes>(wP, point + kLanes, g);
+  }
+  tensormass::kernel::scatter_gradient_batch<kLanes, kDim, kNodes>(g, gradient);
+}
+
+extern "C" void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double* u, const double* consts, double* gradient,
+                                                                      double* hessian) {
+  constexpr int kPairBlocks = tensormass::kernel::component_pairs<kDim> * kNodes * kNodes;
+  alignas(64) double g[kDofs * kLanes] = {};
+  alignas(64) double K[kPairBlocks * kLanes] = {};
+  for (int q = 0; q < kPoints; ++q) {
+    const double* point = consts + (kDerived + q * kStride) * kLanes;
+    alignas(64) double H[kDim * kDim * kLanes], wP[kDim * kDim * kLanes], wA[kDim * kDim * kDim * kDim * kLanes];
+    tensormass::kernel::displacement_gradient_batch<kLanes, kDim, kNodes>(u, point + kLanes, H);
+    alignas(64) double R[kDim * kDim * kLanes];
+    tensormass::kernel::polar_rotation_batch<kDim, kLanes>(H, R);
+    TENSORMASS_SIMD_LOOP
+    for (int l = 0; l < kLanes; ++l)
+      law_tangent(HLane{H + l, R + l}, point[l], InLane{consts + l}, OutLane{wP + l}, OutLane{wA + l});
+    if (gradient) tensormass::kernel::accumulate_gradient_batch<kLanes, kDim, kNodes>(wP, point + kLanes, g);
+    tensormass::kernel::accumulate_hessian_batch<kLanes, kDim, kNodes>(wA, point + kLanes, K);
+  }
+  if (gradient) tensormass::kernel::scatter_gradient_batch<kLanes, kDim, kNodes>(g, gradient);
+  tensormass::kernel::scatter_hessian_batch<kLanes, kDim, kNodes>(K, hessian);
+}

@@ -37,13 +37,17 @@ def quadrature_flops(element: ElementSpec, points: int, law_ir: LawKernelIR) -> 
 # - at most BATCH_BLOCK_LIMIT doubles of component-pair blocks per lane. Above
 #   it (hex8, tet10, hex20) the batched kernel was 1.8 to 8x slower than the
 #   per-element one, which is already vectorised along its 8 or more nodes.
-# - no library calls but `log` and no polar rotation (an iteration per lane).
-#   With scalar calls per lane neo-Hookean and corotational ran batched at 0.8
-#   to 1.0x alone and 1.07 to 1.13x in the assembly, where packing the batch
-#   costs more than the kernel saves. `log` is declared with glibc's vector
-#   variants (kernel_support.hpp: libmvec's, as -ffast-math would), so its
-#   lanes run in one SIMD call.
+# - no library calls but `log`. With scalar calls per lane neo-Hookean and
+#   corotational ran batched at 0.8 to 1.0x alone and 1.07 to 1.13x in the
+#   assembly, where packing the batch costs more than the kernel saves. `log`
+#   is declared with glibc's vector variants (kernel_support.hpp: libmvec's,
+#   as -ffast-math would), so its lanes run in one SIMD call.
+# - auxiliaries: only the polar rotation and its inverse term. The batch
+#   computes the lanes' rotations together before the SIMD loop
+#   (polar_rotation_batch, one Newton iteration over all lanes), and the
+#   inverse term is straight-line code.
 BATCH_BLOCK_LIMIT = 256
+BATCHED_AUXILIARIES = frozenset({"rotation", "rotation_inverse"})
 
 
 def batch_pays(element: ElementSpec, law_ir: LawKernelIR) -> bool:
@@ -54,7 +58,7 @@ def batch_pays(element: ElementSpec, law_ir: LawKernelIR) -> bool:
     block = law_ir.tangent
     calls = any(any(not isinstance(f, sympy.log) for f in a.expr.atoms(sympy.Function)) or
                 any(not p.exp.is_Integer for p in a.expr.atoms(sympy.Pow)) for a in block.assignments)
-    return not calls and not block.auxiliaries
+    return not calls and set(block.auxiliaries) <= BATCHED_AUXILIARIES
 
 
 def lower(triple: Triple) -> SplitLowering:
