@@ -319,7 +319,7 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 #pragma omp parallel if (active >= kParallelCells)
   {
     CellBuffers buffers(stiffness != nullptr);
-    CellBatch batch;
+    CellBatches waiting;
     for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(dynamic, 1)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
@@ -327,13 +327,12 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
         const int last = std::min(cells, first + kChunkCells);
         for (int cell = first; cell < last; ++cell) {
           if ((linear_ && linear_->folded(cell)) || (shared && !shared->assembles_cell(cell))) continue;
-          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, batch);
-          else {
-            run_batch(u, gradient, stiffness, batch);  // keeps the cell order of the scatter
-            assemble_cell(cell, u, gradient, stiffness, buffers);
-          }
+          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, waiting);
+          else assemble_cell(cell, u, gradient, stiffness, buffers);
         }
-        run_batch(u, gradient, stiffness, batch);  // a chunk's cells are all in before the next chunk
+        // A chunk's cells are all in before the next chunk: the order of the
+        // sums depends on the cells and their laws, not on the threads.
+        run_batches(u, gradient, stiffness, waiting);
       }
     }
   }
@@ -345,12 +344,24 @@ bool Assembler::batches(int cell) const {
 }
 
 void Assembler::batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                           CellBatch& batch) const {
+                           CellBatches& waiting) const {
   const tm_kernel& kernel = model_->kernel(cell);
-  if (batch.size > 0 && (batch.kernel != &kernel || batch.size == kernel.batch_width))
-    run_batch(u, gradient, stiffness, batch);
-  batch.kernel = &kernel;
-  batch.cells[batch.size++] = cell;
+  CellBatch* batch = nullptr;
+  for (int s = 0; s < waiting.used && !batch; ++s)
+    if (waiting.slots[s].kernel == &kernel) batch = &waiting.slots[s];
+  if (!batch) {
+    if (waiting.used == CellBatches::kSlots) run_batches(u, gradient, stiffness, waiting);
+    batch = &waiting.slots[waiting.used++];
+    batch->kernel = &kernel;
+  }
+  if (batch->size == kernel.batch_width) run_batch(u, gradient, stiffness, *batch);
+  batch->cells[batch->size++] = cell;
+}
+
+void Assembler::run_batches(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                            CellBatches& waiting) const {
+  for (int s = 0; s < waiting.used; ++s) run_batch(u, gradient, stiffness, waiting.slots[s]);
+  waiting.used = 0;
 }
 
 void Assembler::run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,

@@ -123,16 +123,28 @@ class Assembler {
     int size = 0;
     std::vector<double> u, consts, g, k;
   };
+  /// A batch per kernel waiting, so that cells of two or three laws
+  /// interleaved in a chunk (an adaptive run's ladder) still fill their
+  /// batches: one waiting batch broke at every change of law.
+  struct CellBatches {
+    static constexpr int kSlots = 4;
+    CellBatch slots[kSlots];
+    int used = 0;
+  };
   void assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                      CellBuffers& buffers) const;
   /// True when the cell runs through its kernel's batched entry points.
   bool batches(int cell) const;
-  /// Adds a cell to the batch, running the batch first when it is full or of another kernel.
+  /// Adds a cell to its kernel's waiting batch, running that batch first
+  /// when it is full (and every batch when all slots hold other kernels).
   void batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                  CellBatch& batch) const;
+                  CellBatches& waiting) const;
   /// Runs the waiting cells' batched kernel and scatters them in cell order.
   void run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                  CellBatch& batch) const;
+  /// Runs every waiting batch, in the order their kernels first came.
+  void run_batches(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
+                   CellBatches& waiting) const;
   /// Adds one cell's gradient g (dofs) and Hessian k (dofs by dofs, or null) into the totals.
   void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                     SparseMatrix* stiffness) const;
