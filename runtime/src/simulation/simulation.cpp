@@ -308,6 +308,13 @@ struct StartMesh {
   std::vector<GroupTrack> tracks;  ///< with cut: rank 0's, made on the whole mesh (the others record none)
 };
 
+/// A whole mesh held by this process, uncut.
+StartMesh whole_start_mesh(Mesh mesh) {
+  StartMesh start;
+  start.mesh = std::move(mesh);
+  return start;
+}
+
 /// The scene's mesh checked against the scene (a part was checked whole, on rank 0).
 Mesh checked_mesh(const Scene& scene, StartMesh& start) {
   if (!start.cut) validate_against_mesh(scene, start.mesh);
@@ -327,7 +334,7 @@ bool cuts_mesh(const Scene& scene, const RunOptions& options) {
 /// against the scene and cuts it (when cuts_mesh), then sends each rank its
 /// part; the reader's and the whole mesh's memory stay on rank 0, for a while.
 StartMesh read_start_mesh(const Scene& scene, const RunOptions& options) {
-  if (!cuts_mesh(scene, options)) return {parallel::read_mesh_on_root(scene.mesh)};
+  if (!cuts_mesh(scene, options)) return whole_start_mesh(parallel::read_mesh_on_root(scene.mesh));
   StartMesh start;
   Mesh whole;
   std::vector<int> cell_owner;
@@ -917,7 +924,7 @@ Simulation::Simulation(const Scene& scene, const RunOptions& options)
 Simulation::Simulation(const Scene& scene, Mesh mesh, const RunOptions& options) {
   mesh.validate();
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  impl_ = std::make_unique<Impl>(scene, StartMesh{std::move(mesh)}, options);
+  impl_ = std::make_unique<Impl>(scene, whole_start_mesh(std::move(mesh)), options);
 }
 
 Simulation::~Simulation() = default;

@@ -67,9 +67,14 @@ void expect_own_rows_equal(const Distribution& shared, const SparseMatrix& K_ran
           << "rank " << shared.rank() << " of " << shared.size() << ", row " << row;
     }
   }
-  for (int row = 0; row < K.rows; ++row)
-    if (!own[row]) ASSERT_EQ(K_rank.row_start[row + 1], K_rank.row_start[row]) << "row " << row << " not empty";
-  if (shared.size() > 1) EXPECT_LT(K_rank.nonzeros(), K.nonzeros());
+  for (int row = 0; row < K.rows; ++row) {
+    if (!own[row]) {
+      ASSERT_EQ(K_rank.row_start[row + 1], K_rank.row_start[row]) << "row " << row << " not empty";
+    }
+  }
+  if (shared.size() > 1) {
+    EXPECT_LT(K_rank.nonzeros(), K.nonzeros());
+  }
 }
 
 TEST(Distribution, OwnRowsOfEachRankEqualTheSerialAssembly) {
