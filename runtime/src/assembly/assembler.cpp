@@ -32,6 +32,41 @@ void blend_cell(const Model& model, int cell, const double* u, double* g, double
   for (int i = 0; i < dofs; ++i) g[i] = w * g[i] + (1 - w) * old_g[i];
 }
 
+/// Fills a batch's inputs (kernel_abi.h): the cells' displacements (D*N by
+/// W) and constants (consts by W); lanes past `used` repeat the first cell,
+/// so that every lane runs on valid data. N = 0 reads the node count at run
+/// time, W = 0 the width (`width`); the common shapes and widths get
+/// compile-time loops, which made packing as costly as the neo-Hookean tet4
+/// kernel itself when the loops were general.
+template <int W_, int D, int N>
+void pack_batch(const Model& model, const int* cells, int used, int width, int consts_count, const double* u,
+                double* batch_u, double* batch_consts) {
+  const int W = W_ > 0 ? W_ : width;
+  for (int lane = 0; lane < W; ++lane) {
+    const int cell = cells[lane < used ? lane : 0];
+    const auto nodes = model.cell_nodes(cell);
+    const int n = N > 0 ? N : static_cast<int>(nodes.size());
+    double* lane_u = batch_u + lane;
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < D; ++a) lane_u[(j * D + a) * W] = u[static_cast<std::size_t>(nodes[j]) * D + a];
+    const double* consts = model.consts(cell);
+    double* lane_consts = batch_consts + lane;
+    for (int i = 0; i < consts_count; ++i) lane_consts[i * W] = consts[i];
+  }
+}
+
+/// pack_batch for the batch's width (W = 0: any), dimension and node count.
+template <int W>
+void pack_batch_of_width(const Model& model, const int* cells, int used, const tm_kernel& kernel, const double* u,
+                         double* batch_u, double* batch_consts) {
+  const int shape = kernel.dim * 100 + kernel.nodes, width = kernel.batch_width, consts = kernel.consts;
+  if (shape == 304) return pack_batch<W, 3, 4>(model, cells, used, width, consts, u, batch_u, batch_consts);
+  if (shape == 203) return pack_batch<W, 2, 3>(model, cells, used, width, consts, u, batch_u, batch_consts);
+  if (shape == 204) return pack_batch<W, 2, 4>(model, cells, used, width, consts, u, batch_u, batch_consts);
+  if (kernel.dim == 3) return pack_batch<W, 3, 0>(model, cells, used, width, consts, u, batch_u, batch_consts);
+  pack_batch<W, 2, 0>(model, cells, used, width, consts, u, batch_u, batch_consts);
+}
+
 /// The energy of one kernel cell: w W_new + (1 - w) W_old while it blends.
 double cell_energy(const Model& model, int cell, const double* u) {
   const double energy = model.kernel(cell).energy(u, model.consts(cell));
@@ -373,18 +408,8 @@ void Assembler::run_batch(std::span<const double> u, std::span<double> gradient,
   batch.u.resize(static_cast<std::size_t>(dofs) * width);
   batch.consts.resize(static_cast<std::size_t>(kernel.consts) * width);
   batch.g.resize(static_cast<std::size_t>(dofs) * width);
-  // Unused lanes repeat the first cell: every lane then runs on valid data.
-  const int d = model.dim();
-  for (int lane = 0; lane < width; ++lane) {
-    const int cell = batch.cells[lane < batch.size ? lane : 0];
-    const auto nodes = model.cell_nodes(cell);
-    double* lane_u = batch.u.data() + lane;
-    for (std::size_t j = 0; j < nodes.size(); ++j)
-      for (int a = 0; a < d; ++a) lane_u[(j * d + a) * width] = u[static_cast<std::size_t>(nodes[j]) * d + a];
-    const double* consts = model.consts(cell);
-    double* lane_consts = batch.consts.data() + lane;
-    for (int i = 0; i < kernel.consts; ++i) lane_consts[static_cast<std::size_t>(i) * width] = consts[i];
-  }
+  const auto pack = width == 4 ? pack_batch_of_width<4> : width == 2 ? pack_batch_of_width<2> : pack_batch_of_width<0>;
+  pack(model, batch.cells, batch.size, kernel, u.data(), batch.u.data(), batch.consts.data());
   if (stiffness) {
     batch.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
     kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), batch.g.data(), batch.k.data());

@@ -308,6 +308,26 @@ TEST(Assembler, BatchedKernelsGiveThePerElementForcesAndTangent) {
   EXPECT_LT(worst, 1e-13 * scale);
 }
 
+TEST(Assembler, BatchedKernelsGiveThePerElementForcesAndTangentIn2D) {
+  // Triangles and quadrilaterals, linear and quadratic (the batch packing has
+  // compile-time loops for tri3 and quad4, a general one for the others),
+  // three laws interleaved so that batches of each fill and run partly empty.
+  for (const int order : {1, 2}) {
+    BeamSpec spec;
+    spec.cells = {8, 3, 1};
+    spec.size = {8.0, 1.0, 1.0};
+    spec.phases = {{"tri3", 0.5}, {"quad4", 0.5}};
+    spec.order = order;
+    const Mesh mesh = make_beam(spec);
+    Model model(mesh, test::cantilever("stvk").model);
+    for (int cell = 0; cell < model.cell_count(); ++cell)
+      if (cell % 3 == 1) model.set_law(cell, cell % 2 ? "neohookean" : "corotational");
+    Assembler assembler(model, false);
+    const std::vector<double> u = wavy_displacement(model.dof_count(), 0.03);
+    EXPECT_LT(batched_against_per_element(model, assembler, u), 1e-13) << "order " << order;
+  }
+}
+
 TEST(Assembler, BatchedAssemblyIsIdenticalOnOneAndTwoThreads) {
   const Mesh mesh = test::beam(3, "tet6", {20, 6, 6});
   Model model(mesh, test::cantilever("stvk").model);
