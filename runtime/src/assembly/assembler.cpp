@@ -67,6 +67,29 @@ void pack_batch_of_width(const Model& model, const int* cells, int used, const t
   pack_batch<W, 2, 0>(model, cells, used, width, consts, u, batch_u, batch_consts);
 }
 
+/// Adds a batch's forces (element by element, D*N each) into the gradient,
+/// cell after cell (N = 0: the node count read at run time).
+template <int D, int N>
+void scatter_batch_forces(const Model& model, const int* cells, int used, const double* g, double* gradient) {
+  for (int lane = 0; lane < used; ++lane) {
+    const auto nodes = model.cell_nodes(cells[lane]);
+    const int n = N > 0 ? N : static_cast<int>(nodes.size());
+    const double* cell_g = g + static_cast<std::size_t>(lane) * n * D;
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < D; ++a) gradient[static_cast<std::size_t>(nodes[j]) * D + a] += cell_g[j * D + a];
+  }
+}
+
+void scatter_batch_forces(const Model& model, const tm_kernel& kernel, const int* cells, int used, const double* g,
+                          double* gradient) {
+  const int shape = kernel.dim * 100 + kernel.nodes;
+  if (shape == 304) return scatter_batch_forces<3, 4>(model, cells, used, g, gradient);
+  if (shape == 203) return scatter_batch_forces<2, 3>(model, cells, used, g, gradient);
+  if (shape == 204) return scatter_batch_forces<2, 4>(model, cells, used, g, gradient);
+  if (kernel.dim == 3) return scatter_batch_forces<3, 0>(model, cells, used, g, gradient);
+  scatter_batch_forces<2, 0>(model, cells, used, g, gradient);
+}
+
 /// The energy of one kernel cell: w W_new + (1 - w) W_old while it blends.
 double cell_energy(const Model& model, int cell, const double* u) {
   const double energy = model.kernel(cell).energy(u, model.consts(cell));
@@ -415,6 +438,9 @@ void Assembler::run_batch(std::span<const double> u, std::span<double> gradient,
     kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), batch.g.data(), batch.k.data());
   } else {
     kernel.gradient_batch(batch.u.data(), batch.consts.data(), batch.g.data());
+    scatter_batch_forces(model, kernel, batch.cells, batch.size, batch.g.data(), gradient.data());
+    batch.size = 0;
+    return;
   }
   const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
   for (int lane = 0; lane < batch.size; ++lane) {
