@@ -10,6 +10,9 @@ constexpr int kMaxDofs = 81;
 // Below this a parallel region costs more than the product saves: explicit
 // Hooke steps on 2 cores ran 0.83x one thread at 1,024 nodes and 1.03x at 490.
 constexpr int kParallelNodes = 1000;
+/// The product runs over the rows of the nodes folded cells touch when they
+/// are fewer than this share of the nodes (a list costs an indirection).
+constexpr double kActiveShare = 0.9;
 
 /// The kernel a cell folds with now, or nullptr when it must run its kernel.
 const tm_kernel* foldable_kernel(const Model& model, int cell) {
@@ -23,11 +26,16 @@ const tm_kernel* foldable_kernel(const Model& model, int cell) {
 /// fit in cache (a fixed order: the same bits on any thread count). Blocks
 /// 16 ahead are prefetched: out of cache, the hardware prefetcher alone
 /// left this loop slower than the one-sum loop (bench runtime --only spmv).
+/// `rows`, when not null, lists the nodes whose rows may be non-zero (the
+/// others are written 0); null: every node.
 template <int D>
-void multiply_blocks(const NodeGraph& graph, const double* blocks, const double* u, double* g) {
-  const int nodes = graph.node_count();
-#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
-  for (int node = 0; node < nodes; ++node) {
+void multiply_blocks(const NodeGraph& graph, const double* blocks, const double* u, double* g,
+                     const std::vector<int>* rows) {
+  const int count = rows ? static_cast<int>(rows->size()) : graph.node_count();
+  if (rows) std::fill(g, g + static_cast<std::size_t>(graph.node_count()) * D, 0.0);
+#pragma omp parallel for schedule(static) if (count >= kParallelNodes)
+  for (int r = 0; r < count; ++r) {
+    const int node = rows ? (*rows)[r] : r;
     double sum[D][D] = {};  // sum[a][b]: row a's terms from column b of the blocks
     for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
       const double* block = blocks + static_cast<std::size_t>(k) * D * D;
@@ -48,6 +56,7 @@ void multiply_blocks(const NodeGraph& graph, const double* blocks, const double*
 LinearPart::LinearPart(const Model& model, const NodeGraph& graph, const SparseMatrix& free_pattern)
     : model_(&model), graph_(&graph), free_pattern_(&free_pattern), dim_(model.dim()) {
   folded_kernel_.assign(model.cell_count(), nullptr);
+  node_folds_.assign(graph.node_count(), 0);
 }
 
 void LinearPart::allocate() {
@@ -87,6 +96,7 @@ int LinearPart::update() {
     std::fill(blocks_.begin(), blocks_.end(), 0.0);
     std::fill(folded_kernel_.begin(), folded_kernel_.end(), nullptr);
     folded_count_ = 0;
+    count_node_folds();
   }
   int changed = 0;
   for (int cell = 0; cell < model.cell_count(); ++cell) {
@@ -95,12 +105,45 @@ int LinearPart::update() {
     if (now == before) continue;
     if (before) add_cell(cell, *before, -1.0);
     if (now) add_cell(cell, *now, 1.0);
+    if ((now != nullptr) != (before != nullptr)) count_cell_fold(cell, now ? 1 : -1);
     folded_kernel_[cell] = now;
     folded_count_ += (now != nullptr) - (before != nullptr);
     ++changed;
   }
+  if (changed > 0) list_active_nodes();
   changes_ += changed;
   return changed;
+}
+
+void LinearPart::count_node_folds() {
+  node_folds_.assign(graph_->node_count(), 0);
+  for (int cell = 0; cell < model_->cell_count(); ++cell)
+    if (folded_kernel_[cell])
+      for (int node : model_->cell_nodes(cell)) ++node_folds_[node];
+  list_active_nodes();
+}
+
+void LinearPart::count_cell_fold(int cell, int change) {
+  for (int node : model_->cell_nodes(cell))
+    if ((node_folds_[node] += change) == 0) unfold_node(node);
+}
+
+void LinearPart::unfold_node(int node) {
+  // No folded cell touches the node any more: its row and column blocks are
+  // zero but for the round-off of the subtractions. Zero them exactly.
+  const int d2 = dim_ * dim_;
+  const NodeGraph& graph = *graph_;
+  for (int k = graph.row_start[node]; k < graph.row_start[node + 1]; ++k) {
+    std::fill_n(blocks_.begin() + static_cast<std::ptrdiff_t>(k) * d2, d2, 0.0);
+    const int mirror = graph.position(graph.columns[k], node);
+    std::fill_n(blocks_.begin() + static_cast<std::ptrdiff_t>(mirror) * d2, d2, 0.0);
+  }
+}
+
+void LinearPart::list_active_nodes() {
+  active_nodes_.clear();
+  for (int node = 0; node < static_cast<int>(node_folds_.size()); ++node)
+    if (node_folds_[node] > 0) active_nodes_.push_back(node);
 }
 
 LinearPart::Saved LinearPart::saved() const {
@@ -119,6 +162,7 @@ void LinearPart::restore(Saved saved) {
   }
   folded_kernel_ = std::move(saved.folded);
   folded_count_ = saved.folded_count;
+  count_node_folds();
   changes_ = saved.changes;
   seen_revision_ = -1;  // compare every cell at the next update()
   seen_consts_revision_ = model_->consts_revision() - (saved.constants_changed ? 1 : 0);
@@ -140,8 +184,13 @@ void LinearPart::add_cell(int cell, const tm_kernel& kernel, double sign) {
 }
 
 void LinearPart::multiply(std::span<const double> u, std::span<double> g) const {
-  if (dim_ == 2) multiply_blocks<2>(*graph_, blocks_.data(), u.data(), g.data());
-  else multiply_blocks<3>(*graph_, blocks_.data(), u.data(), g.data());
+  // Rows of nodes no folded cell touches hold exact zeros (unfold_node):
+  // skipping them changes no bit, and saves the product where few cells are
+  // folded (most cells climbed the ladder).
+  const bool few = active_nodes_.size() < kActiveShare * static_cast<double>(graph_->node_count());
+  const std::vector<int>* rows = few ? &active_nodes_ : nullptr;
+  if (dim_ == 2) multiply_blocks<2>(*graph_, blocks_.data(), u.data(), g.data(), rows);
+  else multiply_blocks<3>(*graph_, blocks_.data(), u.data(), g.data(), rows);
 }
 
 void LinearPart::copy_free(std::span<double> values) const {

@@ -240,6 +240,40 @@ TEST(Assembler, FoldedPartFollowsLawSwitchesAndBlends) {
   EXPECT_EQ(folded.folding_changes(), model.cell_count() + stvk_cells + 1 + (model.cell_count() - stvk_cells + 1));
 }
 
+/// When most cells leave the linear set, the folded product runs over the
+/// rows of the nodes the remaining folded cells hold, and the blocks of the
+/// other nodes are exact zeros (not the round-off of the subtractions), so
+/// the forces are those of the per-cell assembly and nothing leaks from the
+/// nodes no folded cell holds.
+TEST(Assembler, FoldedPartSkipsAndZeroesTheNodesNoFoldedCellHolds) {
+  const Mesh mesh = test::beam(3, "tet6", {10, 2, 2});
+  Model model(mesh, test::cantilever("hooke").model);
+  const Assembler folded(model), per_cell(model, false);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.05);
+  expect_folded_matches_per_cell(model, folded, per_cell, u);  // everything folded, then 80 % unfolded
+  const auto first_node_x = [&](int cell) { return mesh.rest_positions[3 * model.cell_nodes(cell)[0]]; };
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    if (first_node_x(cell) > 0.5) model.set_law(cell, "stvk");
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  ASSERT_GT(folded.folded_cell_count(), 0);
+  ASSERT_LT(folded.folded_cell_count(), model.cell_count() / 4);  // a fifth of the nodes: the rows are skipped
+  std::vector<bool> held(mesh.node_count(), false);
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    if (folded.linear_part()->folded(cell))
+      for (int node : model.cell_nodes(cell)) held[node] = true;
+  // u on the nodes no folded cell holds: the folded forces are exactly zero everywhere.
+  std::vector<double> outside(model.dof_count(), 0.0), g(model.dof_count(), 1.0);
+  for (int node = 0; node < mesh.node_count(); ++node)
+    if (!held[node])
+      for (int a = 0; a < 3; ++a) outside[3 * node + a] = u[3 * node + a];
+  folded.linear_part()->multiply(outside, g);
+  for (double value : g) ASSERT_EQ(value, 0.0);
+  // And back: every cell folded again.
+  for (int cell = 0; cell < model.cell_count(); ++cell) model.set_law(cell, "hooke");
+  expect_folded_matches_per_cell(model, folded, per_cell, u);
+  EXPECT_EQ(folded.folded_cell_count(), model.cell_count());
+}
+
 /// A model with no linear cell holds no folded blocks; the first cell that
 /// switches to Hooke allocates them, and the forces and tangent still
 /// match the per-cell assembly.

@@ -11,7 +11,9 @@
 /// is proportional to the change and the result is deterministic. Sums
 /// therefore differ from a fresh per-cell assembly by round-off only. (When
 /// a switch recomputed a cell's constants, Model::consts_revision, the whole
-/// part is folded afresh.)
+/// part is folded afresh.) The blocks of a node that no folded cell holds
+/// any more are set to exact zeros, and the product skips those nodes' rows
+/// when they are many: its cost follows the folded region.
 #ifndef TENSORMASS_ASSEMBLY_LINEAR_PART_HPP
 #define TENSORMASS_ASSEMBLY_LINEAR_PART_HPP
 
@@ -67,6 +69,13 @@ class LinearPart {
 
  private:
   void add_cell(int cell, const tm_kernel& kernel, double sign);
+  /// node_folds_ and active_nodes_ from folded_kernel_.
+  void count_node_folds();
+  /// A cell folded (change 1) or unfolded (-1): its nodes' counts.
+  void count_cell_fold(int cell, int change);
+  /// Zeroes the blocks of a node no folded cell touches (row and column).
+  void unfold_node(int node);
+  void list_active_nodes();
   /// Sizes blocks_ at the first fold: a run with no linear cell holds
   /// none (at a million tets about 200 MB).
   void allocate();
@@ -83,6 +92,8 @@ class LinearPart {
   mutable bool mapped_ = false;             ///< free_to_block_ matches the free pattern
   std::vector<const tm_kernel*> folded_kernel_;  ///< per cell: the kernel folded, or nullptr
   int folded_count_ = 0;
+  std::vector<int> node_folds_;    ///< per node: the folded cells that hold it
+  std::vector<int> active_nodes_;  ///< the nodes with node_folds_ > 0, in order
   long changes_ = 0;
   long seen_revision_ = -1;
   long seen_consts_revision_ = 0;
