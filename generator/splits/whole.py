@@ -44,7 +44,7 @@ def quadrature_flops(element: ElementSpec, points: int, law_ir: LawKernelIR) -> 
 #   as -ffast-math would), so its lanes run in one SIMD call.
 # - auxiliaries: only the polar rotation and its inverse term. The batch
 #   computes the lanes' rotations together before the SIMD loop
-#   (polar_rotation_batch, one Newton iteration over all lanes), and the
+#   (polar_rotation_batch, one Newton-Schulz iteration over all lanes), and the
 #   inverse term is straight-line code.
 BATCH_BLOCK_LIMIT = 256
 BATCHED_AUXILIARIES = frozenset({"rotation", "rotation_inverse"})

@@ -55,18 +55,6 @@ void pack_batch(const Model& model, const int* cells, int used, int width, int c
   }
 }
 
-/// pack_batch for the batch's width (W = 0: any), dimension and node count.
-template <int W>
-void pack_batch_of_width(const Model& model, const int* cells, int used, const tm_kernel& kernel, const double* u,
-                         double* batch_u, double* batch_consts) {
-  const int shape = kernel.dim * 100 + kernel.nodes, width = kernel.batch_width, consts = kernel.consts;
-  if (shape == 304) return pack_batch<W, 3, 4>(model, cells, used, width, consts, u, batch_u, batch_consts);
-  if (shape == 203) return pack_batch<W, 2, 3>(model, cells, used, width, consts, u, batch_u, batch_consts);
-  if (shape == 204) return pack_batch<W, 2, 4>(model, cells, used, width, consts, u, batch_u, batch_consts);
-  if (kernel.dim == 3) return pack_batch<W, 3, 0>(model, cells, used, width, consts, u, batch_u, batch_consts);
-  pack_batch<W, 2, 0>(model, cells, used, width, consts, u, batch_u, batch_consts);
-}
-
 /// Adds a batch's forces (element by element, D*N each) into the gradient,
 /// cell after cell (N = 0: the node count read at run time).
 template <int D, int N>
@@ -80,14 +68,17 @@ void scatter_batch_forces(const Model& model, const int* cells, int used, const 
   }
 }
 
-void scatter_batch_forces(const Model& model, const tm_kernel& kernel, const int* cells, int used, const double* g,
-                          double* gradient) {
-  const int shape = kernel.dim * 100 + kernel.nodes;
-  if (shape == 304) return scatter_batch_forces<3, 4>(model, cells, used, g, gradient);
-  if (shape == 203) return scatter_batch_forces<2, 3>(model, cells, used, g, gradient);
-  if (shape == 204) return scatter_batch_forces<2, 4>(model, cells, used, g, gradient);
-  if (kernel.dim == 3) return scatter_batch_forces<3, 0>(model, cells, used, g, gradient);
-  scatter_batch_forces<2, 0>(model, cells, used, g, gradient);
+/// Calls visit.template operator()<D, N>() for the kernel's shape: the node
+/// count at compile time for tet4, tri3 and quad4, N = 0 (read at run time)
+/// for the others.
+template <typename Visit>
+void with_batch_shape(const tm_kernel& kernel, Visit&& visit) {
+  switch (kernel.dim * 100 + kernel.nodes) {
+    case 304: return visit.template operator()<3, 4>();
+    case 203: return visit.template operator()<2, 3>();
+    case 204: return visit.template operator()<2, 4>();
+    default: return kernel.dim == 3 ? visit.template operator()<3, 0>() : visit.template operator()<2, 0>();
+  }
 }
 
 /// The energy of one kernel cell: w W_new + (1 - w) W_old while it blends.
@@ -431,22 +422,24 @@ void Assembler::run_batch(std::span<const double> u, std::span<double> gradient,
   batch.u.resize(static_cast<std::size_t>(dofs) * width);
   batch.consts.resize(static_cast<std::size_t>(kernel.consts) * width);
   batch.g.resize(static_cast<std::size_t>(dofs) * width);
-  const auto pack = width == 4 ? pack_batch_of_width<4> : width == 2 ? pack_batch_of_width<2> : pack_batch_of_width<0>;
-  pack(model, batch.cells, batch.size, kernel, u.data(), batch.u.data(), batch.consts.data());
-  if (stiffness) {
+  with_batch_shape(kernel, [&]<int D, int N>() {
+    const auto pack = width == 4 ? pack_batch<4, D, N> : width == 2 ? pack_batch<2, D, N> : pack_batch<0, D, N>;
+    pack(model, batch.cells, batch.size, width, kernel.consts, u.data(), batch.u.data(), batch.consts.data());
+  });
+  if (!stiffness) {
+    kernel.gradient_batch(batch.u.data(), batch.consts.data(), batch.g.data());
+    with_batch_shape(kernel, [&]<int D, int N>() {
+      scatter_batch_forces<D, N>(model, batch.cells, batch.size, batch.g.data(), gradient.data());
+    });
+  } else {
     batch.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
     kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), batch.g.data(), batch.k.data());
-  } else {
-    kernel.gradient_batch(batch.u.data(), batch.consts.data(), batch.g.data());
-    scatter_batch_forces(model, kernel, batch.cells, batch.size, batch.g.data(), gradient.data());
-    batch.size = 0;
-    return;
-  }
-  const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
-  for (int lane = 0; lane < batch.size; ++lane) {
-    double* k = stiffness ? batch.k.data() + lane * dofs2 : nullptr;
-    if (k && project_hessians_) project_to_positive_semidefinite(k, dofs);
-    scatter_cell(batch.cells[lane], batch.g.data() + static_cast<std::size_t>(lane) * dofs, k, gradient, stiffness);
+    const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
+    for (int lane = 0; lane < batch.size; ++lane) {
+      double* k = batch.k.data() + lane * dofs2;
+      if (project_hessians_) project_to_positive_semidefinite(k, dofs);
+      scatter_cell(batch.cells[lane], batch.g.data() + static_cast<std::size_t>(lane) * dofs, k, gradient, stiffness);
+    }
   }
   batch.size = 0;
 }

@@ -245,8 +245,8 @@ inline void rotation_inverse(RotatedLane<W, T> H, const double* R, double* Y) {
 /// of that, below rounding; a converged lane stays put). It has no division
 /// or root, so a step is a few dependent FMAs where polar_rotation<3>'s
 /// Newton step waits on a division and a cube root; it converges when F's
-/// singular values lie in (0, sqrt 3), in 5 to 7 steps for strains of 5 to
-/// 50 %. Batches with a lane still moving after kSteps steps (a stretch
+/// singular values lie in (0, sqrt 3), in about 4 to 8 steps for strains
+/// of 5 to 50 %. Batches with a lane still moving after kSteps steps (a stretch
 /// past 70 %, a singular F, NaN) are done again lane by lane by
 /// polar_rotation<3>. Each lane's R is the one polar_rotation<D> gives it
 /// alone, to rounding.
