@@ -36,7 +36,13 @@ class ExplicitIntegrator final : public Integrator {
   void finish(const State& state) override;
 
  private:
+  /// Advances v and u on the free dofs; returns whether every new u is finite.
+  bool advance_free_dofs(State& state, double load_factor) const;
+
   std::vector<double> g_;  ///< internal force (dof_count)
+  /// The free dofs as ranges [first, last) of consecutive dof indices, so
+  /// that the step's vector update runs over contiguous memory.
+  std::vector<std::pair<int, int>> free_ranges_;
 };
 
 }  // namespace tensormass
