@@ -29,10 +29,13 @@ See docs/python.md.
 import os as _os
 
 # The OpenMP wait policy of the CLI (runtime/include/tensormass/common/
-# thread_defaults.hpp): idle threads sleep instead of spinning, which took a
-# core from the serial phases. libgomp reads it once, when it is loaded by
-# the import below; a value set by the user stays.
-_os.environ.setdefault("OMP_WAIT_POLICY", "passive")
+# thread_defaults.hpp): idle threads spin for about 0.1 ms, then sleep,
+# where libgomp's default spinning took a core from the serial phases.
+# libgomp reads both once, when it is loaded by the import below; values
+# set by the user stay.
+if "OMP_WAIT_POLICY" not in _os.environ:
+    _os.environ["OMP_WAIT_POLICY"] = "passive"
+    _os.environ.setdefault("GOMP_SPINCOUNT", "10000")
 
 from ._tensormass import (  # noqa: E402
     Kernel, NumericalError, Simulation, kernel, kernels, mpi_rank, mpi_size, petsc_available)

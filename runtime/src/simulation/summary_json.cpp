@@ -72,9 +72,11 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
       << ", \"predictor\": " << quoted(std::string(step_predictor_name(scene.solver.predictor)));
   else j << ", \"load_steps\": " << scene.solver.load_steps << ", \"tolerance\": " << number(scene.solver.tolerance);
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  const char* spin_count = std::getenv("GOMP_SPINCOUNT");
   j << ", \"project_hessian\": " << (scene.solver.project_hessian ? "true" : "false");
   j << ", \"threads\": " << omp_get_max_threads()
-    << ", \"omp_wait_policy\": " << quoted(wait_policy ? wait_policy : "unset") << "},\n";
+    << ", \"omp_wait_policy\": " << quoted(wait_policy ? wait_policy : "unset")
+    << ", \"gomp_spincount\": " << quoted(spin_count ? spin_count : "unset") << "},\n";
   j << "  \"nodes\": " << report.nodes << ", \"elements\": " << report.cells << ", \"dofs\": " << report.dofs
     << ", \"free_dofs\": " << report.free_dofs << ", \"mpi_ranks\": " << report.mpi_ranks << ",\n";
   j << "  \"peak_memory_mib_per_rank\": [";

@@ -60,15 +60,22 @@ TEST_F(RunCommand, StaticSceneWritesFinalFramesSeriesAndSummary) {
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
-// Idle OpenMP threads wait passively unless the user chose otherwise
-// (common/thread_defaults.hpp); the summary says what the run used.
+// Idle OpenMP threads spin briefly, then sleep, unless the user chose
+// otherwise (common/thread_defaults.hpp); the summary says what the run used.
 TEST_F(RunCommand, WaitPolicyIsPassiveByDefaultAndTheUsersOtherwise) {
   const std::string scene = write_scene(kStatic).string();
   const std::string binary = "'" TENSORMASS_BINARY "' run ";
-  ASSERT_EQ(test_support::shell("env -u OMP_WAIT_POLICY " + binary + scene).exit_code, 0);
-  EXPECT_NE(read_file(out() / "summary.json").find("\"omp_wait_policy\": \"passive\""), std::string::npos);
-  ASSERT_EQ(test_support::shell("env OMP_WAIT_POLICY=active " + binary + scene).exit_code, 0);
-  EXPECT_NE(read_file(out() / "summary.json").find("\"omp_wait_policy\": \"active\""), std::string::npos);
+  ASSERT_EQ(test_support::shell("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT " + binary + scene).exit_code, 0);
+  std::string summary = read_file(out() / "summary.json");
+  EXPECT_NE(summary.find("\"omp_wait_policy\": \"passive\", \"gomp_spincount\": \"10000\""), std::string::npos)
+      << summary;
+  ASSERT_EQ(test_support::shell("env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=0 " + binary + scene).exit_code, 0);
+  summary = read_file(out() / "summary.json");
+  EXPECT_NE(summary.find("\"omp_wait_policy\": \"passive\", \"gomp_spincount\": \"0\""), std::string::npos) << summary;
+  ASSERT_EQ(test_support::shell("env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=active " + binary + scene).exit_code, 0);
+  summary = read_file(out() / "summary.json");
+  EXPECT_NE(summary.find("\"omp_wait_policy\": \"active\", \"gomp_spincount\": \"unset\""), std::string::npos)
+      << summary;
 }
 
 TEST_F(RunCommand, FinalVtuOpensInMeshioWithThreeComponentDisplacement) {
