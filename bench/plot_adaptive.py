@@ -48,8 +48,11 @@ def draw(axis, scene):
             continue
         if not run.get("screened", True):
             continue  # the criteria screen's baseline: same trajectory as its screened run
-        x = run["ms_per_step"] / rich["ms_per_step"]
+        # The median of each round's ratio, its range as a bar (older files: one round, the plain ratio).
+        x = run.get("ratio", run["ms_per_step"] / rich["ms_per_step"])
         y = max(100.0 * run["error"], FLOOR)
+        if "ratio_low" in run and run["ratio_high"] > run["ratio_low"]:
+            axis.plot([run["ratio_low"], run["ratio_high"]], [y, y], "-", color="grey", linewidth=0.8)
         label = run["label"]
         if run["threshold"] is None:
             axis.plot(x, y, "s", color=PURE.get(label, "grey"), markersize=7)
