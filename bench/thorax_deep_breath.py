@@ -94,7 +94,8 @@ def simulate(scene, label, law, threshold, args, work):
     return {"label": label, "ms": 1e3 * report["loop_seconds"] / steps, "wall": wall,
             "assembly": 1e3 * report["assembly_seconds"] / steps, "solve": 1e3 * report["solve_seconds"] / steps,
             "criteria": 1e3 * report["criteria_seconds"] / steps, "laws": laws, "trajectory": trajectory,
-            "failure": failure}
+            "failure": failure, "linear_iterations": report["linear_iterations"],
+            "factorizations": report["factorizations"]}
 
 
 def error(run, reference):
@@ -134,15 +135,16 @@ def main():
                 if args.explicit else f"{args.steps} steps of 0.05 s")
     print(f"## thorax deep breath: {cells} cells, diaphragm {args.depth * 100:g} cm over {stepping}, "
           "ladder [hooke, neohookean], criterion R_NL, default settings\n")
-    print("| run | ms/step | x rich | assembly | solve | criteria | cells per law (end) | error |")
-    print("|---|---:|---:|---:|---:|---:|---|---:|")
+    print("| run | ms/step | x rich | assembly | solve | criteria | lin. its | factor. | cells per law (end) | error |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---|---:|")
     for run in runs:
         laws = ", ".join(f"{n} {k}" for k, n in sorted(run["laws"].items()))
         e = error(run, rich) if run is not rich else 0.0
         print(f"| {run['label']} | {run['ms']:.2f} | {run['ms'] / rich['ms']:.2f} | {run['assembly']:.2f} | "
-              f"{run['solve']:.2f} | {run['criteria']:.3f} | {laws} | {100 * e:.3f} % |")
+              f"{run['solve']:.2f} | {run['criteria']:.3f} | {run['linear_iterations']} | {run['factorizations']} | "
+              f"{laws} | {100 * e:.3f} % |")
         if run["failure"]:
-            print(f"|   | failed: {run['failure']} |||||||")
+            print(f"|   | failed: {run['failure']} |||||||||")
     adaptive = [r for r in runs if r["label"].startswith("adaptive") and not r["failure"]]
     accurate = [r for r in adaptive if error(r, rich) <= 0.01]
     best = min(accurate, key=lambda r: r["ms"]) if accurate else None

@@ -110,6 +110,7 @@ py::dict report_dict(const RunReport& report) {
   d["real_time_factor"] = report.real_time_factor();
   d["newton_iterations"] = report.statistics.newton_iterations;
   d["linear_iterations"] = report.statistics.linear_iterations;
+  d["factorizations"] = report.statistics.factorizations;
   d["assembly_seconds"] = report.statistics.assembly_seconds;
   d["solve_seconds"] = report.statistics.solve_seconds;
   d["criteria_seconds"] = report.criteria_seconds;

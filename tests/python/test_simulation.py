@@ -69,6 +69,7 @@ def test_run_calls_back_and_reports(beam):
     assert [step for step, _ in seen] == [1, 2, 3]
     assert all(speed > 0 for _, speed in seen)
     assert report["steps"] == 3 and report["newton_iterations"] > 0
+    assert report["linear_iterations"] >= report["newton_iterations"] and report["factorizations"] >= 1
     assert "final.vtu" in report["files"]
 
 
