@@ -18,7 +18,7 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 2;  // 2: refinement
+constexpr std::uint64_t kVersion = 3;  // 2: refinement; 3: CHOLMOD's block of jumped rows
 
 /// FNV-1a, 64 bits.
 class Fingerprint {

@@ -4,12 +4,15 @@
 // FactorReusePolicy. When only a block of the matrix changes (the cells
 // under a non-linear law: set_changing_rows) and the old factor alone stops
 // converging, an exact factor of that block corrects it (two_level_solve)
-// before a whole new factor is paid for.
+// before a whole new factor is paid for. When that block is too large (most
+// cells non-linear), the block of the rows that jumped since the whole
+// factorisation (cells that switched law) corrects it instead.
 #include <cholmod.h>
 #include <dlfcn.h>
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -102,7 +105,9 @@ class CholmodSolver final : public LinearSolver {
     // unless the last such solves cost more than a new factor would.
     if (same_pattern && settings_.reuse_iterations > 0 && !reuse_.refactorize()) {
       lagged_ = true;
-      if (local_ready_) local_ready_ = factorize_local_block(A);  // the correction stays on: refresh it
+      // The correction stays on: the changing block is refreshed; a block of
+      // jumped rows is kept as factorised (it still preconditions well).
+      if (local_ready_ && !local_from_jumps_) local_ready_ = factorize_local_block(A);
       return;
     }
     factorize_now(A);
@@ -121,7 +126,10 @@ class CholmodSolver final : public LinearSolver {
       // factor corrected by an exact factor of the changing block
       // (two_level_solve), kept on for the next matrices (the block
       // factorised for each) until the next whole factorisation, which
-      // follows when that does not converge either.
+      // follows when that does not converge either. When the changing block
+      // is too large, the block of the rows that jumped takes its place; it
+      // is kept as factorised, and made again from the rows that jumped by
+      // then when it stops converging, before a whole factorisation.
       const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
       const auto two_level = [this](std::span<const double> r, std::span<double> z) { two_level_solve(r, z); };
       int iterations = 0;
@@ -132,8 +140,9 @@ class CholmodSolver final : public LinearSolver {
         return result.converged;
       };
       bool done = local_ready_ ? converges(two_level) : converges(old_factor);
-      if (!done && !local_ready_) {
-        local_ready_ = factorize_local_block(*current_);
+      if (!done && (!local_ready_ || local_from_jumps_)) {
+        // Rows jumped since the block was made: make it again from them.
+        local_ready_ = (!local_from_jumps_ && factorize_local_block(*current_)) || factorize_jumped_block(*current_);
         done = local_ready_ && converges(two_level);
       }
       if (done) {
@@ -149,29 +158,46 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return simplicial_ ? "cholmod (simplicial LDL^T)" : "cholmod"; }
   int factorizations() const override { return factorizations_; }
 
-  /// [simplicial, factorisations, 3 reuse counts, block correction on, the
-  /// factorised values...], empty before a factor.
+  /// [simplicial, factorisations, 3 reuse counts, block correction on,
+  /// m, then for a block of jumped rows its m rows and its factorised values,
+  /// then the whole factorised values...], empty before a factor.
   std::vector<double> save_state() const override {
     if (factorized_values_.empty()) return {};
     const std::array<double, 3> counts = reuse_.saved();
-    std::vector<double> saved = {simplicial_ ? 1.0 : 0.0, double(factorizations_), counts[0], counts[1], counts[2],
-                                 local_ready_ ? 1.0 : 0.0};
+    const bool jumped = local_ready_ && local_from_jumps_;
+    std::vector<double> saved = {simplicial_ ? 1.0 : 0.0,
+                                 double(factorizations_),
+                                 counts[0],
+                                 counts[1],
+                                 counts[2],
+                                 local_ready_ ? 1.0 : 0.0,
+                                 jumped ? double(local_rows_.size()) : 0.0};
+    if (jumped) {
+      saved.insert(saved.end(), local_rows_.begin(), local_rows_.end());
+      saved.insert(saved.end(), local_.values.begin(), local_.values.end());
+    }
     saved.insert(saved.end(), factorized_values_.begin(), factorized_values_.end());
     return saved;
   }
 
   void restore_state(std::span<const double> saved, const SparseMatrix& pattern) override {
     if (saved.empty()) return;
-    if (saved.size() != kSavedCounts + pattern.values.size())
+    const std::size_t rows = saved.size() >= kSavedCounts ? static_cast<std::size_t>(saved[kSavedCounts - 1]) : 0;
+    const std::size_t whole = pattern.values.size();
+    if (saved.size() < kSavedCounts + rows + whole || rows > static_cast<std::size_t>(pattern.rows))
       throw InputError("the saved sparse Cholesky state holds " + std::to_string(saved.size()) +
-                       " numbers; this model's matrix needs " + std::to_string(kSavedCounts + pattern.values.size()));
+                       " numbers; this model's matrix needs at least " + std::to_string(kSavedCounts + rows + whole));
     SparseMatrix A = pattern;
-    A.values.assign(saved.begin() + kSavedCounts, saved.end());
+    A.values.assign(saved.end() - static_cast<std::ptrdiff_t>(whole), saved.end());
     simplicial_ = saved[0] != 0.0;  // the run had fallen back to LDL^T: analyse the same way
     factorize_now(A);
     factorizations_ = static_cast<int>(saved[1]);
     reuse_.restore({saved[2], saved[3], saved[4]});
     local_ready_ = saved[5] != 0.0;  // made for the next matrix's block, as in the run that saved it
+    if (rows > 0) restore_jumped_block(saved.subspan(kSavedCounts), rows, A);
+    else if (saved.size() != kSavedCounts + whole)
+      throw InputError("the saved sparse Cholesky state holds " + std::to_string(saved.size()) +
+                       " numbers; this model's matrix needs " + std::to_string(kSavedCounts + whole));
   }
 
  private:
@@ -185,6 +211,7 @@ class CholmodSolver final : public LinearSolver {
     factorized_values_.clear();
     lagged_ = false;
     local_ready_ = false;
+    local_from_jumps_ = false;
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF && !simplicial_) {
       // Not positive definite (buckling, compressed StVK): LDL^T without
@@ -219,10 +246,62 @@ class CholmodSolver final : public LinearSolver {
   /// The changing block K_NN of A (rows and columns local_rows_) factorised
   /// afresh, when it is a small enough part of A and positive definite.
   bool factorize_local_block(const SparseMatrix& A) {
+    if (local_from_jumps_) return refactorize_local_block(A);  // the jumped rows, until the next whole factor
     const std::size_t rows = changing_rows_.size();
     if (rows == 0 || rows > kMaxLocalFraction * A.rows) return false;
     const SerialBlas serial;
-    if (local_pattern_stale_) build_local_pattern(A);
+    if (local_pattern_stale_) build_local_pattern(A, changing_rows_), local_pattern_stale_ = false;
+    return refactorize_local_block(A);
+  }
+
+  /// The block of the rows that jumped since the whole factorisation (an
+  /// entry moved by more than kJump of the row's diagonal: cells that
+  /// switched law, where the tangent changes at once) factorised afresh,
+  /// when that block is small enough. The rows of a whole non-linear region
+  /// (factorize_local_block) are often too many; those that jumped are what
+  /// the old factor cannot follow.
+  bool factorize_jumped_block(const SparseMatrix& A) {
+    std::vector<int> jumped;
+    for (int row = 0; row < A.rows; ++row) {
+      const double limit = kJump * std::abs(A.values[A.diagonal[row]]);
+      for (int k = A.row_start[row]; k < A.row_start[row + 1]; ++k)
+        if (std::abs(A.values[k] - factorized_values_[k]) > limit) {
+          jumped.push_back(row);
+          break;
+        }
+    }
+    if (jumped.empty() || jumped.size() > kMaxLocalFraction * A.rows) return false;
+    const SerialBlas serial;
+    build_local_pattern(A, jumped);
+    local_from_jumps_ = true;
+    local_pattern_stale_ = true;  // a later block of the changing rows is built afresh
+    if (refactorize_local_block(A)) return true;
+    local_from_jumps_ = false;
+    return false;
+  }
+
+  /// The block of jumped rows a checkpoint saved: `saved` holds its rows,
+  /// its factorised values, then the whole matrix's.
+  void restore_jumped_block(std::span<const double> saved, std::size_t rows, const SparseMatrix& pattern) {
+    const std::vector<int> jumped(saved.begin(), saved.begin() + static_cast<std::ptrdiff_t>(rows));
+    const SerialBlas serial;
+    build_local_pattern(pattern, jumped);
+    const std::size_t values = local_.values.size();
+    if (saved.size() != rows + values + pattern.values.size())
+      throw InputError("the saved sparse Cholesky state does not match this model's matrix (its block of " +
+                       std::to_string(rows) + " rows)");
+    std::copy_n(saved.begin() + static_cast<std::ptrdiff_t>(rows), values, local_.values.begin());
+    cholmod_sparse view = view_of(local_);
+    cholmod_factorize(&view, local_factor_, &common_);
+    local_from_jumps_ = true;
+    local_pattern_stale_ = true;
+    local_ready_ = local_ready_ && common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;
+  }
+
+  /// local_ refilled from A and factorised, while that costs at most
+  /// kMaxLocalFlopShare of a whole factorisation.
+  bool refactorize_local_block(const SparseMatrix& A) {
+    const SerialBlas serial;
     // Worth it only while refactorising the block costs a small part of a
     // whole factorisation (CHOLMOD's flop counts from the two analyses).
     if (!(local_flops_ <= kMaxLocalFlopShare * factor_flops_)) return false;
@@ -232,9 +311,9 @@ class CholmodSolver final : public LinearSolver {
     return common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;
   }
 
-  /// local_: A's entries between changing rows, in their order, and where each sits in A.values.
-  void build_local_pattern(const SparseMatrix& A) {
-    local_rows_ = changing_rows_;
+  /// local_: A's entries between `rows`, in their order, and where each sits in A.values.
+  void build_local_pattern(const SparseMatrix& A, const std::vector<int>& rows) {
+    local_rows_ = rows;
     std::vector<int> local_index(A.rows, -1);
     for (std::size_t i = 0; i < local_rows_.size(); ++i) local_index[local_rows_[i]] = static_cast<int>(i);
     local_ = SparseMatrix{};
@@ -264,7 +343,6 @@ class CholmodSolver final : public LinearSolver {
     local_factor_ = cholmod_analyze(&view, &common_);
     if (!local_factor_) throw NumericalError("CHOLMOD analysis of the changing block failed (out of memory?)");
     local_flops_ = common_.fl;
-    local_pattern_stale_ = false;
   }
 
   /// z = M^-1 r, symmetric multiplicative Schwarz: an exact solve on the
@@ -321,16 +399,18 @@ class CholmodSolver final : public LinearSolver {
     factor_flops_ = common_.fl;
   }
 
-  static constexpr std::size_t kSavedCounts = 6;
+  static constexpr std::size_t kSavedCounts = 7;
   /// The changing block gets its own factor up to this share of the rows.
   static constexpr double kMaxLocalFraction = 0.6;
   /// ... and while its factorisation costs at most this share of the whole one's flops.
   static constexpr double kMaxLocalFlopShare = 0.1;
+  /// A row jumped when an entry moved by more than this share of its diagonal since the whole factorisation.
+  static constexpr double kJump = 0.05;
   double factor_flops_ = 0.0, local_flops_ = 0.0;
   std::vector<int> changing_rows_;  ///< the newest set (set_changing_rows)
   std::vector<int> local_rows_;     ///< the rows of the block factorised in local_factor_
   long local_revision_ = -1;
-  bool local_pattern_stale_ = true, local_ready_ = false;
+  bool local_pattern_stale_ = true, local_ready_ = false, local_from_jumps_ = false;
   SparseMatrix local_;
   std::vector<int> local_positions_, local_neighbourhood_;
   cholmod_factor* local_factor_ = nullptr;
