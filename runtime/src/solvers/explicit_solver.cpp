@@ -146,7 +146,9 @@ bool ExplicitIntegrator::advance_free_dofs(State& state, double load_factor) con
       check += 0.0 * u[free[i]];
     });
   } else {
-    for (const auto& [first, last] : free_ranges_) {
+    for (const std::pair<int, int>& range : free_ranges_) {
+      // Plain ints: clang 14 cannot refer to structured bindings inside an OpenMP construct.
+      const int first = range.first, last = range.second;
 #pragma omp simd reduction(+ : check)
       for (int d = first; d < last; ++d) {
         advance(d);
