@@ -246,7 +246,6 @@ class CholmodSolver final : public LinearSolver {
   /// The changing block K_NN of A (rows and columns local_rows_) factorised
   /// afresh, when it is a small enough part of A and positive definite.
   bool factorize_local_block(const SparseMatrix& A) {
-    if (local_from_jumps_) return refactorize_local_block(A);  // the jumped rows, until the next whole factor
     const std::size_t rows = changing_rows_.size();
     if (rows == 0 || rows > kMaxLocalFraction * A.rows) return false;
     const SerialBlas serial;
@@ -291,11 +290,9 @@ class CholmodSolver final : public LinearSolver {
       throw InputError("the saved sparse Cholesky state does not match this model's matrix (its block of " +
                        std::to_string(rows) + " rows)");
     std::copy_n(saved.begin() + static_cast<std::ptrdiff_t>(rows), values, local_.values.begin());
-    cholmod_sparse view = view_of(local_);
-    cholmod_factorize(&view, local_factor_, &common_);
     local_from_jumps_ = true;
     local_pattern_stale_ = true;
-    local_ready_ = local_ready_ && common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;
+    local_ready_ = factorize_local_values() && local_ready_;
   }
 
   /// local_ refilled from A and factorised, while that costs at most
@@ -306,6 +303,11 @@ class CholmodSolver final : public LinearSolver {
     // whole factorisation (CHOLMOD's flop counts from the two analyses).
     if (!(local_flops_ <= kMaxLocalFlopShare * factor_flops_)) return false;
     for (std::size_t k = 0; k < local_positions_.size(); ++k) local_.values[k] = A.values[local_positions_[k]];
+    return factorize_local_values();
+  }
+
+  /// local_factor_ from local_'s values; whether it is positive definite.
+  bool factorize_local_values() {
     cholmod_sparse view = view_of(local_);
     cholmod_factorize(&view, local_factor_, &common_);
     return common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;

@@ -3,6 +3,7 @@
 #ifndef TENSORMASS_SOLVERS_INTEGRATOR_KINDS_HPP
 #define TENSORMASS_SOLVERS_INTEGRATOR_KINDS_HPP
 
+#include <utility>
 #include <vector>
 
 #include "tensormass/solvers/integrators.hpp"
