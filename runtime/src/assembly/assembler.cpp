@@ -32,39 +32,31 @@ void blend_cell(const Model& model, int cell, const double* u, double* g, double
   for (int i = 0; i < dofs; ++i) g[i] = w * g[i] + (1 - w) * old_g[i];
 }
 
-/// Fills a batch's inputs (kernel_abi.h): the cells' displacements (D*N by
-/// W) and constants (consts by W); lanes past `used` repeat the first cell,
-/// so that every lane runs on valid data. N = 0 reads the node count at run
-/// time, W = 0 the width (`width`); the common shapes and widths get
-/// compile-time loops, which made packing as costly as the neo-Hookean tet4
-/// kernel itself when the loops were general.
+/// A planned batch's displacements (D*N by W, kernel_abi.h):
+/// batch_u[(j * D + a) * W + lane] = u[dofs[j * W + lane] + a], dofs from
+/// KernelPlan::dofs. N = 0 reads the node count at run time, W = 0 the
+/// width; the common shapes and widths get compile-time loops.
 template <int W_, int D, int N>
-void pack_batch(const Model& model, const int* cells, int used, int width, int consts_count, const double* u,
-                double* batch_u, double* batch_consts) {
-  const int W = W_ > 0 ? W_ : width;
-  for (int lane = 0; lane < W; ++lane) {
-    const int cell = cells[lane < used ? lane : 0];
-    const auto nodes = model.cell_nodes(cell);
-    const int n = N > 0 ? N : static_cast<int>(nodes.size());
-    double* lane_u = batch_u + lane;
-    for (int j = 0; j < n; ++j)
-      for (int a = 0; a < D; ++a) lane_u[(j * D + a) * W] = u[static_cast<std::size_t>(nodes[j]) * D + a];
-    const double* consts = model.consts(cell);
-    double* lane_consts = batch_consts + lane;
-    for (int i = 0; i < consts_count; ++i) lane_consts[i * W] = consts[i];
-  }
+void pack_lanes(const int* dofs, int nodes, int width, const double* u, double* batch_u) {
+  const int W = W_ > 0 ? W_ : width, n = N > 0 ? N : nodes;
+  for (int j = 0; j < n; ++j)
+    for (int lane = 0; lane < W; ++lane) {
+      const double* node_u = u + dofs[j * W + lane];
+      for (int a = 0; a < D; ++a) batch_u[(j * D + a) * W + lane] = node_u[a];
+    }
 }
 
 /// Adds a batch's forces (element by element, D*N each) into the gradient,
 /// cell after cell (N = 0: the node count read at run time).
 template <int D, int N>
-void scatter_batch_forces(const Model& model, const int* cells, int used, const double* g, double* gradient) {
+void scatter_lanes(const int* dofs, int nodes, int width, int used, const double* g, double* gradient) {
+  const int n = N > 0 ? N : nodes;
   for (int lane = 0; lane < used; ++lane) {
-    const auto nodes = model.cell_nodes(cells[lane]);
-    const int n = N > 0 ? N : static_cast<int>(nodes.size());
     const double* cell_g = g + static_cast<std::size_t>(lane) * n * D;
-    for (int j = 0; j < n; ++j)
-      for (int a = 0; a < D; ++a) gradient[static_cast<std::size_t>(nodes[j]) * D + a] += cell_g[j * D + a];
+    for (int j = 0; j < n; ++j) {
+      double* node_gradient = gradient + dofs[j * width + lane];
+      for (int a = 0; a < D; ++a) node_gradient[a] += cell_g[j * D + a];
+    }
   }
 }
 
@@ -145,6 +137,7 @@ bool Assembler::keeps_rows_of(int node) const { return !distribution_ || distrib
 
 void Assembler::distribute(const Distribution* distribution) {
   distribution_ = distribution;
+  plan_key_ = PlanKey{};  // the cells this rank assembles changed
   // Built again for this rank's rows only at the next need; the whole
   // mesh's layout is not kept.
   tangent_layout_ = false;
@@ -360,7 +353,7 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
   const Model& model = *model_;
   const int cells = model.cell_count();
   const int active = (distribution_ ? distribution_->assembled_cell_count() : cells) - folded_cell_count();
-  const Distribution* shared = distribution_;
+  update_plan();
   // One parallel region for all colours; small (or mostly folded) meshes
   // stay on one thread, where the barriers between colours would cost more
   // than they save.
@@ -368,20 +361,17 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 #pragma omp parallel if (active >= kParallelCells)
   {
     CellBuffers buffers(stiffness != nullptr);
-    CellBatches waiting;
+    BatchBuffers batch_buffers;
     for (int c = 0; c < colours; ++c) {
 #pragma omp for schedule(dynamic, 1)
       for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
-        const int first = coloured_chunks_[k] * kChunkCells;
-        const int last = std::min(cells, first + kChunkCells);
-        for (int cell = first; cell < last; ++cell) {
-          if ((linear_ && linear_->folded(cell)) || (shared && !shared->assembles_cell(cell))) continue;
-          if (batches(cell)) batch_cell(cell, u, gradient, stiffness, waiting);
-          else assemble_cell(cell, u, gradient, stiffness, buffers);
+        // A chunk's steps are planned from its cells and their laws alone:
+        // the order of the sums does not depend on the threads.
+        const int chunk = coloured_chunks_[k];
+        for (const KernelPlan::Step& step : plan_.steps(chunk)) {
+          if (step.batch < 0) assemble_cell(step.cell, u, gradient, stiffness, buffers);
+          else run_batch(chunk, plan_.batch(chunk, step.batch), u, gradient, stiffness, batch_buffers);
         }
-        // A chunk's cells are all in before the next chunk: the order of the
-        // sums depends on the cells and their laws, not on the threads.
-        run_batches(u, gradient, stiffness, waiting);
       }
     }
   }
@@ -389,59 +379,50 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 
 bool Assembler::batches(int cell) const {
   const tm_kernel& kernel = model_->kernel(cell);
-  return batched_ && kernel.batch_width > 1 && kernel.batch_width <= CellBatch::kMaxBatch && !model_->blend_from(cell);
+  return batched_ && kernel.batch_width > 1 && kernel.batch_width <= KernelPlan::kMaxBatch && !model_->blend_from(cell);
 }
 
-void Assembler::batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                           CellBatches& waiting) const {
-  const tm_kernel& kernel = model_->kernel(cell);
-  CellBatch* batch = nullptr;
-  for (int s = 0; s < waiting.used && !batch; ++s)
-    if (waiting.slots[s].kernel == &kernel) batch = &waiting.slots[s];
-  if (!batch) {
-    if (waiting.used == CellBatches::kSlots) run_batches(u, gradient, stiffness, waiting);
-    batch = &waiting.slots[waiting.used++];
-    batch->kernel = &kernel;
-  }
-  if (batch->size == kernel.batch_width) run_batch(u, gradient, stiffness, *batch);
-  batch->cells[batch->size++] = cell;
+KernelPlan::Mode Assembler::plan_mode(int cell) const {
+  if ((linear_ && linear_->folded(cell)) || (distribution_ && !distribution_->assembles_cell(cell)))
+    return KernelPlan::kSkip;
+  return batches(cell) ? KernelPlan::kBatched : KernelPlan::kSingle;
 }
 
-void Assembler::run_batches(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                            CellBatches& waiting) const {
-  for (int s = 0; s < waiting.used; ++s) run_batch(u, gradient, stiffness, waiting.slots[s]);
-  waiting.used = 0;
-}
-
-void Assembler::run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                          CellBatch& batch) const {
-  if (batch.size == 0) return;
+void Assembler::update_plan() const {
   const Model& model = *model_;
+  const PlanKey key{model.law_revision(), model.consts_revision(), folding_changes(), batched_, distribution_};
+  if (key == plan_key_) return;
+  plan_.update(model, kChunkCells, [this](int cell) { return plan_mode(cell); });
+  plan_key_ = key;
+}
+
+void Assembler::run_batch(int chunk, const KernelPlan::Batch& batch, std::span<const double> u,
+                          std::span<double> gradient, SparseMatrix* stiffness, BatchBuffers& buffers) const {
   const tm_kernel& kernel = *batch.kernel;
-  const int width = kernel.batch_width, dofs = kernel.dofs;
-  batch.u.resize(static_cast<std::size_t>(dofs) * width);
-  batch.consts.resize(static_cast<std::size_t>(kernel.consts) * width);
-  batch.g.resize(static_cast<std::size_t>(dofs) * width);
+  const int width = kernel.batch_width, dofs = kernel.dofs, nodes = kernel.nodes;
+  const int* node_dofs = plan_.dofs(chunk, batch);
+  const double* consts = plan_.consts(chunk, batch);
+  buffers.u.resize(static_cast<std::size_t>(dofs) * width);
+  buffers.g.resize(static_cast<std::size_t>(dofs) * width);
   with_batch_shape(kernel, [&]<int D, int N>() {
-    const auto pack = width == 4 ? pack_batch<4, D, N> : width == 2 ? pack_batch<2, D, N> : pack_batch<0, D, N>;
-    pack(model, batch.cells, batch.size, width, kernel.consts, u.data(), batch.u.data(), batch.consts.data());
+    const auto pack = width == 4 ? pack_lanes<4, D, N> : width == 2 ? pack_lanes<2, D, N> : pack_lanes<0, D, N>;
+    pack(node_dofs, nodes, width, u.data(), buffers.u.data());
   });
   if (!stiffness) {
-    kernel.gradient_batch(batch.u.data(), batch.consts.data(), batch.g.data());
+    kernel.gradient_batch(buffers.u.data(), consts, buffers.g.data());
     with_batch_shape(kernel, [&]<int D, int N>() {
-      scatter_batch_forces<D, N>(model, batch.cells, batch.size, batch.g.data(), gradient.data());
+      scatter_lanes<D, N>(node_dofs, nodes, width, batch.size, buffers.g.data(), gradient.data());
     });
-  } else {
-    batch.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
-    kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), batch.g.data(), batch.k.data());
-    const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
-    for (int lane = 0; lane < batch.size; ++lane) {
-      double* k = batch.k.data() + lane * dofs2;
-      if (project_hessians_) project_to_positive_semidefinite(k, dofs);
-      scatter_cell(batch.cells[lane], batch.g.data() + static_cast<std::size_t>(lane) * dofs, k, gradient, stiffness);
-    }
+    return;
   }
-  batch.size = 0;
+  buffers.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
+  kernel.gradient_hessian_batch(buffers.u.data(), consts, buffers.g.data(), buffers.k.data());
+  const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
+  for (int lane = 0; lane < batch.size; ++lane) {
+    double* k = buffers.k.data() + lane * dofs2;
+    if (project_hessians_) project_to_positive_semidefinite(k, dofs);
+    scatter_cell(batch.cells[lane], buffers.g.data() + static_cast<std::size_t>(lane) * dofs, k, gradient, stiffness);
+  }
 }
 
 double Assembler::energy(std::span<const double> u) const {

@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "tensormass/assembly/kernel_plan.hpp"
 #include "tensormass/assembly/linear_part.hpp"
 #include "tensormass/assembly/node_graph.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
@@ -114,37 +115,21 @@ class Assembler {
     double u[kMaxDofs], g[kMaxDofs], blend_g[kMaxDofs];
     std::vector<double> k, blend_k;
   };
-  /// Up to kMaxBatch cells of one kernel waiting for a batched call, with
-  /// the batch's scratch space (kernel_abi.h layouts).
-  struct CellBatch {
-    static constexpr int kMaxBatch = 8;
-    const tm_kernel* kernel = nullptr;
-    int cells[kMaxBatch];
-    int size = 0;
-    std::vector<double> u, consts, g, k;
-  };
-  /// A batch per kernel waiting, so that cells of two or three laws
-  /// interleaved in a chunk (an adaptive run's ladder) still fill their
-  /// batches: one waiting batch broke at every change of law.
-  struct CellBatches {
-    static constexpr int kSlots = 4;
-    CellBatch slots[kSlots];
-    int used = 0;
+  /// Per-thread scratch space for one batch (kernel_abi.h layouts).
+  struct BatchBuffers {
+    std::vector<double> u, g, k;
   };
   void assemble_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
                      CellBuffers& buffers) const;
   /// True when the cell runs through its kernel's batched entry points.
   bool batches(int cell) const;
-  /// Adds a cell to its kernel's waiting batch, running that batch first
-  /// when it is full (and every batch when all slots hold other kernels).
-  void batch_cell(int cell, std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                  CellBatches& waiting) const;
-  /// Runs the waiting cells' batched kernel and scatters them in cell order.
-  void run_batch(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                 CellBatch& batch) const;
-  /// Runs every waiting batch, in the order their kernels first came.
-  void run_batches(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness,
-                   CellBatches& waiting) const;
+  /// How the plan assembles a cell now (folded and other ranks' cells are skipped).
+  KernelPlan::Mode plan_mode(int cell) const;
+  /// Brings plan_ up to date when the laws, the folded set or the settings changed.
+  void update_plan() const;
+  /// Runs one planned batch of `chunk` and scatters its cells in lane order.
+  void run_batch(int chunk, const KernelPlan::Batch& batch, std::span<const double> u, std::span<double> gradient,
+                 SparseMatrix* stiffness, BatchBuffers& buffers) const;
   /// Adds one cell's gradient g (dofs) and Hessian k (dofs by dofs, or null) into the totals.
   void scatter_cell(int cell, const double* g, const double* k, std::span<double> gradient,
                     SparseMatrix* stiffness) const;
@@ -185,6 +170,16 @@ class Assembler {
   bool batched_ = true;
   bool scatter_by_blocks_ = true;
   const Distribution* distribution_ = nullptr;
+  /// The order of the kernel cells and their packed batches, planned for
+  /// the laws, folded set and settings of plan_key_.
+  mutable KernelPlan plan_;
+  struct PlanKey {
+    long law_revision = -1, consts_revision = -1, folding_changes = -1;
+    bool batched = false;
+    const Distribution* distribution = nullptr;
+    bool operator==(const PlanKey&) const = default;
+  };
+  mutable PlanKey plan_key_;
   mutable std::vector<int> changing_rows_;
   mutable long changing_revision_ = 0, changing_seen_folds_ = -1;
 };
