@@ -392,7 +392,11 @@ void Assembler::update_plan() const {
   const Model& model = *model_;
   const PlanKey key{model.law_revision(), model.consts_revision(), folding_changes(), batched_, distribution_};
   if (key == plan_key_) return;
-  plan_.update(model, kChunkCells, [this](int cell) { return plan_mode(cell); });
+  // Laws and blends alone: the plan finds the chunks where they moved.
+  const bool settings_changed =
+      plan_key_.law_revision < 0 || key.batched != plan_key_.batched || key.distribution != plan_key_.distribution;
+  plan_.update(
+      model, kChunkCells, [this](int cell) { return plan_mode(cell); }, settings_changed);
   plan_key_ = key;
 }
 

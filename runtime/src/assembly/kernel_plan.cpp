@@ -4,26 +4,33 @@
 
 namespace tensormass {
 
-void KernelPlan::update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode) {
+void KernelPlan::update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool modes_changed) {
   const int cells = model.cell_count();
   if (chunk_cells != chunk_cells_ || planned_kernel_.size() != static_cast<std::size_t>(cells)) {
     chunk_cells_ = chunk_cells;
     chunks_.assign((cells + chunk_cells - 1) / chunk_cells, Chunk{});
     planned_kernel_.assign(cells, nullptr);
-    planned_mode_.assign(cells, 0xff);  // no mode: every chunk is planned
+    planned_blend_.assign(cells, nullptr);
+    planned_mode_.assign(cells, kSkip);
+    modes_changed = true;
   }
   for (int chunk = 0; chunk < static_cast<int>(chunks_.size()); ++chunk) {
     const int first = chunk * chunk_cells, last = std::min(cells, first + chunk_cells);
+    // A mode follows from the cell's kernel and blend (and the settings):
+    // chunks where neither moved keep their plan without asking mode().
+    bool moved = modes_changed;
+    for (int cell = first; cell < last && !moved; ++cell)
+      moved = &model.kernel(cell) != planned_kernel_[cell] || model.blend_from(cell) != planned_blend_[cell];
+    if (!moved) continue;
     bool changed = false;
     for (int cell = first; cell < last; ++cell) {
       const Mode now = mode(cell);
-      const tm_kernel* kernel = now == kSkip ? nullptr : &model.kernel(cell);
-      if (now == planned_mode_[cell] && kernel == planned_kernel_[cell]) continue;
+      changed = changed || now != planned_mode_[cell] || &model.kernel(cell) != planned_kernel_[cell];
       planned_mode_[cell] = now;
-      planned_kernel_[cell] = kernel;
-      changed = true;
+      planned_kernel_[cell] = &model.kernel(cell);
+      planned_blend_[cell] = model.blend_from(cell);
     }
-    if (!changed) continue;
+    if (!changed && !chunks_[chunk].steps.empty()) continue;
     plan_chunk(model, chunk, first, last);
     ++replanned_;
   }
@@ -80,11 +87,17 @@ void KernelPlan::add_batch(const Model& model, Chunk& chunk, const tm_kernel& ke
   std::copy(cells.begin(), cells.end(), batch.cells);
   batch.dofs_offset = chunk.dofs.size();
   batch.consts_offset = chunk.consts.size();
-  const auto lane_cell = [&](int lane) { return cells[lane < used ? lane : 0]; };
-  for (int j = 0; j < kernel.nodes; ++j)
-    for (int lane = 0; lane < width; ++lane) chunk.dofs.push_back(model.cell_nodes(lane_cell(lane))[j] * kernel.dim);
-  for (int i = 0; i < kernel.consts; ++i)
-    for (int lane = 0; lane < width; ++lane) chunk.consts.push_back(model.consts(lane_cell(lane))[i]);
+  chunk.dofs.resize(batch.dofs_offset + static_cast<std::size_t>(kernel.nodes) * width);
+  chunk.consts.resize(batch.consts_offset + static_cast<std::size_t>(kernel.consts) * width);
+  int* dofs = chunk.dofs.data() + batch.dofs_offset;
+  double* consts = chunk.consts.data() + batch.consts_offset;
+  for (int lane = 0; lane < width; ++lane) {
+    const int cell = cells[lane < used ? lane : 0];  // lanes past the size repeat the first cell
+    const int* nodes = model.cell_nodes(cell).data();
+    const double* cell_consts = model.consts(cell);
+    for (int j = 0; j < kernel.nodes; ++j) dofs[j * width + lane] = nodes[j] * kernel.dim;
+    for (int i = 0; i < kernel.consts; ++i) consts[i * width + lane] = cell_consts[i];
+  }
   chunk.steps.push_back({cells[0], static_cast<int>(chunk.batches.size())});
   chunk.batches.push_back(batch);
 }

@@ -16,6 +16,7 @@ namespace tensormass {
 namespace {
 
 constexpr int kChunkCells = 16;
+constexpr int kAssemblerChunkCells = 128;  ///< the Assembler's chunks (assembler.cpp)
 
 /// Every cell batched when its kernel has batched entry points, except every seventh, run alone.
 KernelPlan::Mode mode_of(const Model& model, int cell) {
@@ -112,7 +113,8 @@ void expect_same_as_a_fresh_assembler(const Model& model, const Assembler& used)
   for (int i = 0; i < model.dof_count(); ++i) u[i] = 0.02 * std::sin(0.37 * i + 0.1);
   std::vector<double> g(model.dof_count());
   used.assemble(u, g, nullptr);  // brings the used part up to date
-  const Assembler fresh(model);
+  Assembler fresh(model);
+  fresh.set_batched(used.batched());
   fresh.linear_part()->restore(used.linear_part()->saved());
   std::vector<double> g_used(model.dof_count()), g_fresh(model.dof_count());
   SparseMatrix K_used = used.pattern(), K_fresh = fresh.pattern();
@@ -128,7 +130,7 @@ void expect_same_as_a_fresh_assembler(const Model& model, const Assembler& used)
 TEST(KernelPlan, TheAssemblerFollowsLawSwitchesFoldingAndBlends) {
   const Mesh mesh = test::beam(3, "tet6", {6, 2, 2});
   Model model(mesh, test::cantilever("hooke").model);
-  const Assembler assembler(model);
+  Assembler assembler(model);
   expect_same_as_a_fresh_assembler(model, assembler);  // every cell folded
   for (int cell = 0; cell < model.cell_count(); cell += 4) model.set_law(cell, "neohookean");
   expect_same_as_a_fresh_assembler(model, assembler);  // unfolded cells, batched
@@ -143,6 +145,18 @@ TEST(KernelPlan, TheAssemblerFollowsLawSwitchesFoldingAndBlends) {
   model.set_blend_weight(9, 1.0);
   for (int cell = 0; cell < model.cell_count(); cell += 8) model.set_law(cell, "hooke");
   expect_same_as_a_fresh_assembler(model, assembler);  // folded again
+  assembler.set_batched(false);
+  expect_same_as_a_fresh_assembler(model, assembler);
+  const KernelPlan& plan = assembler.kernel_plan();
+  int single = 0;
+  for (int chunk = 0; chunk * kAssemblerChunkCells < model.cell_count(); ++chunk)
+    for (const KernelPlan::Step& step : plan.steps(chunk)) {
+      EXPECT_LT(step.batch, 0);  // every cell alone, though no law changed
+      ++single;
+    }
+  EXPECT_GT(single, 0);
+  assembler.set_batched(true);
+  expect_same_as_a_fresh_assembler(model, assembler);
 }
 
 }  // namespace

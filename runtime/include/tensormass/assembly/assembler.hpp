@@ -98,6 +98,8 @@ class Assembler {
   /// the thread count. Blending cells always run per element.
   void set_batched(bool on) { batched_ = on; }
   bool batched() const { return batched_; }
+  /// The plan of the kernel cells as of the last assemble() (kernel_plan.hpp).
+  const KernelPlan& kernel_plan() const { return plan_; }
   /// When on (the default), cell Hessians are added into the tangent by
   /// node blocks (one index per pair of nodes); off, by one index per
   /// Hessian entry (the earlier map, kept for the benchmark). The same

@@ -54,9 +54,13 @@ class KernelPlan {
 
   /// Brings the plan up to date for chunks of `chunk_cells` consecutive
   /// cells (the last one shorter), mode(cell) saying how each cell is
-  /// assembled now: only chunks where a cell's kernel or mode changed since
-  /// the last update are planned again (every chunk the first time).
-  void update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode);
+  /// assembled now, a function of its kernel and blend (Model::blend_from)
+  /// unless `modes_changed`: only chunks where a cell's kernel or mode
+  /// changed since the last update are planned again (every chunk the first
+  /// time), and mode() is asked only in chunks where a kernel or a blend
+  /// moved, or in every chunk when `modes_changed` (the settings behind the
+  /// modes changed).
+  void update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool modes_changed = false);
 
   std::span<const Step> steps(int chunk) const { return chunks_[chunk].steps; }
   const Batch& batch(int chunk, int index) const { return chunks_[chunk].batches[index]; }
@@ -80,7 +84,8 @@ class KernelPlan {
 
   int chunk_cells_ = 0;
   std::vector<Chunk> chunks_;
-  std::vector<const tm_kernel*> planned_kernel_;  ///< per cell, as planned (null: skipped)
+  std::vector<const tm_kernel*> planned_kernel_;  ///< per cell, its kernel when planned
+  std::vector<const tm_kernel*> planned_blend_;   ///< per cell, Model::blend_from when planned
   std::vector<unsigned char> planned_mode_;       ///< per cell, as planned
   long replanned_ = 0;
 };
