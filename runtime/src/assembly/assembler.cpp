@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <functional>
 
 #include "tensormass/assembly/psd_projection.hpp"
@@ -35,10 +36,25 @@ void blend_cell(const Model& model, int cell, const double* u, double* g, double
 /// A planned batch's displacements (D*N by W, kernel_abi.h):
 /// batch_u[(j * D + a) * W + lane] = u[dofs[j * W + lane] + a], dofs from
 /// KernelPlan::dofs. N = 0 reads the node count at run time, W = 0 the
-/// width; the common shapes and widths get compile-time loops.
+/// width; the common shapes and widths get compile-time loops. With W = 4
+/// each entry's 4 lanes are put together in a register and stored at once:
+/// the kernel loads them as one vector, which 4 separate stores would make
+/// wait until they reached the cache (a failed store-to-load forwarding).
 template <int W_, int D, int N>
 void pack_lanes(const int* dofs, int nodes, int width, const double* u, double* batch_u) {
   const int W = W_ > 0 ? W_ : width, n = N > 0 ? N : nodes;
+  if constexpr (W_ == 4) {
+    using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
+    for (int j = 0; j < n; ++j) {
+      const double *p0 = u + dofs[j * 4], *p1 = u + dofs[j * 4 + 1], *p2 = u + dofs[j * 4 + 2],
+                   *p3 = u + dofs[j * 4 + 3];
+      for (int a = 0; a < D; ++a) {
+        const Lanes lanes = {p0[a], p1[a], p2[a], p3[a]};
+        std::memcpy(batch_u + (j * D + a) * 4, &lanes, sizeof lanes);
+      }
+    }
+    return;
+  }
   for (int j = 0; j < n; ++j)
     for (int lane = 0; lane < W; ++lane) {
       const double* node_u = u + dofs[j * W + lane];
