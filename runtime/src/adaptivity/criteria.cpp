@@ -310,6 +310,73 @@ class StressCriterion final : public ShapedCriterion<StressCriterion> {
   }
 };
 
+/// Four cells evaluated at once (criteria of H alone, tet4: one quadrature
+/// point and constant shape gradients).
+using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
+
+/// Self::finish(Self::point_squared(H)) for `used` <= 4 tet4 cells, H and
+/// the criterion computed for the four in vector registers (lanes past
+/// `used` repeat the first cell). Each lane's entries are put together in a
+/// register before they are used: no vector load waits on scalar stores.
+template <typename Self>
+void evaluate_tet4_lanes(const Model& model, const double* u_all, const int* cells, int used, double* values) {
+  const double* node_u[4][4];  // [lane][node]
+  const double* gradients[4];  // [lane]: G^T (3 by 4) of the cell's one quadrature point
+  for (int lane = 0; lane < 4; ++lane) {
+    const int cell = cells[lane < used ? lane : 0];
+    const int* nodes = model.cell_nodes(cell).data();
+    for (int j = 0; j < 4; ++j) node_u[lane][j] = u_all + static_cast<std::size_t>(nodes[j]) * 3;
+    gradients[lane] = model.consts(cell) + model.kernel(cell).derived_params + 1;
+  }
+  Lanes u[12], G[12];
+  for (int j = 0; j < 4; ++j)
+    for (int a = 0; a < 3; ++a)
+      u[j * 3 + a] = Lanes{node_u[0][j][a], node_u[1][j][a], node_u[2][j][a], node_u[3][j][a]};
+  for (int k = 0; k < 12; ++k) G[k] = Lanes{gradients[0][k], gradients[1][k], gradients[2][k], gradients[3][k]};
+  Lanes H[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) {
+      Lanes sum{};
+      for (int j = 0; j < 4; ++j) sum += u[j * 3 + a] * G[c * 4 + j];
+      H[a][c] = sum;
+    }
+  const Lanes squared = Self::template point_squared<3, Lanes>(H);
+  for (int lane = 0; lane < used; ++lane) values[cells[lane]] = Self::finish(std::max(0.0, squared[lane]));
+}
+
+/// A criterion of H alone on a tet4 block, 4 cells at a time
+/// (evaluate_tet4_lanes); false for other blocks, which the caller
+/// evaluates cell by cell. Same contract as Criterion::evaluate_block.
+template <typename Self>
+bool evaluate_tet4_block(const BlockInput& in, std::span<double> values) {
+  const Model& model = in.model;
+  const ElementBlock& block = in.block;
+  if (model.dim() != 3 || block.element->nodes != 4 || block.element->quadrature_points != 1) return false;
+  const double* u_all = in.u.data();
+  int pending[4];
+  int used = 0;
+#pragma omp for schedule(static) nowait
+  for (int local = 0; local < block.count(); ++local) {
+    const int cell = block.first_cell + local;
+    if (in.distribution && !in.distribution->owns_cell(cell)) continue;
+    if (in.selected && in.selected[cell] != 1) continue;
+    if (model.kernel(cell).quadrature_points != 1) {  // a law on another rule: alone
+      double u[12];
+      gather_nodes<3, 4>(model.cell_nodes(cell).data(), u_all, 3, u);
+      const ElementView view{*block.element, model.kernel(cell), model.consts(cell), nullptr, u, nullptr, 3};
+      values[cell] = Self::template value<3, 4>(view);
+      continue;
+    }
+    pending[used++] = cell;
+    if (used == 4) {
+      evaluate_tet4_lanes<Self>(model, u_all, pending, used, values.data());
+      used = 0;
+    }
+  }
+  if (used > 0) evaluate_tet4_lanes<Self>(model, u_all, pending, used, values.data());
+  return true;
+}
+
 /// The largest of per_point(H) over the element's quadrature points.
 template <int D, int N, typename PerPoint>
 double largest_over_points(const ElementView& view, PerPoint per_point) {
@@ -331,28 +398,30 @@ class NonlinearStrainCriterion final : public ShapedCriterion<NonlinearStrainCri
 
   template <int D, int N>
   static double value(const ElementView& view) {
-    return 0.5 * std::sqrt(largest_over_points<D, N>(view, quadratic_strain_squared_norm<D>));
+    return finish(largest_over_points<D, N>(view, point_squared<D, double>));
   }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    if (!evaluate_tet4_block<NonlinearStrainCriterion>(in, values)) ShapedCriterion::evaluate_block(in, values);
+  }
+  /// |H^T H|_F^2, for one H (T = double) or for lanes of them.
+  template <int D, typename T>
+  static T point_squared(const T (&H)[D][D]) {
+    T squared{};
+    for (int c = 0; c < D; ++c)
+      for (int e = 0; e < D; ++e) {
+        T entry{};
+        for (int a = 0; a < D; ++a) entry += H[a][c] * H[a][e];
+        squared += entry * entry;
+      }
+    return squared;
+  }
+  static double finish(double largest) { return 0.5 * std::sqrt(largest); }
   /// |H|_F^2 = sum sigma_i^2 <= sqrt(D) sqrt(sum sigma_i^4) = sqrt(D) |H^T H|_F <= 2 sqrt(D) value.
   double gradient_norm_bound(double value, int dim) const override {
     return std::sqrt(2.0 * std::sqrt(static_cast<double>(dim)) * value);
   }
   /// |H'^T H' - H^T H|_F <= 2 h delta + delta^2, halved.
   double change_slope(double h) const override { return h; }
-
- private:
-  /// |H^T H|_F^2.
-  template <int D>
-  static double quadratic_strain_squared_norm(const double (&H)[D][D]) {
-    double squared = 0.0;
-    for (int c = 0; c < D; ++c)
-      for (int e = 0; e < D; ++e) {
-        double entry = 0.0;
-        for (int a = 0; a < D; ++a) entry += H[a][c] * H[a][e];
-        squared += entry * entry;
-      }
-    return squared;
-  }
 };
 
 /// R_E = max over points of |E|_F, E = (H + H^T + H^T H) / 2: the strain with
@@ -365,8 +434,24 @@ class GreenStrainCriterion final : public ShapedCriterion<GreenStrainCriterion> 
 
   template <int D, int N>
   static double value(const ElementView& view) {
-    return std::sqrt(largest_over_points<D, N>(view, green_strain_squared_norm<D>));
+    return finish(largest_over_points<D, N>(view, point_squared<D, double>));
   }
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    if (!evaluate_tet4_block<GreenStrainCriterion>(in, values)) ShapedCriterion::evaluate_block(in, values);
+  }
+  /// |E|_F^2 with E = (H + H^T + H^T H) / 2, for one H (T = double) or for lanes of them.
+  template <int D, typename T>
+  static T point_squared(const T (&H)[D][D]) {
+    T squared{};
+    for (int c = 0; c < D; ++c)
+      for (int e = 0; e < D; ++e) {
+        T entry = 0.5 * (H[c][e] + H[e][c]);
+        for (int a = 0; a < D; ++a) entry += 0.5 * H[a][c] * H[a][e];
+        squared += entry * entry;
+      }
+    return squared;
+  }
+  static double finish(double largest) { return std::sqrt(largest); }
   /// |H|_F <= |I + H|_F + |I|_F, |I + H|_F^2 = tr(I + 2E) <= D + 2 sqrt(D) |E|_F.
   double gradient_norm_bound(double value, int dim) const override {
     const double d = dim;
@@ -374,20 +459,6 @@ class GreenStrainCriterion final : public ShapedCriterion<GreenStrainCriterion> 
   }
   /// E' - E = sym(dH) + (dH^T H + H^T dH + dH^T dH) / 2: at most delta + h delta + delta^2 / 2.
   double change_slope(double h) const override { return 1.0 + h; }
-
- private:
-  /// |E|_F^2 with E = (H + H^T + H^T H) / 2.
-  template <int D>
-  static double green_strain_squared_norm(const double (&H)[D][D]) {
-    double squared = 0.0;
-    for (int c = 0; c < D; ++c)
-      for (int e = 0; e < D; ++e) {
-        double entry = 0.5 * (H[c][e] + H[e][c]);
-        for (int a = 0; a < D; ++a) entry += 0.5 * H[a][c] * H[a][e];
-        squared += entry * entry;
-      }
-    return squared;
-  }
 };
 
 }  // namespace
