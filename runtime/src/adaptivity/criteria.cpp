@@ -390,19 +390,28 @@ double largest_over_points(const ElementView& view, PerPoint per_point) {
   return largest;
 }
 
-/// R_NL = max over points of |1/2 H^T H|_F.
-class NonlinearStrainCriterion final : public ShapedCriterion<NonlinearStrainCriterion> {
+/// A criterion of the displacement gradients H_q alone:
+/// Self::finish(max_q Self::point_squared(H_q)), with point_squared a
+/// template on the value type (one H, or lanes of them); tet4 blocks are
+/// evaluated four cells at a time (evaluate_tet4_block).
+template <typename Self>
+class GradientCriterion : public ShapedCriterion<Self> {
  public:
-  std::string name() const override { return "R_NL"; }
   bool needs_rest() const override { return false; }
 
   template <int D, int N>
   static double value(const ElementView& view) {
-    return finish(largest_over_points<D, N>(view, point_squared<D, double>));
+    return Self::finish(largest_over_points<D, N>(view, Self::template point_squared<D, double>));
   }
   void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    if (!evaluate_tet4_block<NonlinearStrainCriterion>(in, values)) ShapedCriterion::evaluate_block(in, values);
+    if (!evaluate_tet4_block<Self>(in, values)) ShapedCriterion<Self>::evaluate_block(in, values);
   }
+};
+
+/// R_NL = max over points of |1/2 H^T H|_F.
+class NonlinearStrainCriterion final : public GradientCriterion<NonlinearStrainCriterion> {
+ public:
+  std::string name() const override { return "R_NL"; }
   /// |H^T H|_F^2, for one H (T = double) or for lanes of them.
   template <int D, typename T>
   static T point_squared(const T (&H)[D][D]) {
@@ -427,18 +436,9 @@ class NonlinearStrainCriterion final : public ShapedCriterion<NonlinearStrainCri
 /// R_E = max over points of |E|_F, E = (H + H^T + H^T H) / 2: the strain with
 /// the rotation removed (zero under any rigid motion), what a corotational law
 /// still treats linearly.
-class GreenStrainCriterion final : public ShapedCriterion<GreenStrainCriterion> {
+class GreenStrainCriterion final : public GradientCriterion<GreenStrainCriterion> {
  public:
   std::string name() const override { return "R_E"; }
-  bool needs_rest() const override { return false; }
-
-  template <int D, int N>
-  static double value(const ElementView& view) {
-    return finish(largest_over_points<D, N>(view, point_squared<D, double>));
-  }
-  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
-    if (!evaluate_tet4_block<GreenStrainCriterion>(in, values)) ShapedCriterion::evaluate_block(in, values);
-  }
   /// |E|_F^2 with E = (H + H^T + H^T H) / 2, for one H (T = double) or for lanes of them.
   template <int D, typename T>
   static T point_squared(const T (&H)[D][D]) {
