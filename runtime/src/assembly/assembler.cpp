@@ -406,13 +406,14 @@ KernelPlan::Mode Assembler::plan_mode(int cell) const {
 
 void Assembler::update_plan() const {
   const Model& model = *model_;
-  const PlanKey key{model.law_revision(), model.consts_revision(), folding_changes(), batched_, distribution_};
+  const PlanKey key{model.law_revision(), model.consts_revision(), batched_, distribution_};
   if (key == plan_key_) return;
   // Laws and blends alone: the plan finds the chunks where they moved.
-  const bool settings_changed =
-      plan_key_.law_revision < 0 || key.batched != plan_key_.batched || key.distribution != plan_key_.distribution;
+  // Settings and recomputed constants do not show in the kernels: plan all.
+  const bool everything = plan_key_.law_revision < 0 || key.consts_revision != plan_key_.consts_revision ||
+                          key.batched != plan_key_.batched || key.distribution != plan_key_.distribution;
   plan_.update(
-      model, kChunkCells, [this](int cell) { return plan_mode(cell); }, settings_changed);
+      model, kChunkCells, [this](int cell) { return plan_mode(cell); }, everything);
   plan_key_ = key;
 }
 

@@ -4,7 +4,7 @@
 
 namespace tensormass {
 
-void KernelPlan::update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool modes_changed) {
+void KernelPlan::update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool everything) {
   const int cells = model.cell_count();
   if (chunk_cells != chunk_cells_ || planned_kernel_.size() != static_cast<std::size_t>(cells)) {
     chunk_cells_ = chunk_cells;
@@ -12,17 +12,17 @@ void KernelPlan::update(const Model& model, int chunk_cells, const std::function
     planned_kernel_.assign(cells, nullptr);
     planned_blend_.assign(cells, nullptr);
     planned_mode_.assign(cells, kSkip);
-    modes_changed = true;
+    everything = true;
   }
   for (int chunk = 0; chunk < static_cast<int>(chunks_.size()); ++chunk) {
     const int first = chunk * chunk_cells, last = std::min(cells, first + chunk_cells);
     // A mode follows from the cell's kernel and blend (and the settings):
     // chunks where neither moved keep their plan without asking mode().
-    bool moved = modes_changed;
+    bool moved = everything;
     for (int cell = first; cell < last && !moved; ++cell)
       moved = &model.kernel(cell) != planned_kernel_[cell] || model.blend_from(cell) != planned_blend_[cell];
     if (!moved) continue;
-    bool changed = false;
+    bool changed = everything;
     for (int cell = first; cell < last; ++cell) {
       const Mode now = mode(cell);
       changed = changed || now != planned_mode_[cell] || &model.kernel(cell) != planned_kernel_[cell];
@@ -30,7 +30,7 @@ void KernelPlan::update(const Model& model, int chunk_cells, const std::function
       planned_kernel_[cell] = &model.kernel(cell);
       planned_blend_[cell] = model.blend_from(cell);
     }
-    if (!changed && !chunks_[chunk].steps.empty()) continue;
+    if (!changed) continue;
     plan_chunk(model, chunk, first, last);
     ++replanned_;
   }

@@ -173,10 +173,10 @@ class Assembler {
   bool scatter_by_blocks_ = true;
   const Distribution* distribution_ = nullptr;
   /// The order of the kernel cells and their packed batches, planned for
-  /// the laws, folded set and settings of plan_key_.
+  /// the laws (the folded set follows them), constants and settings of plan_key_.
   mutable KernelPlan plan_;
   struct PlanKey {
-    long law_revision = -1, consts_revision = -1, folding_changes = -1;
+    long law_revision = -1, consts_revision = -1;
     bool batched = false;
     const Distribution* distribution = nullptr;
     bool operator==(const PlanKey&) const = default;

@@ -56,13 +56,13 @@ class KernelPlan {
 
   /// Brings the plan up to date for chunks of `chunk_cells` consecutive
   /// cells (the last one shorter), mode(cell) saying how each cell is
-  /// assembled now, a function of its kernel and blend (Model::blend_from)
-  /// unless `modes_changed`: only chunks where a cell's kernel or mode
-  /// changed since the last update are planned again (every chunk the first
-  /// time), and mode() is asked only in chunks where a kernel or a blend
-  /// moved, or in every chunk when `modes_changed` (the settings behind the
-  /// modes changed).
-  void update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool modes_changed = false);
+  /// assembled now, a function of its kernel and blend (Model::blend_from):
+  /// mode() is asked only in chunks where a kernel or a blend moved since
+  /// the last update, and those where a kernel or a mode changed are
+  /// planned again. `everything` (and the first update) asks every mode and
+  /// plans every chunk again: for changes the kernels do not show (the
+  /// settings behind the modes, recomputed constants).
+  void update(const Model& model, int chunk_cells, const std::function<Mode(int)>& mode, bool everything = false);
 
   std::span<const Step> steps(int chunk) const { return chunks_[chunk].steps; }
   const Batch& batch(int chunk, int index) const { return chunks_[chunk].batches[index]; }
