@@ -14,35 +14,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <vector>
 
+#include "solvers/cholmod_view.hpp"
+#include "solvers/factor_reach.hpp"
 #include "solvers/factor_reuse_policy.hpp"
 #include "solvers/preconditioned_cg.hpp"
+#include "solvers/restricted_cg.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 
 namespace {
-
-/// A's lower triangle as CHOLMOD reads it. A stores both triangles; as
-/// compressed columns it is the same (symmetric) matrix, and stype = -1
-/// makes CHOLMOD ignore the upper part.
-cholmod_sparse view_of(const SparseMatrix& A) {
-  cholmod_sparse view{};
-  view.nrow = view.ncol = static_cast<std::size_t>(A.rows);
-  view.nzmax = A.values.size();
-  view.p = const_cast<int*>(A.row_start.data());
-  view.i = const_cast<int*>(A.columns.data());
-  view.x = const_cast<double*>(A.values.data());
-  view.stype = -1;
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
-  return view;
-}
 
 /// Runs CHOLMOD's BLAS on one thread for its lifetime. Debian's OpenBLAS
 /// (openmp variant) takes its thread count from omp_get_max_threads() at
@@ -133,20 +118,23 @@ class CholmodSolver final : public LinearSolver {
       const auto old_factor = [this](std::span<const double> r, std::span<double> z) { direct_solve(r, z); };
       const auto two_level = [this](std::span<const double> r, std::span<double> z) { two_level_solve(r, z); };
       int iterations = 0;
+      double cost = 0.0;  // in whole solves with the old factor
       const auto converges = [&](const auto& precondition) {
         const detail::PcgResult result =
             detail::preconditioned_cg(*current_, b, x, precondition, tolerance, settings_.reuse_iterations, workspace_);
         iterations += result.iterations;
+        cost += result.iterations;
         return result.converged;
       };
-      bool done = local_ready_ ? converges(two_level) : converges(old_factor);
+      bool done = local_ready_ ? converges(two_level) : converges_on_changed_rows(b, x, tolerance, iterations, cost);
+      if (!done && !local_ready_ && cost == 0.0) done = converges(old_factor);
       if (!done && (!local_ready_ || local_from_jumps_)) {
         // Rows jumped since the block was made: make it again from them.
         local_ready_ = (!local_from_jumps_ && factorize_local_block(*current_)) || factorize_jumped_block(*current_);
         done = local_ready_ && converges(two_level);
       }
       if (done) {
-        reuse_.lagged_solve(iterations);
+        reuse_.lagged_solve(cost);
         return iterations;
       }
       factorize_now(*current_);  // drifted too far: a fresh factor
@@ -202,7 +190,8 @@ class CholmodSolver final : public LinearSolver {
 
  private:
   void factorize_now(const SparseMatrix& A) {
-    cholmod_sparse view = view_of(A);
+    reach_.reset();  // made again on the new factor
+    cholmod_sparse view = detail::cholmod_view_of(A);
     const SerialBlas serial;
     if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros())
       analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
@@ -225,22 +214,38 @@ class CholmodSolver final : public LinearSolver {
                            std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
                            "); is the body constrained?");
     factorized_values_ = A.values;
+    if (factor_->is_super && factor_->is_ll) reach_.emplace(*factor_);
     reuse_.factorized();
     ++factorizations_;
   }
 
   void direct_solve(std::span<const double> b, std::span<double> x) {
-    cholmod_dense rhs{};
-    rhs.nrow = rhs.nzmax = rhs.d = b.size();
-    rhs.ncol = 1;
-    rhs.x = const_cast<double*>(b.data());
-    rhs.xtype = CHOLMOD_REAL;
-    rhs.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense rhs = detail::cholmod_view_of(b);
     const SerialBlas serial;
     cholmod_dense* solution = cholmod_solve(CHOLMOD_A, factor_, &rhs, &common_);
     if (!solution) throw NumericalError("sparse Cholesky solve failed");
     std::memcpy(x.data(), solution->x, sizeof(double) * x.size());
     cholmod_free_dense(&solution, &common_);
+  }
+
+  /// CG preconditioned by the old factor on the rows where the matrix
+  /// changed since it (restricted_cg), when the substitutions over the
+  /// supernodes they reach cost at most kMaxReachShare of whole ones.
+  /// Returns false with `cost` 0 where that does not apply.
+  bool converges_on_changed_rows(std::span<const double> b, std::span<double> x, double tolerance, int& iterations,
+                                 double& cost) {
+    // The rows of the non-linear cells change at every matrix: when they
+    // alone reach too much, the comparison of every value is spared.
+    if (!reach_ || reach_->select(changing_rows_) > kMaxReachShare) return false;
+    const detail::ChangedBlock change = detail::changed_block(*current_, factorized_values_);
+    const double share = reach_->select(change.rows);
+    if (share > kMaxReachShare) return false;
+    // As many iterations as the whole-factor CG may take, in cost.
+    const int cap = static_cast<int>(settings_.reuse_iterations / std::max(share, 0.05));
+    const detail::PcgResult result = detail::restricted_cg(*reach_, change, b, x, tolerance, cap, restricted_);
+    iterations += result.iterations;
+    cost += 1.0 + share * result.iterations;  // x formed once, then each iteration on the reach
+    return result.converged;
   }
 
   /// The changing block K_NN of A (rows and columns local_rows_) factorised
@@ -308,7 +313,7 @@ class CholmodSolver final : public LinearSolver {
 
   /// local_factor_ from local_'s values; whether it is positive definite.
   bool factorize_local_values() {
-    cholmod_sparse view = view_of(local_);
+    cholmod_sparse view = detail::cholmod_view_of(local_);
     cholmod_factorize(&view, local_factor_, &common_);
     return common_.status == CHOLMOD_OK && local_factor_->minor == local_factor_->n;
   }
@@ -339,7 +344,7 @@ class CholmodSolver final : public LinearSolver {
           break;
         }
     if (local_factor_) cholmod_free_factor(&local_factor_, &common_);
-    cholmod_sparse view = view_of(local_);
+    cholmod_sparse view = detail::cholmod_view_of(local_);
     common_.supernodal = CHOLMOD_AUTO;
     common_.final_ll = 1;
     local_factor_ = cholmod_analyze(&view, &common_);
@@ -378,12 +383,7 @@ class CholmodSolver final : public LinearSolver {
     const std::size_t m = local_rows_.size();
     local_rhs_.resize(m);
     for (std::size_t i = 0; i < m; ++i) local_rhs_[i] = r[local_rows_[i]];
-    cholmod_dense rhs{};
-    rhs.nrow = rhs.nzmax = rhs.d = m;
-    rhs.ncol = 1;
-    rhs.x = local_rhs_.data();
-    rhs.xtype = CHOLMOD_REAL;
-    rhs.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense rhs = detail::cholmod_view_of(std::span<const double>(local_rhs_));
     const SerialBlas serial;
     cholmod_dense* solution = cholmod_solve(CHOLMOD_A, local_factor_, &rhs, &common_);
     if (!solution) throw NumericalError("sparse Cholesky solve of the changing block failed");
@@ -408,6 +408,10 @@ class CholmodSolver final : public LinearSolver {
   static constexpr double kMaxLocalFlopShare = 0.1;
   /// A row jumped when an entry moved by more than this share of its diagonal since the whole factorisation.
   static constexpr double kJump = 0.05;
+  /// CG runs on the changed rows while their substitutions read at most this share of the factor.
+  static constexpr double kMaxReachShare = 0.9;
+  std::optional<detail::FactorReach> reach_;  ///< on factor_, when supernodal LL^T
+  detail::RestrictedWorkspace restricted_;
   double factor_flops_ = 0.0, local_flops_ = 0.0;
   std::vector<int> changing_rows_;  ///< the newest set (set_changing_rows)
   std::vector<int> local_rows_;     ///< the rows of the block factorised in local_factor_

@@ -30,11 +30,12 @@ class FactorReusePolicy {
     cycle_solves_ = 1;
     refactorize_ = false;
   }
-  /// A solve by `iterations` CG iterations preconditioned by the old factor.
-  void lagged_solve(int iterations) {
-    cycle_cost_ += iterations;
+  /// A solve with the old factor that cost `cost` solves (CG iterations
+  /// preconditioned by it; fewer when they run on the changed rows only).
+  void lagged_solve(double cost) {
+    cycle_cost_ += cost;
     ++cycle_solves_;
-    refactorize_ = iterations > cycle_cost_ / cycle_solves_;
+    refactorize_ = cost > cycle_cost_ / cycle_solves_;
   }
   /// Whether the next changed matrix should be factorised afresh.
   bool refactorize() const { return refactorize_; }
