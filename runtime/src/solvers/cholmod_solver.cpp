@@ -1,7 +1,9 @@
 // Sparse Cholesky through the CHOLMOD C API (SuiteSparse), with the
 // previous factor reused as a CG preconditioner while that is cheaper than
 // a new one (a Newton or implicit step's tangent drifts slowly): see
-// FactorReusePolicy. When only a block of the matrix changes (the cells
+// FactorReusePolicy. When the matrix changed on few rows (the cells under a
+// non-linear law), that CG runs on those rows through the part of the
+// factor they reach (restricted_cg). When only a block of the matrix changes (the cells
 // under a non-linear law: set_changing_rows) and the old factor alone stops
 // converging, an exact factor of that block corrects it (two_level_solve)
 // before a whole new factor is paid for. When that block is too large (most
