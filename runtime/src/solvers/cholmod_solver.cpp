@@ -3,9 +3,9 @@
 // a new one (a Newton or implicit step's tangent drifts slowly): see
 // FactorReusePolicy. When the matrix changed on few rows (the cells under a
 // non-linear law), that CG runs on those rows through the part of the
-// factor they reach (restricted_cg). When only a block of the matrix changes (the cells
-// under a non-linear law: set_changing_rows) and the old factor alone stops
-// converging, an exact factor of that block corrects it (two_level_solve)
+// factor they reach (restricted_cg). When only a block of the matrix
+// changes (those cells' rows: set_changing_rows) and the old factor alone
+// stops converging, an exact factor of that block corrects it (two_level_solve)
 // before a whole new factor is paid for. When that block is too large (most
 // cells non-linear), the block of the rows that jumped since the whole
 // factorisation (cells that switched law) corrects it instead.
