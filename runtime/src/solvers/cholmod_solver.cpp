@@ -128,8 +128,11 @@ class CholmodSolver final : public LinearSolver {
         cost += result.iterations;
         return result.converged;
       };
-      bool done = local_ready_ ? converges(two_level) : converges_on_changed_rows(b, x, tolerance, iterations, cost);
-      if (!done && !local_ready_ && cost == 0.0) done = converges(old_factor);
+      bool done;
+      if (local_ready_) done = converges(two_level);
+      else if (const auto on_changed_rows = converges_on_changed_rows(b, x, tolerance, iterations, cost))
+        done = *on_changed_rows;
+      else done = converges(old_factor);
       if (!done && (!local_ready_ || local_from_jumps_)) {
         // Rows jumped since the block was made: make it again from them.
         local_ready_ = (!local_from_jumps_ && factorize_local_block(*current_)) || factorize_jumped_block(*current_);
@@ -233,15 +236,15 @@ class CholmodSolver final : public LinearSolver {
   /// CG preconditioned by the old factor on the rows where the matrix
   /// changed since it (restricted_cg), when the substitutions over the
   /// supernodes they reach cost at most kMaxReachShare of whole ones.
-  /// Returns false with `cost` 0 where that does not apply.
-  bool converges_on_changed_rows(std::span<const double> b, std::span<double> x, double tolerance, int& iterations,
-                                 double& cost) {
+  /// Whether it converged; nothing where it does not apply.
+  std::optional<bool> converges_on_changed_rows(std::span<const double> b, std::span<double> x, double tolerance,
+                                                int& iterations, double& cost) {
     // The rows of the non-linear cells change at every matrix: when they
     // alone reach too much, the comparison of every value is spared.
-    if (!reach_ || reach_->select(changing_rows_) > kMaxReachShare) return false;
+    if (!reach_ || reach_->select(changing_rows_) > kMaxReachShare) return std::nullopt;
     const detail::ChangedBlock change = detail::changed_block(*current_, factorized_values_);
     const double share = reach_->select(change.rows);
-    if (share > kMaxReachShare) return false;
+    if (share > kMaxReachShare) return std::nullopt;
     // As many iterations as the whole-factor CG may take, in cost.
     const int cap = static_cast<int>(settings_.reuse_iterations / std::max(share, 0.05));
     const detail::PcgResult result = detail::restricted_cg(*reach_, change, b, x, tolerance, cap, restricted_);

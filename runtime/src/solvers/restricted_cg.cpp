@@ -40,27 +40,33 @@ ChangedBlock changed_block(const SparseMatrix& A, std::span<const double> factor
 
 namespace {
 
-double dot_of(std::span<const double> a, std::span<const double> b) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) sum += a[i] * b[i];
-  return sum;
+/// work[position of N's row i] = v[i].
+void place_on_block(const FactorReach& reach, const ChangedBlock& change, std::span<const double> v,
+                    std::span<double> work) {
+  for (std::size_t i = 0; i < change.rows.size(); ++i) work[reach.position(change.rows[i])] = v[i];
+}
+
+/// out[i] = work[position of N's row i].
+void read_block(const FactorReach& reach, const ChangedBlock& change, std::span<const double> work,
+                std::span<double> out) {
+  for (std::size_t i = 0; i < change.rows.size(); ++i) out[i] = work[reach.position(change.rows[i])];
 }
 
 /// out = (F^-1 E v)|N: v placed on N, both substitutions over the selection.
 void solve_on_block(const FactorReach& reach, const ChangedBlock& change, std::span<const double> v,
                     std::span<double> out, std::vector<double>& work) {
   reach.clear_selected(work);
-  for (std::size_t i = 0; i < change.rows.size(); ++i) work[reach.position(change.rows[i])] = v[i];
+  place_on_block(reach, change, v, work);
   reach.forward(work, true);
   reach.backward(work, true);
-  for (std::size_t i = 0; i < change.rows.size(); ++i) out[i] = work[reach.position(change.rows[i])];
+  read_block(reach, change, work, out);
 }
 
 /// x = F^-1 (b + E w), from base = L^-1 P b.
 void form_solution(const FactorReach& reach, const ChangedBlock& change, std::span<const double> w, std::span<double> x,
                    RestrictedWorkspace& ws) {
   std::fill(ws.work.begin(), ws.work.end(), 0.0);
-  for (std::size_t i = 0; i < change.rows.size(); ++i) ws.work[reach.position(change.rows[i])] = w[i];
+  place_on_block(reach, change, w, ws.work);
   reach.forward(ws.work, true);
   for (std::size_t k = 0; k < ws.work.size(); ++k) ws.work[k] += ws.base[k];
   reach.backward(ws.work, false);
@@ -86,11 +92,11 @@ PcgResult restricted_cg(const FactorReach& reach, const ChangedBlock& change, st
   reach.permute(b, ws.base);
   reach.forward(ws.base, false);
   reach.clear_selected(ws.work);
-  for (std::size_t i = 0; i < m; ++i) ws.work[reach.position(change.rows[i])] = ws.w[i];
+  place_on_block(reach, change, ws.w, ws.work);
   reach.forward(ws.work, true);
   for (std::size_t k = 0; k < n; ++k) ws.work[k] += ws.base[k];  // off the selection: not read
   reach.backward(ws.work, true);
-  for (std::size_t i = 0; i < m; ++i) ws.x_n[i] = ws.work[reach.position(change.rows[i])];
+  read_block(reach, change, ws.work, ws.x_n);
   std::fill(ws.q.begin(), ws.q.end(), 0.0);
   change.multiply_add(ws.x_n, ws.q);
   for (std::size_t i = 0; i < m; ++i) ws.r[i] = -(ws.w[i] + ws.q[i]);
@@ -103,11 +109,11 @@ PcgResult restricted_cg(const FactorReach& reach, const ChangedBlock& change, st
     solve_on_block(reach, change, ws.r, ws.z, ws.work);
     ws.p = ws.z;
     ws.t = ws.r;
-    double rz = dot_of(ws.r, ws.z);
+    double rz = dot(ws.r, ws.z);
     for (int iteration = 1; iteration <= max_iterations; ++iteration) {
       ws.q = ws.t;
       change.multiply_add(ws.p, ws.q);
-      const double alpha = rz / dot_of(ws.p, ws.q);
+      const double alpha = rz / dot(ws.p, ws.q);
       for (std::size_t i = 0; i < m; ++i) {
         ws.w[i] += alpha * ws.t[i];
         ws.r[i] -= alpha * ws.q[i];
@@ -119,7 +125,7 @@ PcgResult restricted_cg(const FactorReach& reach, const ChangedBlock& change, st
         break;
       }
       solve_on_block(reach, change, ws.r, ws.z, ws.work);
-      const double rz_next = dot_of(ws.r, ws.z);
+      const double rz_next = dot(ws.r, ws.z);
       const double beta = rz_next / rz;
       rz = rz_next;
       for (std::size_t i = 0; i < m; ++i) {
