@@ -114,10 +114,15 @@ MaterialSpec material(const std::string& law, double young, double poisson, doub
   return m;
 }
 
+/// Hexahedra along x, y, z of the indentation's block, each cut into 6 tets.
+constexpr std::array<int, 3> kBlockCells = {20, 10, 20};
+/// The scene run only when named (--only): too long for the default set.
+constexpr const char* kNeedleFine = "needle-fine";
+
 /// A 10 x 5 x 10 cm soft block (E 5 kPa, nu 0.45) on a fixed base; a 2 x 2 cm
 /// probe on the top face pushed 1.5 cm down over 0.5 s (implicit, dt 0.01).
-/// `cells`: hexahedra along x, y, z, each cut into 6 tets (10 x 5 x 10 with --quick).
-Case indentation(bool quick, std::array<int, 3> cells = {20, 10, 20}) {
+/// `cells`: the block's hexahedra (10 x 5 x 10 with --quick).
+Case indentation(bool quick, std::array<int, 3> cells = kBlockCells) {
   Case c;
   c.name = "indentation";
   BeamSpec spec;
@@ -158,7 +163,7 @@ Case indentation(bool quick, std::array<int, 3> cells = {20, 10, 20}) {
 /// The indentation's block under a 1 x 1 cm needle pushed 1 cm down: a
 /// non-linear region that is a small part of the mesh (3 to 17 % of the
 /// cells climb), the case the adaptive model is made for.
-Case needle(bool quick, std::array<int, 3> cells = {20, 10, 20}) {
+Case needle(bool quick, std::array<int, 3> cells = kBlockCells) {
   Case c = indentation(quick, cells);
   c.name = "needle";
   const double eps = 1e-9;
@@ -180,7 +185,7 @@ Case needle(bool quick, std::array<int, 3> cells = {20, 10, 20}) {
 /// whole factorisation there takes seconds.
 Case needle_fine(bool quick) {
   Case c = needle(quick, {30, 15, 30});
-  c.name = "needle-fine";
+  c.name = kNeedleFine;
   c.scene.path = "bench-adaptive-needle-fine.yaml";
   return c;
 }
@@ -570,7 +575,7 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
     }
   }
   const std::vector<std::string> names = {"indentation", "needle", "cantilever", "quad-beam"};
-  if (!options.only.empty() && options.only != "needle-fine" &&
+  if (!options.only.empty() && options.only != kNeedleFine &&
       std::none_of(names.begin(), names.end(), [&](const std::string& name) {
         return options.only == name || options.only == name + "-explicit";
       })) {
@@ -599,7 +604,7 @@ int adaptive_command(const std::vector<std::string>& args) {
     if (wanted(base.name + "-explicit")) cases.push_back(explicit_variant(base, 10));
     if (wanted(base.name)) cases.push_back(std::move(base));
   }
-  if (options.only == "needle-fine") cases.push_back(needle_fine(options.quick));
+  if (options.only == kNeedleFine) cases.push_back(needle_fine(options.quick));
   const int rounds = options.rounds > 0 ? options.rounds : options.quick ? 2 : 3;
   std::vector<CaseResult> results;
   bool failed = false;
