@@ -18,7 +18,7 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 3;  // 2: refinement; 3: CHOLMOD's block of jumped rows
+constexpr std::uint64_t kVersion = 4;  // 2: refinement; 3: CHOLMOD's block of jumped rows; 4: its region ordering
 
 /// FNV-1a, 64 bits.
 class Fingerprint {

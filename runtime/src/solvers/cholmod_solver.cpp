@@ -9,6 +9,10 @@
 // before a whole new factor is paid for. When that block is too large (most
 // cells non-linear), the block of the rows that jumped since the whole
 // factorisation (cells that switched law) corrects it instead.
+// At a whole factorisation, the changing rows and two rings of their
+// neighbours are ordered after all other rows (region_last_ordering), so
+// that the restricted CG's substitutions run over the region's supernodes
+// only, while that ordering's factorisation costs at most twice CHOLMOD's.
 #include <cholmod.h>
 #include <dlfcn.h>
 #include <omp.h>
@@ -23,6 +27,7 @@
 #include "solvers/factor_reach.hpp"
 #include "solvers/factor_reuse_policy.hpp"
 #include "solvers/preconditioned_cg.hpp"
+#include "solvers/region_last_ordering.hpp"
 #include "solvers/restricted_cg.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -152,19 +157,31 @@ class CholmodSolver final : public LinearSolver {
   int factorizations() const override { return factorizations_; }
 
   /// [simplicial, factorisations, 3 reuse counts, block correction on,
-  /// m, then for a block of jumped rows its m rows and its factorised values,
-  /// then the whole factorised values...], empty before a factor.
+  /// m, q, region ordered, smallest region refused (-1: none), then the q
+  /// rows the ordering was chosen for, then when region ordered the
+  /// factor's permutation (n rows), then for a block of jumped rows its m
+  /// rows and its factorised values, then the whole factorised values...],
+  /// empty before a factor.
   std::vector<double> save_state() const override {
     if (factorized_values_.empty()) return {};
     const std::array<double, 3> counts = reuse_.saved();
     const bool jumped = local_ready_ && local_from_jumps_;
+    const double refused = smallest_refused_region_ == kNoRegion ? -1.0 : double(smallest_refused_region_);
     std::vector<double> saved = {simplicial_ ? 1.0 : 0.0,
                                  double(factorizations_),
                                  counts[0],
                                  counts[1],
                                  counts[2],
                                  local_ready_ ? 1.0 : 0.0,
-                                 jumped ? double(local_rows_.size()) : 0.0};
+                                 jumped ? double(local_rows_.size()) : 0.0,
+                                 double(ordered_rows_.size()),
+                                 region_ordered_ ? 1.0 : 0.0,
+                                 refused};
+    saved.insert(saved.end(), ordered_rows_.begin(), ordered_rows_.end());
+    if (region_ordered_) {
+      const int* perm = static_cast<const int*>(factor_->Perm);
+      saved.insert(saved.end(), perm, perm + factor_->n);
+    }
     if (jumped) {
       saved.insert(saved.end(), local_rows_.begin(), local_rows_.end());
       saved.insert(saved.end(), local_.values.begin(), local_.values.end());
@@ -175,31 +192,57 @@ class CholmodSolver final : public LinearSolver {
 
   void restore_state(std::span<const double> saved, const SparseMatrix& pattern) override {
     if (saved.empty()) return;
-    const std::size_t rows = saved.size() >= kSavedCounts ? static_cast<std::size_t>(saved[kSavedCounts - 1]) : 0;
-    const std::size_t whole = pattern.values.size();
-    if (saved.size() < kSavedCounts + rows + whole || rows > static_cast<std::size_t>(pattern.rows))
+    const auto count = [&](std::size_t k) {
+      return saved.size() >= kSavedCounts ? static_cast<std::size_t>(std::max(saved[k], 0.0)) : 0;
+    };
+    const std::size_t rows = count(6), ordered = count(7), n = static_cast<std::size_t>(pattern.rows);
+    const std::size_t permuted = count(8) != 0 ? n : 0, whole = pattern.values.size();
+    const std::size_t head = kSavedCounts + ordered + permuted;
+    if (saved.size() < head + rows + whole || rows > n || ordered > n)
       throw InputError("the saved sparse Cholesky state holds " + std::to_string(saved.size()) +
-                       " numbers; this model's matrix needs at least " + std::to_string(kSavedCounts + rows + whole));
+                       " numbers; this model's matrix needs at least " + std::to_string(head + rows + whole));
     SparseMatrix A = pattern;
     A.values.assign(saved.end() - static_cast<std::ptrdiff_t>(whole), saved.end());
     simplicial_ = saved[0] != 0.0;  // the run had fallen back to LDL^T: analyse the same way
-    factorize_now(A);
+    const auto rows_at = [&](std::size_t from, std::size_t size) {
+      std::vector<int> list(size);
+      for (std::size_t i = 0; i < size; ++i) list[i] = static_cast<int>(saved[from + i]);
+      if (std::any_of(list.begin(), list.end(), [&](int row) { return row < 0 || row >= pattern.rows; }))
+        throw InputError("the saved sparse Cholesky state names a row outside this model's matrix");
+      return list;
+    };
+    std::vector<int> perm = rows_at(kSavedCounts + ordered, permuted);
+    {
+      cholmod_sparse view = detail::cholmod_view_of(A);
+      const SerialBlas serial;
+      analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
+      if (!perm.empty()) analyse_given(view, perm, false), region_ordered_ = true;
+      ordered_rows_ = rows_at(kSavedCounts, ordered);
+      smallest_refused_region_ = saved[9] < 0.0 ? kNoRegion : static_cast<std::size_t>(saved[9]);
+      factorize_values(view, A);
+    }
     factorizations_ = static_cast<int>(saved[1]);
     reuse_.restore({saved[2], saved[3], saved[4]});
     local_ready_ = saved[5] != 0.0;  // made for the next matrix's block, as in the run that saved it
-    if (rows > 0) restore_jumped_block(saved.subspan(kSavedCounts), rows, A);
-    else if (saved.size() != kSavedCounts + whole)
+    if (rows > 0) restore_jumped_block(saved.subspan(head), rows, A);
+    else if (saved.size() != head + whole)
       throw InputError("the saved sparse Cholesky state holds " + std::to_string(saved.size()) +
-                       " numbers; this model's matrix needs " + std::to_string(kSavedCounts + whole));
+                       " numbers; this model's matrix needs " + std::to_string(head + whole));
   }
 
  private:
   void factorize_now(const SparseMatrix& A) {
-    reach_.reset();  // made again on the new factor
     cholmod_sparse view = detail::cholmod_view_of(A);
     const SerialBlas serial;
     if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros())
       analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
+    if (!simplicial_ && !changing_rows_.empty() && changing_rows_ != ordered_rows_) order_region_last(view, A);
+    factorize_values(view, A);
+  }
+
+  /// factor_ (analysed) factorised with A's values.
+  void factorize_values(cholmod_sparse& view, const SparseMatrix& A) {
+    reach_.reset();  // made again on the new factor
     rows_ = A.rows;
     nonzeros_ = A.nonzeros();
     factorized_values_.clear();
@@ -222,6 +265,24 @@ class CholmodSolver final : public LinearSolver {
     if (factor_->is_super && factor_->is_ll) reach_.emplace(*factor_);
     reuse_.factorized();
     ++factorizations_;
+  }
+
+  /// factor_ analysed with the changing rows and kRegionRings rings of
+  /// their neighbours ordered last, when that region is at most
+  /// kMaxRegionShare of the rows and its factorisation costs at most
+  /// kMaxRegionFlopGrowth times CHOLMOD's own ordering's; else with
+  /// CHOLMOD's. A region at least as large as one refused is not tried
+  /// (regions grow as cells climb: their fill would grow too).
+  void order_region_last(cholmod_sparse& view, const SparseMatrix& A) {
+    ordered_rows_ = changing_rows_;
+    const std::vector<int> region = detail::dilated_rows(A, changing_rows_, kRegionRings);
+    if (region.size() <= kMaxRegionShare * A.rows && region.size() < smallest_refused_region_) {
+      analyse_given(view, detail::region_last_ordering(A, region, common_), true);
+      region_ordered_ = true;
+      if (common_.fl <= kMaxRegionFlopGrowth * default_flops_) return;
+      smallest_refused_region_ = region.size();
+    }
+    if (region_ordered_) analyse_given(view, default_perm_, false), region_ordered_ = false;
   }
 
   void direct_solve(std::span<const double> b, std::span<double> x) {
@@ -397,16 +458,49 @@ class CholmodSolver final : public LinearSolver {
     cholmod_free_dense(&solution, &common_);
   }
 
+  /// factor_ analysed with CHOLMOD's own choice of ordering: the default
+  /// ordering and its flops recorded, no region ordered or refused.
   void analyse(cholmod_sparse& view, int supernodal) {
+    reach_.reset();  // it reads factor_
     if (factor_) cholmod_free_factor(&factor_, &common_);
     common_.supernodal = supernodal;
     common_.final_ll = supernodal == CHOLMOD_SIMPLICIAL ? 0 : 1;
     factor_ = cholmod_analyze(&view, &common_);
     if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
+    factor_flops_ = default_flops_ = common_.fl;
+    const int* perm = static_cast<const int*>(factor_->Perm);
+    default_perm_.assign(perm, perm + factor_->n);
+    region_ordered_ = false;
+    ordered_rows_.clear();
+    smallest_refused_region_ = kNoRegion;  // a new pattern, or LDL^T from now on
+  }
+
+  /// factor_ analysed (supernodal LL^T) with the permutation `perm`
+  /// (CHOLMOD's convention), postordered or as it is (a permutation a
+  /// factor already had gives that factor's structure again).
+  void analyse_given(cholmod_sparse& view, const std::vector<int>& perm, bool postorder) {
+    reach_.reset();  // it reads factor_
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    common_.supernodal = CHOLMOD_AUTO;
+    common_.final_ll = 1;
+    common_.nmethods = 1;
+    common_.method[0].ordering = CHOLMOD_GIVEN;
+    common_.postorder = postorder;
+    factor_ = cholmod_analyze_p(&view, const_cast<int*>(perm.data()), nullptr, 0, &common_);
+    common_.nmethods = 0;  // CHOLMOD's own choice again for the other analyses
+    common_.postorder = 1;
+    if (!factor_) throw NumericalError("CHOLMOD analysis failed (out of memory?)");
     factor_flops_ = common_.fl;
   }
 
-  static constexpr std::size_t kSavedCounts = 7;
+  static constexpr std::size_t kSavedCounts = 10;
+  static constexpr std::size_t kNoRegion = static_cast<std::size_t>(-1);
+  /// The region ordered last: the changing rows and this many rings of neighbours ...
+  static constexpr int kRegionRings = 2;
+  /// ... while it holds at most this share of the rows ...
+  static constexpr double kMaxRegionShare = 0.5;
+  /// ... and its factorisation costs at most this many times CHOLMOD's ordering's flops.
+  static constexpr double kMaxRegionFlopGrowth = 2.0;
   /// The changing block gets its own factor up to this share of the rows.
   static constexpr double kMaxLocalFraction = 0.6;
   /// ... and while its factorisation costs at most this share of the whole one's flops.
@@ -418,6 +512,11 @@ class CholmodSolver final : public LinearSolver {
   std::optional<detail::FactorReach> reach_;  ///< on factor_, when supernodal LL^T
   detail::RestrictedWorkspace restricted_;
   double factor_flops_ = 0.0, local_flops_ = 0.0;
+  std::vector<int> default_perm_;  ///< CHOLMOD's own ordering of this pattern
+  double default_flops_ = 0.0;     ///< its factorisation's flops
+  std::vector<int> ordered_rows_;  ///< the changing rows factor_'s ordering was chosen for
+  bool region_ordered_ = false;    ///< factor_ orders a region last
+  std::size_t smallest_refused_region_ = kNoRegion;
   std::vector<int> changing_rows_;  ///< the newest set (set_changing_rows)
   std::vector<int> local_rows_;     ///< the rows of the block factorised in local_factor_
   long local_revision_ = -1;

@@ -48,6 +48,18 @@ inline std::vector<int> corner_rows(int side, int corner) {
   return rows;
 }
 
+/// The grid rows of the cube of side `width` at the grid's centre: where
+/// nested dissection puts its first separators.
+inline std::vector<int> centre_rows(int side, int width) {
+  std::vector<int> rows;
+  const int first = (side - width) / 2;
+  for (int z = first; z < first + width; ++z)
+    for (int y = first; y < first + width; ++y)
+      for (int x = first; x < first + width; ++x) rows.push_back((z * side + y) * side + x);
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
 /// A with `extra` times the Laplacian among `rows` (sorted) added: stiffer
 /// there, still symmetric positive definite, unchanged elsewhere.
 inline SparseMatrix stiffened(SparseMatrix A, const std::vector<int>& rows, double extra) {
@@ -62,15 +74,18 @@ inline SparseMatrix stiffened(SparseMatrix A, const std::vector<int>& rows, doub
   return A;
 }
 
-/// CHOLMOD's factor of A: supernodal LL^T, or the kind `supernodal` names.
+/// CHOLMOD's factor of A: supernodal LL^T, or the kind `supernodal` names;
+/// in CHOLMOD's own ordering, or in `perm` (CHOLMOD's convention) postordered.
 class CholmodFactor {
  public:
-  explicit CholmodFactor(const SparseMatrix& A, int supernodal = CHOLMOD_SUPERNODAL) {
+  explicit CholmodFactor(const SparseMatrix& A, int supernodal = CHOLMOD_SUPERNODAL,
+                         const std::vector<int>& perm = {}) {
     cholmod_start(&common_);
     common_.supernodal = supernodal;
     common_.final_ll = 1;
+    if (!perm.empty()) common_.nmethods = 1, common_.method[0].ordering = CHOLMOD_GIVEN;
     cholmod_sparse view = detail::cholmod_view_of(A);
-    factor_ = cholmod_analyze(&view, &common_);
+    factor_ = cholmod_analyze_p(&view, perm.empty() ? nullptr : const_cast<int*>(perm.data()), nullptr, 0, &common_);
     if (!factor_ || !cholmod_factorize(&view, factor_, &common_) || factor_->minor < factor_->n)
       throw std::runtime_error("test factorisation failed");
   }

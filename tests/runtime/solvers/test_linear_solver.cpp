@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "grid_matrix.hpp"
+#include "solvers/region_last_ordering.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
@@ -258,6 +259,103 @@ TEST(LinearSolver, CholmodSolvesAMatrixChangedOnFewRowsOnThoseRows) {
   EXPECT_GT(iterations, 1);  // more than 12 is allowed here: each reads part of the factor
   EXPECT_LT(relative_residual(changed, b, x), 1e-10);
   EXPECT_EQ(solver->factorizations(), 1);
+}
+
+// save_state()'s counts say which ordering the factor has: [7] the
+// changing rows it was chosen for, [8] 1 when they (and two rings) are
+// ordered last, [9] the smallest region refused for its fill (-1: none).
+constexpr std::size_t kOrderedRows = 7, kRegionOrdered = 8, kRefusedRegion = 9;
+
+/// A solver told `changing` (revision 1) that factorised and solved with A.
+std::unique_ptr<tensormass::LinearSolver> cholmod_told(const std::vector<int>& changing, const SparseMatrix& A,
+                                                       std::vector<double>& x, int reuse_iterations = 12) {
+  LinearSolverSettings settings;
+  settings.reuse_iterations = reuse_iterations;
+  auto solver = tensormass::make_linear_solver(settings);
+  solver->set_changing_rows(changing, 1);
+  solver->factorize(A);
+  const std::vector<double> b = tensormass::testing::uneven_vector(A.rows);
+  std::fill(x.begin(), x.end(), 0.0);
+  solver->solve(b, x, 1e-10);
+  return solver;
+}
+
+TEST(LinearSolver, CholmodOrdersSmallChangingRegionsLastAndSolvesAsBefore) {
+  constexpr int kSide = 16;
+  const SparseMatrix A = tensormass::testing::grid_laplacian(kSide, 0.1);
+  const std::vector<double> b = tensormass::testing::uneven_vector(A.rows);
+  const std::vector<int> centre = tensormass::testing::centre_rows(kSide, 2);
+  std::vector<double> x(A.rows), untold_x(A.rows);
+  auto solver = cholmod_told(centre, A, x);
+  auto untold = cholmod_told({}, A, untold_x);
+  const std::vector<double> state = solver->save_state();
+  EXPECT_EQ(state[kOrderedRows], static_cast<double>(centre.size()));
+  EXPECT_EQ(state[kRegionOrdered], 1.0);
+  EXPECT_EQ(state[kRefusedRegion], -1.0);
+  EXPECT_EQ(untold->save_state()[kRegionOrdered], 0.0);
+  EXPECT_LT(relative_residual(A, b, x), 1e-10);
+  for (int row = 0; row < A.rows; ++row) ASSERT_NEAR(x[row], untold_x[row], 1e-9 * std::abs(untold_x[row]));
+
+  // Most rows changing: CHOLMOD's own ordering again at the next factorisation.
+  std::vector<int> most(A.rows * 3 / 5);
+  for (std::size_t i = 0; i < most.size(); ++i) most[i] = static_cast<int>(i);
+  solver->set_changing_rows(most, 2);
+  const SparseMatrix stiffer = tensormass::testing::stiffened(A, most, 5.0);
+  solver->factorize(stiffer);
+  solver->solve(b, x, 1e-10);
+  EXPECT_EQ(solver->save_state()[kRegionOrdered], 0.0);
+  EXPECT_LT(relative_residual(stiffer, b, x), 1e-10);
+}
+
+// Rows scattered over the whole grid, ordered last, would fill a large
+// dense trailing block: the solver keeps CHOLMOD's ordering (the same bits
+// as a solver never told) and does not try a region as large again.
+TEST(LinearSolver, CholmodKeepsItsOwnOrderingWhenTheRegionWouldCostTooMuch) {
+  constexpr int kSide = 16;
+  const SparseMatrix A = tensormass::testing::grid_laplacian(kSide, 0.1);
+  std::vector<int> scattered;
+  for (int z = 2; z < kSide; z += 4)  // 4 x 4 x 4 rows
+    for (int y = 2; y < kSide; y += 4)
+      for (int x = 2; x < kSide; x += 4) scattered.push_back((z * kSide + y) * kSide + x);
+  std::vector<double> x(A.rows), untold_x(A.rows);
+  auto solver = cholmod_told(scattered, A, x);
+  auto untold = cholmod_told({}, A, untold_x);
+  const std::vector<double> state = solver->save_state();
+  EXPECT_EQ(state[kRegionOrdered], 0.0);
+  // The region: each row and the rows within two steps of it (a third of all).
+  EXPECT_EQ(state[kRefusedRegion], static_cast<double>(tensormass::detail::dilated_rows(A, scattered, 2).size()));
+  EXPECT_EQ(x, untold_x);
+}
+
+// A checkpoint taken with the region ordered last: the restored solver has
+// the same factor and solves the next matrices with the same bits.
+TEST(LinearSolver, CholmodRestoresItsRegionOrderingBitForBit) {
+  constexpr int kSide = 16;
+  const SparseMatrix A = tensormass::testing::grid_laplacian(kSide, 0.1);
+  const std::vector<double> b = tensormass::testing::uneven_vector(A.rows);
+  const std::vector<int> centre = tensormass::testing::centre_rows(kSide, 3);
+  std::vector<double> x(A.rows);
+  auto solver = cholmod_told(centre, A, x);
+  const std::vector<double> saved = solver->save_state();
+  ASSERT_EQ(saved[kRegionOrdered], 1.0);
+  auto restored = tensormass::make_linear_solver(LinearSolverSettings{});
+  restored->restore_state(saved, A);
+  EXPECT_EQ(restored->save_state(), saved);
+  restored->set_changing_rows(centre, 7);  // a resumed run's revisions count afresh
+  std::vector<double> y = x;
+  for (const double extra : {0.5, 1.0, 4.0}) {
+    const SparseMatrix next = tensormass::testing::stiffened(A, centre, extra);
+    solver->factorize(next);
+    restored->factorize(next);
+    EXPECT_EQ(solver->solve(b, x, 1e-10), restored->solve(b, y, 1e-10)) << "extra " << extra;
+    EXPECT_EQ(x, y) << "extra " << extra;
+    EXPECT_LT(relative_residual(next, b, y), 1e-10) << "extra " << extra;
+  }
+  EXPECT_EQ(solver->factorizations(), restored->factorizations());
+  // A state cut short is refused with a message.
+  const std::vector<double> truncated(saved.begin(), saved.begin() + 12);
+  EXPECT_THROW(tensormass::make_linear_solver(LinearSolverSettings{})->restore_state(truncated, A),
+               tensormass::InputError);
 }
 
 TEST(LinearSolver, CholmodLeavesTheCallersThreadCountAsItWas) {
