@@ -218,6 +218,7 @@ class CholmodSolver final : public LinearSolver {
       analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
       if (!perm.empty()) analyse_given(view, perm, false), region_ordered_ = true;
       ordered_rows_ = rows_at(kSavedCounts, ordered);
+      if (region_ordered_) mark_region(detail::dilated_rows(A, ordered_rows_, kRegionRings), A.rows);
       smallest_refused_region_ = saved[9] < 0.0 ? kNoRegion : static_cast<std::size_t>(saved[9]);
       factorize_values(view, A);
     }
@@ -236,7 +237,7 @@ class CholmodSolver final : public LinearSolver {
     const SerialBlas serial;
     if (!factor_ || rows_ != A.rows || nonzeros_ != A.nonzeros())
       analyse(view, simplicial_ ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO);
-    if (!simplicial_ && !changing_rows_.empty() && changing_rows_ != ordered_rows_) order_region_last(view, A);
+    if (!simplicial_ && !changing_rows_.empty() && !ordering_holds()) order_region_last(view, A);
     factorize_values(view, A);
   }
 
@@ -268,7 +269,8 @@ class CholmodSolver final : public LinearSolver {
   }
 
   /// factor_ analysed with the changing rows and kRegionRings rings of
-  /// their neighbours ordered last, when that region is at most
+  /// their neighbours ordered last (later changing rows within them keep
+  /// that ordering: ordering_holds), when that region is at most
   /// kMaxRegionShare of the rows and its factorisation costs at most
   /// kMaxRegionFlopGrowth times CHOLMOD's own ordering's; else with
   /// CHOLMOD's. A region at least as large as one refused is not tried
@@ -276,6 +278,7 @@ class CholmodSolver final : public LinearSolver {
   void order_region_last(cholmod_sparse& view, const SparseMatrix& A) {
     ordered_rows_ = changing_rows_;
     const std::vector<int> region = detail::dilated_rows(A, changing_rows_, kRegionRings);
+    mark_region(region, A.rows);
     if (region.size() <= kMaxRegionShare * A.rows && region.size() < smallest_refused_region_) {
       analyse_given(view, detail::region_last_ordering(A, region, common_), true);
       region_ordered_ = true;
@@ -283,6 +286,19 @@ class CholmodSolver final : public LinearSolver {
       smallest_refused_region_ = region.size();
     }
     if (region_ordered_) analyse_given(view, default_perm_, false), region_ordered_ = false;
+  }
+
+  /// in_region_: 1 on `region`'s rows (of n).
+  void mark_region(const std::vector<int>& region, int n) {
+    in_region_.assign(n, 0);
+    for (int row : region) in_region_[row] = 1;
+  }
+  /// Whether factor_'s ordering still fits the changing rows: chosen for
+  /// them, or a region ordered last that holds them all.
+  bool ordering_holds() const {
+    if (changing_rows_ == ordered_rows_) return true;
+    if (!region_ordered_) return false;
+    return std::all_of(changing_rows_.begin(), changing_rows_.end(), [&](int row) { return in_region_[row] != 0; });
   }
 
   void direct_solve(std::span<const double> b, std::span<double> x) {
@@ -516,6 +532,7 @@ class CholmodSolver final : public LinearSolver {
   double default_flops_ = 0.0;     ///< its factorisation's flops
   std::vector<int> ordered_rows_;  ///< the changing rows factor_'s ordering was chosen for
   bool region_ordered_ = false;    ///< factor_ orders a region last
+  std::vector<char> in_region_;    ///< when region_ordered_: 1 on the rows ordered last
   std::size_t smallest_refused_region_ = kNoRegion;
   std::vector<int> changing_rows_;  ///< the newest set (set_changing_rows)
   std::vector<int> local_rows_;     ///< the rows of the block factorised in local_factor_

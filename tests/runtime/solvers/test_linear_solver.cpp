@@ -286,7 +286,7 @@ TEST(LinearSolver, CholmodOrdersSmallChangingRegionsLastAndSolvesAsBefore) {
   const std::vector<double> b = tensormass::testing::uneven_vector(A.rows);
   const std::vector<int> centre = tensormass::testing::centre_rows(kSide, 2);
   std::vector<double> x(A.rows), untold_x(A.rows);
-  auto solver = cholmod_told(centre, A, x);
+  auto solver = cholmod_told(centre, A, x, /*reuse_iterations=*/0);  // a whole factorisation for each matrix
   auto untold = cholmod_told({}, A, untold_x);
   const std::vector<double> state = solver->save_state();
   EXPECT_EQ(state[kOrderedRows], static_cast<double>(centre.size()));
@@ -295,6 +295,22 @@ TEST(LinearSolver, CholmodOrdersSmallChangingRegionsLastAndSolvesAsBefore) {
   EXPECT_EQ(untold->save_state()[kRegionOrdered], 0.0);
   EXPECT_LT(relative_residual(A, b, x), 1e-10);
   for (int row = 0; row < A.rows; ++row) ASSERT_NEAR(x[row], untold_x[row], 1e-9 * std::abs(untold_x[row]));
+
+  // Changing rows within the region ordered last keep its ordering; rows
+  // beyond it get a new one at the next factorisation.
+  const std::vector<int> within = tensormass::detail::dilated_rows(A, centre, 1);
+  const std::vector<int> beyond = tensormass::testing::centre_rows(kSide, 6);
+  for (const auto& [rows, ordered_for] : {std::pair{within, centre.size()}, std::pair{beyond, beyond.size()}}) {
+    solver->set_changing_rows(rows, static_cast<long>(rows.size()));
+    const SparseMatrix changed = tensormass::testing::stiffened(A, rows, 4.0);
+    solver->factorize(changed);
+    solver->solve(b, x, 1e-10);
+    EXPECT_LT(relative_residual(changed, b, x), 1e-10);
+    const std::vector<double> after = solver->save_state();
+    EXPECT_EQ(after[kOrderedRows], static_cast<double>(ordered_for)) << rows.size() << " rows";
+    EXPECT_EQ(after[kRegionOrdered], 1.0) << rows.size() << " rows";
+  }
+  EXPECT_EQ(solver->factorizations(), 3);
 
   // Most rows changing: CHOLMOD's own ordering again at the next factorisation.
   std::vector<int> most(A.rows * 3 / 5);
