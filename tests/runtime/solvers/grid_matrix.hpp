@@ -38,27 +38,21 @@ inline SparseMatrix grid_laplacian(int side, double shift) {
   return A;
 }
 
-/// The grid rows with x, y and z all below `corner`: a local block.
-inline std::vector<int> corner_rows(int side, int corner) {
+/// The grid rows with x, y and z all in [first, first + width), ascending.
+inline std::vector<int> cube_rows(int side, int first, int width) {
   std::vector<int> rows;
-  for (int z = 0; z < corner; ++z)
-    for (int y = 0; y < corner; ++y)
-      for (int x = 0; x < corner; ++x) rows.push_back((z * side + y) * side + x);
-  std::sort(rows.begin(), rows.end());
-  return rows;
-}
-
-/// The grid rows of the cube of side `width` at the grid's centre: where
-/// nested dissection puts its first separators.
-inline std::vector<int> centre_rows(int side, int width) {
-  std::vector<int> rows;
-  const int first = (side - width) / 2;
   for (int z = first; z < first + width; ++z)
     for (int y = first; y < first + width; ++y)
       for (int x = first; x < first + width; ++x) rows.push_back((z * side + y) * side + x);
-  std::sort(rows.begin(), rows.end());
   return rows;
 }
+
+/// The grid rows with x, y and z all below `corner`: a local block.
+inline std::vector<int> corner_rows(int side, int corner) { return cube_rows(side, 0, corner); }
+
+/// The grid rows of the cube of side `width` at the grid's centre: where
+/// nested dissection puts its first separators.
+inline std::vector<int> centre_rows(int side, int width) { return cube_rows(side, (side - width) / 2, width); }
 
 /// A with `extra` times the Laplacian among `rows` (sorted) added: stiffer
 /// there, still symmetric positive definite, unchanged elsewhere.
