@@ -258,10 +258,14 @@ class CholmodSolver final : public LinearSolver {
       analyse(view, CHOLMOD_SIMPLICIAL);
       cholmod_factorize(&view, factor_, &common_);
     }
-    if (common_.status != CHOLMOD_OK || factor_->minor < factor_->n)
-      throw NumericalError("sparse Cholesky failed: the stiffness matrix is singular (column " +
-                           std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
-                           "); is the body constrained?");
+    if (common_.status != CHOLMOD_OK || factor_->minor < factor_->n) {
+      nonzeros_ = -1;  // no factor to reuse: the next matrix is analysed and factorised afresh
+      if (common_.status != CHOLMOD_OK && common_.status != CHOLMOD_NOT_POSDEF)
+        throw NumericalError("sparse Cholesky failed (CHOLMOD status " + std::to_string(common_.status) + ")");
+      throw NotPositiveDefiniteError("sparse Cholesky failed: the stiffness matrix is singular or indefinite (column " +
+                                     std::to_string(factor_->minor) + " of " + std::to_string(factor_->n) +
+                                     "); is the body constrained?");
+    }
     factorized_values_ = A.values;
     if (factor_->is_super && factor_->is_ll) reach_.emplace(*factor_);
     reuse_.factorized();

@@ -1,6 +1,7 @@
 // Static equilibrium g(u) = lambda f by Newton's method with load steps and
 // a backtracking line search on the residual norm.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -53,6 +54,46 @@ double forcing(double relative_residual, double linear_tolerance) {
   return std::clamp(relative_residual, linear_tolerance, 0.01);
 }
 
+/// The shifts tried in turn where the tangent K is not positive definite:
+/// K + shift |diag(K)| is, for a large enough shift, and its step descends
+/// the potential energy (a Levenberg-Marquardt step), as the line search
+/// needs. Compressed cells under a non-linear law right after a law switch
+/// or a refinement give such tangents (geometric stiffness under
+/// compressive stress); near the equilibrium K is positive definite again
+/// and full Newton steps resume.
+constexpr std::array<double, 5> kTangentShifts = {1e-3, 1e-2, 1e-1, 1.0, 10.0};
+
+/// Solves K step = rhs (step: zeros in, the step out) for a step that
+/// `descends` (a descent direction of the potential), K shifted by
+/// kTangentShifts where the factorisation finds it not positive definite
+/// or its step does not descend (LDL^T solves some indefinite K). K's
+/// values are spent either way. Returns whether it was shifted; throws
+/// when even the largest shift leaves K singular (a row without stiffness).
+template <class Descends>
+bool solve_newton_step(Integration& run, SparseMatrix& K, std::span<const double> rhs, std::span<double> step,
+                       double tolerance, const Descends& descends) {
+  try {
+    detail::linear_solve(run, K, rhs, step, tolerance);
+    if (descends(step)) return false;
+  } catch (const NotPositiveDefiniteError&) {
+  }
+  std::vector<double> diagonal(K.rows);
+  for (int i = 0; i < K.rows; ++i) diagonal[i] = std::abs(K.values[K.diagonal[i]]);
+  double applied = 0.0;
+  for (std::size_t attempt = 0;; ++attempt) {
+    const bool last = attempt + 1 == kTangentShifts.size();
+    for (int i = 0; i < K.rows; ++i) K.values[K.diagonal[i]] += (kTangentShifts[attempt] - applied) * diagonal[i];
+    applied = kTangentShifts[attempt];
+    std::fill(step.begin(), step.end(), 0.0);
+    try {
+      detail::linear_solve(run, K, rhs, step, tolerance);
+      if (last || descends(step)) return true;
+    } catch (const NotPositiveDefiniteError&) {
+      if (last) throw;
+    }
+  }
+}
+
 /// Newton iterations at a fixed load; returns the iterations used.
 /// A full step is taken when it lowers the residual; otherwise the step
 /// length is halved until the potential energy satisfies Armijo's condition
@@ -83,12 +124,16 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   // extrapolated from the last steps) would compare round-off with itself.
   const double reference = std::max({rows.norm_free(f_free), residual, rows.norm_dofs(g), 1e-300});
   const bool debug = std::getenv("TENSORMASS_DEBUG_NEWTON") != nullptr;
+  int shifted_steps = 0;
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
     if (residual <= settings.tolerance * reference) return iteration - 1;
     std::vector<double> rhs(n);
     for (int i = 0; i < n; ++i) rhs[i] = -r[i];
     std::fill(step.begin(), step.end(), 0.0);
-    detail::linear_solve(run, K, rhs, step, forcing(residual / reference, settings.linear.tolerance));
+    const auto descends = [&](std::span<const double> candidate) { return rows.dot_free(r, candidate) < 0; };
+    const bool shifted =
+        solve_newton_step(run, K, rhs, step, forcing(residual / reference, settings.linear.tolerance), descends);
+    shifted_steps += shifted;
     rows.share_ghost_free(step);
     const double slope = rows.dot_free(r, step);  // dPhi/dalpha at alpha = 0, negative for a descent step
     double alpha = 1.0, trial_residual = 0.0, energy = NAN;
@@ -110,7 +155,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     }
     if (alpha < 1.0) ++run.statistics.shortened_steps;
     if (debug)
-      std::fprintf(stderr, "newton %d: residual %.3e, step %.3g\n", iteration, trial_residual / reference, alpha);
+      std::fprintf(stderr, "newton %d: residual %.3e, step %.3g%s\n", iteration, trial_residual / reference, alpha,
+                   shifted ? " (shifted tangent)" : "");
     const double previous = residual;
     u.swap(trial_u);
     g.swap(trial_g);
@@ -121,7 +167,10 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   }
   throw NumericalError("Newton did not converge " + where + " in " + std::to_string(settings.max_iterations) +
                        " iterations (relative residual " + format_number(residual / reference) + ", tolerance " +
-                       format_number(settings.tolerance) + ")");
+                       format_number(settings.tolerance) + ")" +
+                       (shifted_steps > 0 ? "; the tangent was not positive definite on " +
+                                                std::to_string(shifted_steps) + " of them: is the body constrained?"
+                                          : ""));
 }
 
 }  // namespace

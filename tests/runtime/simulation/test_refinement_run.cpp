@@ -367,5 +367,39 @@ TEST(RefinementRun, StaticPlateRefinesAndSwitchesLawsThenConverges) {
   EXPECT_LT(free, 1e-6 * all);
 }
 
+// Settings next to the test above's on which static Newton met tangents
+// that are not positive definite (compressed neo-Hookean cells right after
+// a law switch or a refinement) and failed before its shifted steps: a
+// sparse Cholesky failure at the re-solve's first tangent (CI on an AVX2
+// machine with the test above's settings), or Newton wandering on steps
+// that an indefinite LDL^T solve made uphill. Each converges now.
+TEST(RefinementRun, StaticPlateConvergesThroughIndefiniteTangents) {
+  const Mesh coarse = plate_mesh(10);
+  struct Case {
+    double linear_tolerance, refine_threshold, climb_threshold;
+  };
+  for (const Case& c : {Case{1e-6, 0.3, 0.012}, Case{1e-10, 0.28, 0.01}, Case{1e-5, 0.28, 0.008},
+                        Case{3e-6, 0.29, 0.01}, Case{1e-6, 0.28, 0.02}, Case{1e-4, 0.27, 0.02}}) {
+    SCOPED_TRACE(testing::Message() << "linear tolerance " << c.linear_tolerance << ", R_ZZ " << c.refine_threshold
+                                    << ", R_NL " << c.climb_threshold);
+    TempDir dir;
+    Scene scene = plate_scene(dir, "static_both");
+    scene.solver.load_steps = 10;
+    scene.solver.linear.tolerance = c.linear_tolerance;
+    scene.refinement = refine(c.refine_threshold);
+    scene.adaptivity = hooke_to_neohookean(c.climb_threshold);
+    Simulation simulation(scene, coarse, quiet());
+    const RunReport& report = simulation.run();
+    EXPECT_TRUE(simulation.finished());
+    EXPECT_TRUE(report.statistics.warnings.empty()) << report.statistics.warnings.front();
+    EXPECT_GT(report.switches, 0);
+    const std::vector<double> force = simulation.internal_force();
+    double free = 0, all = 0;
+    for (int dof : simulation.model().free_dofs()) free = std::max(free, std::abs(force[dof]));
+    for (double f : force) all = std::max(all, std::abs(f));
+    EXPECT_LT(free, 1e-6 * all);
+  }
+}
+
 }  // namespace
 }  // namespace tensormass

@@ -77,6 +77,28 @@ TEST(LinearSolver, CholmodSolvesExactlyThenReusesItsFactorForADriftedMatrix) {
   EXPECT_EQ(solver->factorizations(), 1);
 }
 
+// An indefinite matrix is a NotPositiveDefiniteError (static Newton shifts
+// it: test_static_solver.cpp); the factor it left is not reused: the next
+// matrix, of the same pattern, is factorised afresh and solved exactly.
+TEST(LinearSolver, CholmodRefusesAnIndefiniteMatrixThenFactorisesTheNextAfresh) {
+  constexpr int n = 200;
+  const std::vector<double> b = right_hand_side(n);
+  auto solver = cholmod_after_one_solve(laplacian(n, 0.01), b);
+  std::vector<double> x(n, 0.0);
+  const SparseMatrix indefinite = laplacian(n, -1.0);  // eigenvalues 1 - 2 cos(k pi / (n + 1)): some negative
+  EXPECT_THROW(
+      {
+        solver->factorize(indefinite);
+        solver->solve(b, x, 1e-10);
+      },
+      tensormass::NotPositiveDefiniteError);
+  const SparseMatrix next = laplacian(n, 0.0105);
+  solver->factorize(next);
+  std::fill(x.begin(), x.end(), 0.0);
+  EXPECT_EQ(solver->solve(b, x, 1e-10), 1);  // a new factor: one direct solve
+  EXPECT_LT(relative_residual(next, b, x), 1e-12);
+}
+
 TEST(LinearSolver, CholmodLooserToleranceTakesFewerLaggedIterations) {
   constexpr int n = 200;
   const std::vector<double> b = right_hand_side(n);

@@ -22,6 +22,14 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A matrix a direct solver needed positive definite was not (an
+/// indefinite tangent, or a singular one: an unconstrained body). Static
+/// Newton answers it with a shifted step (static_solver.cpp).
+class NotPositiveDefiniteError : public NumericalError {
+ public:
+  using NumericalError::NumericalError;
+};
+
 }  // namespace tensormass
 
 #endif
