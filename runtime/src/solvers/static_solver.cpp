@@ -1,5 +1,6 @@
-// Static equilibrium g(u) = lambda f by Newton's method with load steps and
-// a backtracking line search on the residual norm.
+// Static equilibrium g(u) = lambda f by Newton's method with load steps
+// (halved where their start inverts a cell), a backtracking line search,
+// and shifted tangents where K is not positive definite.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -94,6 +95,27 @@ bool solve_newton_step(Integration& run, SparseMatrix& K, std::span<const double
   }
 }
 
+/// Thrown by newton() when its starting point's residual is not finite (a
+/// cell the predictor inverted under a law that cannot invert).
+class NonFiniteStart : public NumericalError {
+ public:
+  using NumericalError::NumericalError;
+};
+
+/// A load step's starting point on the free dofs: the extrapolation of
+/// order `order` (2: quadratic from the last three load steps, 1: linear
+/// from the last two, 0: the last converged state) of the states in
+/// `state` (the last), `previous` and `before_previous`.
+std::vector<double> predicted_start(const Model& model, const State& state, const std::vector<double>& previous,
+                                    const std::vector<double>& before_previous, int order) {
+  std::vector<double> u = state.displacement;
+  if (order == 2)
+    for (int d : model.free_dofs()) u[d] += 2 * state.displacement[d] - 3 * previous[d] + before_previous[d];
+  else if (order == 1)
+    for (int d : model.free_dofs()) u[d] += state.displacement[d] - previous[d];
+  return u;
+}
+
 /// Newton iterations at a fixed load; returns the iterations used.
 /// A full step is taken when it lowers the residual; otherwise the step
 /// length is halved until the potential energy satisfies Armijo's condition
@@ -116,7 +138,7 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   detail::assemble(run, u, g, &K);
   free_residual(model, g, f, r);
   double residual = rows.norm_free(r);
-  if (!std::isfinite(residual)) throw NumericalError("the residual " + where + " is not finite (NaN or infinity)");
+  if (!std::isfinite(residual)) throw NonFiniteStart("the residual " + where + " is not finite (NaN or infinity)");
   // The force scale the residual is measured against: the loads, or the
   // internal forces (with the reactions at fixed and prescribed dofs) when
   // those are larger. Without the latter, a load step whose start is
@@ -173,6 +195,34 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
                                           : ""));
 }
 
+/// At most this many halvings of a load step's increment (1/16 of it).
+constexpr int kMaxLoadCuts = 4;
+
+/// Solves for equilibrium at load factor `to` from `u`, in equilibrium at
+/// `from` (u: in, and the solution out). Where even that start leaves a
+/// non-finite residual (the prescribed displacements' increment inverts a
+/// cell next to them), the increment is halved, at most `cuts` times, and
+/// the equilibria at the intermediate factors lead there. Returns the
+/// Newton iterations of every solve.
+int solve_with_cuts(Integration& run, std::vector<double>& u, double from, double to, const std::string& where,
+                    int cuts) {
+  std::vector<double> start = u;
+  run.model.apply_constraints(to, start, true);
+  try {
+    const int iterations = newton(run, start, external_force(run.model, to), where);
+    u.swap(start);
+    return iterations;
+  } catch (const NonFiniteStart& error) {
+    if (cuts == 0 && from == to) throw;
+    if (cuts == 0)
+      throw NumericalError(std::string(error.what()) + " (the load increment halved " + std::to_string(kMaxLoadCuts) +
+                           " times)");
+  }
+  const double middle = 0.5 * (from + to);
+  const int iterations = solve_with_cuts(run, u, from, middle, where, cuts - 1);
+  return iterations + solve_with_cuts(run, u, middle, to, where, cuts - 1);
+}
+
 }  // namespace
 
 void StaticIntegrator::step(State& state, const StepObserver& observer) {
@@ -193,18 +243,31 @@ void StaticIntegrator::step(State& state, const StepObserver& observer) {
     // Start from the quadratic extrapolation of the last three load steps
     // (linear with two): 2.55 Newton iterations per load step on the 15k-tet
     // cantilever of bench runtime, against 3.15 with the linear one. A
-    // repeated step starts where it ended.
-    std::vector<double> u = state.displacement;
+    // repeated step starts where it ended. A start whose residual is not
+    // finite (the extrapolation inverted a cell: a probe's corner, a refined
+    // mesh's small cells) falls back to the next lower order, and the last
+    // converged state to halved load increments (solve_with_cuts).
     const std::vector<double> previous = state.previous_displacement;
     const std::vector<double> before_previous = state.earlier_displacement;
-    const bool extrapolate = !repeating && previous.size() == u.size();
-    const bool quadratic = extrapolate && before_previous.size() == u.size();
-    if (quadratic)
-      for (int d : model.free_dofs()) u[d] += 2 * state.displacement[d] - 3 * previous[d] + before_previous[d];
-    else if (extrapolate)
-      for (int d : model.free_dofs()) u[d] += state.displacement[d] - previous[d];
-    model.apply_constraints(factor, u, true);
-    const int iterations = newton(run, u, external_force(model, factor), where);
+    const std::size_t dofs = state.displacement.size();
+    const bool extrapolate = !repeating && previous.size() == dofs;
+    const int highest = !extrapolate ? 0 : before_previous.size() == dofs ? 2 : 1;
+    std::vector<double> u;
+    int iterations = 0;
+    for (int order = highest; order > 0; --order) {
+      u = predicted_start(model, state, previous, before_previous, order);
+      model.apply_constraints(factor, u, true);
+      try {
+        iterations = newton(run, u, external_force(model, factor), where);
+        break;
+      } catch (const NonFiniteStart&) {
+        u.clear();
+      }
+    }
+    if (u.empty()) {
+      u = state.displacement;
+      iterations = solve_with_cuts(run, u, state.time, factor, where, repeating ? 0 : kMaxLoadCuts);
+    }
     detail::require_no_inversion(run.assembler, u, where);
     run.statistics.newton_iterations += iterations;
     run.statistics.newton_per_step.push_back(carried_iterations + iterations);

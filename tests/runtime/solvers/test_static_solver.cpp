@@ -1,9 +1,11 @@
 // Static solver (static_solver.cpp): Hooke against beam theory in one
 // solve, StVK at large deflection, Newton failure, load steps under
-// prescribed displacements.
+// prescribed displacements, load steps halved where their start inverts a
+// cell.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "integrate.hpp"
 #include "tensormass/common/errors.hpp"
@@ -73,6 +75,47 @@ TEST(StaticSolver, LinearLawUnderPrescribedDisplacementConvergesInEveryLoadStep)
   ASSERT_EQ(statistics.newton_per_step.size(), 3u);
   EXPECT_LE(statistics.newton_per_step[1], 1);
   EXPECT_LE(statistics.newton_per_step[2], 1);
+}
+
+/// A neo-Hookean 5 x 1 beam of 20 x 4 quads (0.25 wide), its tip pushed
+/// `push` along the axis in one load step, without gravity.
+Scene pushed_tip(double push) {
+  Scene scene = test::cantilever("neohookean");
+  scene.model.loads.gravity = {0, 0, 0};
+  PrescribedSpec tip;
+  tip.region = "tip";
+  tip.displacement = {-push, 0.0, 0.0};
+  tip.profile.kind = ProfileKind::ramp;
+  tip.profile.duration = 1.0;
+  scene.model.prescribed = {tip};
+  return scene;
+}
+
+TEST(StaticSolver, LoadStepWhoseStartInvertsACellIsHalved) {
+  // The tip moved 0.4 with the rest at rest turns the last column of cells
+  // inside out (NaN under neo-Hookean); two halves of 0.2 do not.
+  const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
+  SolveStatistics statistics;
+  const State state = integrate(mesh, pushed_tip(0.4), statistics);
+  const Group& tip = *mesh.group("tip");
+  for (int node : tip.nodes) EXPECT_DOUBLE_EQ(state.displacement[2 * node], -0.4);
+  ASSERT_EQ(statistics.newton_per_step.size(), 1u);
+  EXPECT_GT(statistics.newton_per_step[0], 0);
+  for (double u : state.displacement) ASSERT_TRUE(std::isfinite(u));
+}
+
+TEST(StaticSolver, LoadStepThatInvertsACellAtEveryCutIsAnErrorSayingSo) {
+  // 1/16 of a push of 20 still moves the tip through 5 columns of cells.
+  const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
+  SolveStatistics statistics;
+  try {
+    integrate(mesh, pushed_tip(20.0), statistics);
+    FAIL() << "no error";
+  } catch (const NumericalError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("is not finite"), std::string::npos) << message;
+    EXPECT_NE(message.find("the load increment halved 4 times"), std::string::npos) << message;
+  }
 }
 
 /// A 5 x 1 x 1 bar (160 hexahedra) clamped at x = 0, its end at x = 5
