@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 
 #include "solvers/integration_support.hpp"
@@ -64,15 +65,15 @@ double forcing(double relative_residual, double linear_tolerance) {
 /// and full Newton steps resume.
 constexpr std::array<double, 5> kTangentShifts = {1e-3, 1e-2, 1e-1, 1.0, 10.0};
 
-/// Solves K step = rhs (step: zeros in, the step out) for a step that
-/// `descends` (a descent direction of the potential), K shifted by
-/// kTangentShifts where the factorisation finds it not positive definite
-/// or its step does not descend (LDL^T solves some indefinite K). K's
-/// values are spent either way. Returns whether it was shifted; throws
+/// Solves K step = rhs (rhs = -r on the free dofs; step: zeros in, the
+/// step out) for a step that descends the potential (rhs . step > 0), K
+/// shifted by kTangentShifts where the factorisation finds it not positive
+/// definite or its step does not descend (LDL^T solves some indefinite K).
+/// K's values are spent either way. Returns whether it was shifted; throws
 /// when even the largest shift leaves K singular (a row without stiffness).
-template <class Descends>
-bool solve_newton_step(Integration& run, SparseMatrix& K, std::span<const double> rhs, std::span<double> step,
-                       double tolerance, const Descends& descends) {
+bool solve_newton_step(Integration& run, const detail::StateRows& rows, SparseMatrix& K, std::span<const double> rhs,
+                       std::span<double> step, double tolerance) {
+  const auto descends = [&](std::span<const double> candidate) { return rows.dot_free(rhs, candidate) > 0; };
   try {
     detail::linear_solve(run, K, rhs, step, tolerance);
     if (descends(step)) return false;
@@ -93,6 +94,10 @@ bool solve_newton_step(Integration& run, SparseMatrix& K, std::span<const double
       if (last) throw;
     }
   }
+}
+
+std::string non_finite_residual(const std::string& where) {
+  return "the residual " + where + " is not finite (NaN or infinity)";
 }
 
 /// Thrown by newton() when its starting point's residual is not finite (a
@@ -138,7 +143,7 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   detail::assemble(run, u, g, &K);
   free_residual(model, g, f, r);
   double residual = rows.norm_free(r);
-  if (!std::isfinite(residual)) throw NonFiniteStart("the residual " + where + " is not finite (NaN or infinity)");
+  if (!std::isfinite(residual)) throw NonFiniteStart(non_finite_residual(where));
   // The force scale the residual is measured against: the loads, or the
   // internal forces (with the reactions at fixed and prescribed dofs) when
   // those are larger. Without the latter, a load step whose start is
@@ -152,9 +157,8 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     std::vector<double> rhs(n);
     for (int i = 0; i < n; ++i) rhs[i] = -r[i];
     std::fill(step.begin(), step.end(), 0.0);
-    const auto descends = [&](std::span<const double> candidate) { return rows.dot_free(r, candidate) < 0; };
     const bool shifted =
-        solve_newton_step(run, K, rhs, step, forcing(residual / reference, settings.linear.tolerance), descends);
+        solve_newton_step(run, rows, K, rhs, step, forcing(residual / reference, settings.linear.tolerance));
     shifted_steps += shifted;
     rows.share_ghost_free(step);
     const double slope = rows.dot_free(r, step);  // dPhi/dalpha at alpha = 0, negative for a descent step
@@ -195,6 +199,22 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
                                           : ""));
 }
 
+/// Newton at load factor `to` from `u` with the constraints at `to`
+/// (u: in, and the solution out); the iterations, or none where the start's
+/// residual is not finite (u unchanged then).
+std::optional<int> newton_unless_non_finite(Integration& run, std::vector<double>& u, double to,
+                                            const std::string& where) {
+  std::vector<double> start = u;
+  run.model.apply_constraints(to, start, true);
+  try {
+    const int iterations = newton(run, start, external_force(run.model, to), where);
+    u.swap(start);
+    return iterations;
+  } catch (const NonFiniteStart&) {
+    return std::nullopt;
+  }
+}
+
 /// At most this many halvings of a load step's increment (1/16 of it).
 constexpr int kMaxLoadCuts = 4;
 
@@ -206,18 +226,11 @@ constexpr int kMaxLoadCuts = 4;
 /// Newton iterations of every solve.
 int solve_with_cuts(Integration& run, std::vector<double>& u, double from, double to, const std::string& where,
                     int cuts) {
-  std::vector<double> start = u;
-  run.model.apply_constraints(to, start, true);
-  try {
-    const int iterations = newton(run, start, external_force(run.model, to), where);
-    u.swap(start);
-    return iterations;
-  } catch (const NonFiniteStart& error) {
-    if (cuts == 0 && from == to) throw;
-    if (cuts == 0)
-      throw NumericalError(std::string(error.what()) + " (the load increment halved " + std::to_string(kMaxLoadCuts) +
-                           " times)");
-  }
+  if (const std::optional<int> iterations = newton_unless_non_finite(run, u, to, where)) return *iterations;
+  if (cuts == 0 && from == to) throw NumericalError(non_finite_residual(where));
+  if (cuts == 0)
+    throw NumericalError(non_finite_residual(where) + " (the load increment halved " + std::to_string(kMaxLoadCuts) +
+                         " times)");
   const double middle = 0.5 * (from + to);
   const int iterations = solve_with_cuts(run, u, from, middle, where, cuts - 1);
   return iterations + solve_with_cuts(run, u, middle, to, where, cuts - 1);
@@ -253,21 +266,16 @@ void StaticIntegrator::step(State& state, const StepObserver& observer) {
     const bool extrapolate = !repeating && previous.size() == dofs;
     const int highest = !extrapolate ? 0 : before_previous.size() == dofs ? 2 : 1;
     std::vector<double> u;
-    int iterations = 0;
-    for (int order = highest; order > 0; --order) {
+    std::optional<int> solved;
+    for (int order = highest; order > 0 && !solved; --order) {
       u = predicted_start(model, state, previous, before_previous, order);
-      model.apply_constraints(factor, u, true);
-      try {
-        iterations = newton(run, u, external_force(model, factor), where);
-        break;
-      } catch (const NonFiniteStart&) {
-        u.clear();
-      }
+      solved = newton_unless_non_finite(run, u, factor, where);
     }
-    if (u.empty()) {
+    if (!solved) {
       u = state.displacement;
-      iterations = solve_with_cuts(run, u, state.time, factor, where, repeating ? 0 : kMaxLoadCuts);
+      solved = solve_with_cuts(run, u, state.time, factor, where, repeating ? 0 : kMaxLoadCuts);
     }
+    const int iterations = *solved;
     detail::require_no_inversion(run.assembler, u, where);
     run.statistics.newton_iterations += iterations;
     run.statistics.newton_per_step.push_back(carried_iterations + iterations);
