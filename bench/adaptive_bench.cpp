@@ -59,6 +59,8 @@ struct Case {
   std::vector<std::string> ladder;
   std::string criterion = "R_NL";
   std::vector<double> thresholds;
+  /// Adaptive runs with R_P (the stress the linear law gets wrong, over E) instead of `criterion`.
+  std::vector<double> stress_thresholds;
   /// Runs on the ladder [linear, corotational, rich]: R_NL (rotation or
   /// strain) asks for corotational, R_E (strain alone) for the rich law.
   std::vector<std::pair<double, double>> corotational_thresholds;  // (R_NL, R_E)
@@ -152,6 +154,7 @@ Case indentation(bool quick, std::array<int, 3> cells = kBlockCells) {
   if (quick) s.model.prescribed[0].profile.duration = 0.2;
   c.ladder = {"hooke", "neohookean"};
   c.thresholds = {0.003, 0.01, 0.03};
+  c.stress_thresholds = {0.05, 0.1, 0.2};
   c.corotational_thresholds = {{0.003, 0.01}, {0.003, 0.03}};
   // StVK inverts under the probe (issue 14); stable neo-Hookean is the
   // inversion-safe alternative to the rich law.
@@ -239,6 +242,7 @@ Case cantilever(bool quick) {
   Case c = gravity_beam("cantilever", 3, quick ? std::array<int, 3>{15, 3, 3} : std::array<int, 3>{30, 6, 8},
                         {5.0, 1.0, 1.0}, "tet6", 2e7, quick ? 30 : 150);
   c.thresholds = {0.003, 0.01, 0.03};
+  c.stress_thresholds = {0.003, 0.01, 0.03};
   c.corotational_thresholds = {{0.001, 0.003}, {0.003, 0.01}};
   c.what = std::to_string(c.mesh.cell_count()) + " tet4, 5 x 1 x 1 m, E 20 MPa, gravity";
   return c;
@@ -255,12 +259,13 @@ Case quad_beam(bool quick) {
 
 // --- Runs --------------------------------------------------------------------
 
-Scene run_scene_of(const Case& c, const std::string& law, std::optional<double> threshold) {
+Scene run_scene_of(const Case& c, const std::string& law, std::optional<double> threshold,
+                   const std::string& criterion = "") {
   Scene s = c.scene;
   s.model.materials[0].law = law;
   if (threshold) {
     s.adaptivity.enabled = true;
-    s.adaptivity.criteria = {{c.criterion, *threshold, 0, ""}};
+    s.adaptivity.criteria = {{criterion.empty() ? c.criterion : criterion, *threshold, 0, ""}};
     s.adaptivity.ladder = c.ladder;
     s.adaptivity.every = c.every;
   }
@@ -394,6 +399,10 @@ std::vector<RunPlan> plans_of(const Case& c) {
     plans.push_back({label, run_scene_of(c, linear, t), t, false});
     plans.back().scene.adaptivity.screen = false;
   }
+  for (double t : c.stress_thresholds) {
+    std::snprintf(label, sizeof label, "adaptive R_P %g", t);
+    plans.push_back({label, run_scene_of(c, linear, t, "R_P"), t});
+  }
   for (const auto& [nonlinear, strain] : c.corotational_thresholds) {
     std::snprintf(label, sizeof label, "3 rungs, R_NL %g -> corot., R_E %g -> %s", nonlinear, strain, rich.c_str());
     plans.push_back({label, corotational_scene_of(c, nonlinear, strain), nonlinear});
@@ -440,7 +449,7 @@ CaseResult run_case(const Case& c, int rounds) {
   CaseResult result{&c, {}, false, rounds};
   std::printf("\n## %s: %s, %d steps, ladder [", c.name.c_str(), c.what.c_str(), c.scene.solver.steps);
   for (std::size_t r = 0; r < c.ladder.size(); ++r) std::printf("%s%s", r ? ", " : "", c.ladder[r].c_str());
-  std::printf("], criterion %s\n\n", c.criterion.c_str());
+  std::printf("], criterion %s%s\n\n", c.criterion.c_str(), c.stress_thresholds.empty() ? "" : " or R_P");
   std::fflush(stdout);
   result.runs = run_rounds(c, plans_of(c), rounds);
   const int d = c.mesh.dim;

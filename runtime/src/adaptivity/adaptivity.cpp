@@ -48,9 +48,10 @@ Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const A
     : settings_(settings), model_(&model), assembler_(&assembler) {
   check_ladder(settings.ladder, model.mesh());
   for (const CriterionSpec& criterion : settings.criteria) {
-    criteria_.push_back(make_criterion(criterion.name));
+    const int target = target_rung(criterion, settings.ladder);
+    criteria_.push_back(make_criterion(criterion.name, {settings.ladder.front(), settings.ladder[target]}));
     thresholds_.push_back(criterion.threshold);
-    target_rungs_.push_back(target_rung(criterion, settings.ladder));
+    target_rungs_.push_back(target);
     names_.push_back(criterion.name);
     quality_.push_back(criteria_.back()->is_quality());
     needs_force_ = needs_force_ || criteria_.back()->needs_force();

@@ -1,5 +1,5 @@
 /// \file criteria.cpp
-/// The six criteria of criteria.hpp. Every evaluation reads the element's
+/// The criteria of criteria.hpp. Every evaluation reads the element's
 /// constants (per quadrature point: w_q det(J0_q), then G^T, see
 /// kernel_abi.h), its rest positions and displacements, and allocates
 /// nothing: the only arrays are D by D matrices on the stack. The dimension
@@ -13,6 +13,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
+
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 namespace {
@@ -461,6 +464,112 @@ class GreenStrainCriterion final : public GradientCriterion<GreenStrainCriterion
   double change_slope(double h) const override { return 1.0 + h; }
 };
 
+/// R_P = max over points of |P_target(F_q) - P_base(F_q)|_F / E, both
+/// stresses from the laws' generated `whole` kernels on the cell's constants
+/// (the adaptive model shares them between the ladder's laws). A cell whose
+/// kernel lays its constants out otherwise (another quadrature rule) reads 0:
+/// it is not on the ladder. A non-finite stress (an inverted cell) gives +inf.
+class StressErrorCriterion final : public Criterion {
+ public:
+  explicit StressErrorCriterion(const CriterionLaws& laws) {
+    const Registry& registry = Registry::instance();
+    for (const tm_element_info* element : registry.elements()) {
+      const tm_kernel* base = registry.find(laws.base, element->name, "whole");
+      const tm_kernel* target = registry.find(laws.target, element->name, "whole");
+      if (base && target && base->stress && target->stress && base->derived_params >= 2)
+        pairs_.push_back({element->name, base, target});
+    }
+    if (pairs_.empty())
+      throw std::invalid_argument("criterion R_P: no element has stress kernels of both '" + laws.base + "' and '" +
+                                  laws.target + "'");
+  }
+  std::string name() const override { return "R_P"; }
+  bool needs_rest() const override { return false; }
+
+  double evaluate(const ElementView& view) const override {
+    const LawPair* pair = pair_on(view.element.name);
+    if (pair == nullptr || !fits(view.kernel, *pair)) return 0.0;
+    return value(*pair, view.kernel.quadrature_points, view.dim, view.u, view.consts);
+  }
+
+  /// The block's laws looked up once, the nodes gathered inline (as evaluate_cells).
+  void evaluate_block(const BlockInput& in, std::span<double> values) const override {
+    const LawPair* pair = pair_on(in.block.element->name);
+    with_shape(in.model.dim(), in.block.element->nodes, [&]<int D, int N>() {
+      if constexpr (N == 0) Criterion::evaluate_block(in, values);
+      else evaluate_cells<D, N>(pair, in, values);
+    });
+  }
+
+ private:
+  static constexpr int kMaxStress = 64 * 9;  // quadrature points by D by D
+  struct LawPair {
+    std::string_view element;
+    const tm_kernel* base;
+    const tm_kernel* target;
+  };
+
+  const LawPair* pair_on(std::string_view element) const {
+    for (const LawPair& pair : pairs_)
+      if (pair.element == element) return &pair;
+    return nullptr;
+  }
+
+  /// The cell's constants fit both laws' kernels.
+  static bool fits(const tm_kernel& kernel, const LawPair& pair) {
+    const auto same_layout = [&](const tm_kernel* other) {
+      return other->derived_params == kernel.derived_params && other->quadrature_points == kernel.quadrature_points &&
+             other->consts <= kernel.consts && kernel.quadrature_points * kernel.dim * kernel.dim <= kMaxStress;
+    };
+    return same_layout(pair.base) && same_layout(pair.target);
+  }
+
+  static double value(const LawPair& pair, int points, int dim, const double* u, const double* consts) {
+    double base[kMaxStress], target[kMaxStress];
+    pair.base->stress(u, consts, base);
+    pair.target->stress(u, consts, target);
+    const int entries = dim * dim;
+    double largest = 0.0;
+    bool finite = true;
+    for (int q = 0; q < points; ++q) {
+      double squared = 0.0;
+      for (int k = q * entries; k < (q + 1) * entries; ++k) squared += (target[k] - base[k]) * (target[k] - base[k]);
+      finite = finite && std::isfinite(squared);
+      largest = std::max(largest, squared);
+    }
+    if (!finite) return kInfinity;
+    const double lam = consts[0], mu = consts[1];
+    return std::sqrt(largest) * (lam + mu) / (mu * (3.0 * lam + 2.0 * mu));  // over E
+  }
+
+  template <int D, int N>
+  void evaluate_cells(const LawPair* pair, const BlockInput& in, std::span<double> values) const {
+    const Model& model = in.model;
+    const ElementBlock& block = in.block;
+    const double* u_all = in.u.data();
+    const tm_kernel* fitting = nullptr;  // the last kernel seen that fits the pair
+#pragma omp for schedule(static) nowait
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      if (in.distribution && !in.distribution->owns_cell(cell)) continue;
+      if (in.selected && in.selected[cell] != 1) continue;
+      const tm_kernel& kernel = model.kernel(cell);
+      if (&kernel != fitting) {
+        if (pair == nullptr || !fits(kernel, *pair)) {
+          values[cell] = 0.0;
+          continue;
+        }
+        fitting = &kernel;
+      }
+      double u[D * N];
+      gather_nodes<D, N>(model.cell_nodes(cell).data(), u_all, D, u);
+      values[cell] = value(*pair, kernel.quadrature_points, D, u, model.consts(cell));
+    }
+  }
+
+  std::vector<LawPair> pairs_;
+};
+
 }  // namespace
 
 void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) const {
@@ -487,7 +596,7 @@ void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) c
   }
 }
 
-std::unique_ptr<Criterion> make_criterion(const std::string& name) {
+std::unique_ptr<Criterion> make_criterion(const std::string& name, const CriterionLaws& laws) {
   if (name == "R_EL") return std::make_unique<EdgeLengthCriterion>();
   if (name == "R_V") return std::make_unique<VolumeCriterion>();
   if (name == "R_VL") return std::make_unique<VolumeLengthCriterion>();
@@ -495,11 +604,12 @@ std::unique_ptr<Criterion> make_criterion(const std::string& name) {
   if (name == "R_S") return std::make_unique<StressCriterion>();
   if (name == "R_NL") return std::make_unique<NonlinearStrainCriterion>();
   if (name == "R_E") return std::make_unique<GreenStrainCriterion>();
-  throw std::invalid_argument("unknown criterion '" + name + "' (known: R_EL, R_V, R_VL, R_VLX, R_S, R_NL, R_E)");
+  if (name == "R_P") return std::make_unique<StressErrorCriterion>(laws);
+  throw std::invalid_argument("unknown criterion '" + name + "' (known: R_EL, R_V, R_VL, R_VLX, R_S, R_NL, R_E, R_P)");
 }
 
 const std::vector<std::string>& criterion_names() {
-  static const std::vector<std::string> names{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E"};
+  static const std::vector<std::string> names{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E", "R_P"};
   return names;
 }
 

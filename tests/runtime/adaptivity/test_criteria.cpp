@@ -172,6 +172,76 @@ double green_strain_norm(const Matrix& A, int dim) {
   return std::sqrt(squared);
 }
 
+/// Lame parameters of the test elements (make_element: E = 1e6, nu = 0.3).
+constexpr double kYoung = 1.0e6, kPoisson = 0.3;
+constexpr double kLam = kYoung * kPoisson / ((1 + kPoisson) * (1 - 2 * kPoisson));
+constexpr double kMu = kYoung / (2 * (1 + kPoisson));
+
+/// The first dim by dim block of A B.
+Matrix product(const Matrix& A, const Matrix& B, int dim) {
+  Matrix C{};
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b)
+      for (int c = 0; c < dim; ++c) C[a][b] += A[a][c] * B[c][b];
+  return C;
+}
+
+/// lam tr(S) I + 2 mu S for a symmetric S (dim by dim).
+Matrix isotropic(const Matrix& S, int dim) {
+  double trace = 0.0;
+  for (int a = 0; a < dim; ++a) trace += S[a][a];
+  Matrix result{};
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b) result[a][b] = 2 * kMu * S[a][b] + (a == b ? kLam * trace : 0.0);
+  return result;
+}
+
+/// Hooke's stress at F = A: sigma(eps), eps = sym(A) - I.
+Matrix hooke_stress(const Matrix& A, int dim) {
+  Matrix eps{};
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b) eps[a][b] = 0.5 * (A[a][b] + A[b][a]) - (a == b);
+  return isotropic(eps, dim);
+}
+
+/// St Venant-Kirchhoff: P = F S(E), E = (F^T F - I) / 2.
+Matrix stvk_stress(const Matrix& A, int dim) {
+  Matrix E{};
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b) {
+      E[a][b] = a == b ? -0.5 : 0.0;
+      for (int c = 0; c < dim; ++c) E[a][b] += 0.5 * A[c][a] * A[c][b];
+    }
+  return product(A, isotropic(E, dim), dim);
+}
+
+/// Compressible neo-Hookean: P = mu (F - F^-T) + lam ln J F^-T.
+Matrix neohookean_stress(const Matrix& A, int dim) {
+  const double J = determinant(A, dim);
+  Matrix inverse_t{};  // the cofactor matrix over J
+  if (dim == 2) {
+    inverse_t = {{{A[1][1] / J, -A[1][0] / J, 0}, {-A[0][1] / J, A[0][0] / J, 0}, {0, 0, 0}}};
+  } else {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const int a1 = (a + 1) % 3, a2 = (a + 2) % 3, b1 = (b + 1) % 3, b2 = (b + 2) % 3;
+        inverse_t[a][b] = (A[a1][b1] * A[a2][b2] - A[a1][b2] * A[a2][b1]) / J;
+      }
+  }
+  Matrix P{};
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b) P[a][b] = kMu * (A[a][b] - inverse_t[a][b]) + kLam * std::log(J) * inverse_t[a][b];
+  return P;
+}
+
+/// |P - Q|_F / E: R_P under an affine deformation (every point alike).
+double stress_error(const Matrix& P, const Matrix& Q, int dim) {
+  double squared = 0.0;
+  for (int a = 0; a < dim; ++a)
+    for (int b = 0; b < dim; ++b) squared += (P[a][b] - Q[a][b]) * (P[a][b] - Q[a][b]);
+  return std::sqrt(squared) / kYoung;
+}
+
 // --- Geometry computed by the tests ------------------------------------------------
 
 double node_distance(const TestElement& element, bool deformed, int a, int b) {
@@ -236,8 +306,8 @@ constexpr double kTight = 1e-12;
 
 // --- Names, flags, thresholds ----------------------------------------------------------
 
-TEST(CriteriaNames, AreTheSevenInOrderAndEachMakesItsCriterion) {
-  const std::vector<std::string> expected{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E"};
+TEST(CriteriaNames, AreTheEightInOrderAndEachMakesItsCriterion) {
+  const std::vector<std::string> expected{"R_EL", "R_V", "R_VL", "R_VLX", "R_S", "R_NL", "R_E", "R_P"};
   EXPECT_EQ(criterion_names(), expected);
   for (const std::string& name : criterion_names()) EXPECT_EQ(make_criterion(name)->name(), name);
 }
@@ -482,6 +552,7 @@ TEST_P(CriteriaOnKernel, AgreeWithTheReferenceElementAtRest) {
   EXPECT_EQ(element.value("R_NL"), 0.0);
   EXPECT_EQ(element.value("R_E"), 0.0);
   EXPECT_EQ(element.value("R_S"), 0.0);
+  EXPECT_EQ(element.value("R_P"), 0.0);
   const double volume = reference_volume(info.name), mean = mean_edge(element, false);
   EXPECT_NEAR(element.value("R_VL"), volume / std::pow(mean, info.dim), kTight);
   EXPECT_GT(element.value("R_VLX"), 0.0);
@@ -499,6 +570,8 @@ TEST_P(CriteriaOnKernel, ExactUnderAGeneralAffineDeformation) {
   EXPECT_NEAR(element.value("R_EL"), max_edge_strain(element), kTight);
   EXPECT_NEAR(element.value("R_NL"), quadratic_strain_norm(A, dim), kTight);
   EXPECT_NEAR(element.value("R_E"), green_strain_norm(A, dim), kTight);
+  const double stvk_error = stress_error(stvk_stress(A, dim), hooke_stress(A, dim), dim);
+  EXPECT_NEAR(element.value("R_P"), stvk_error, kTight * stvk_error) << "the default ladder [hooke, stvk]";
   const double deformed_volume = J * determinant(rest_map(dim), dim) * reference_volume(info.name);
   EXPECT_NEAR(element.value("R_VL"), deformed_volume / std::pow(mean_edge(element, true), dim), kTight);
   set_all_forces(element, {0.6, -0.8, 0.0});
@@ -550,6 +623,78 @@ TEST_P(CriteriaOnKernel, EvaluateAllocatesNothing) {
 
 INSTANTIATE_TEST_SUITE_P(Registry, CriteriaOnKernel,
                          ::testing::ValuesIn(registry().kernels().begin(), registry().kernels().end()), kernel_label);
+
+// --- R_P: the stress the first rung gets wrong ------------------------------------------------------
+
+double stress_error_value(const TestElement& element, const std::string& target) {
+  return make_criterion("R_P", {"hooke", target})->evaluate(element.view());
+}
+
+TEST(CriteriaStressError, NeoHookeanLadderMatchesTheClosedFormOnEveryElement) {
+  for (const tm_element_info* info : registry().elements()) {
+    const int dim = info->dim;
+    TestElement element =
+        make_element(registry().get("hooke", info->name, "whole"), mapped_reference_nodes(*info, rest_map(dim)));
+    const Matrix A = deformation_map(dim);
+    deform_affine(element, A);
+    const double expected = stress_error(neohookean_stress(A, dim), hooke_stress(A, dim), dim);
+    EXPECT_NEAR(stress_error_value(element, "neohookean"), expected, 1e-12 * expected) << info->name;
+    EXPECT_GT(expected, 0.01) << "a deformation large enough to tell the laws apart";
+  }
+}
+
+/// The constants are shared along the ladder: a cell already under the rich
+/// law (its kernel swapped) reads the same value.
+TEST(CriteriaStressError, SameValueWhicheverLadderLawTheCellIsUnder) {
+  for (const std::string law : {"hooke", "stvk", "neohookean"}) {
+    TestElement element = make_element(registry().get(law, "tet4", "whole"), regular_tet());
+    deform_affine(element, deformation_map(3));
+    const double expected =
+        stress_error(neohookean_stress(deformation_map(3), 3), hooke_stress(deformation_map(3), 3), 3);
+    EXPECT_NEAR(stress_error_value(element, "neohookean"), expected, 1e-12 * expected) << law;
+  }
+}
+
+/// A rotation without strain: the rich laws give no stress, Hooke gives
+/// sigma(sym(R) - I), all of it error.
+TEST(CriteriaStressError, RigidRotationIsAllHookesError) {
+  const double theta = 0.7;
+  for (const std::string type : {"tri3", "quad4", "tet4", "hex8"}) {
+    TestElement element = make_element(type, type == "tet4" ? regular_tet() : box(type));
+    const int dim = element.dim();
+    const Matrix R = dim == 2 ? rotation(theta) : rotation(theta, {1.0, -2.0, 0.5});
+    deform_affine(element, R);
+    const double expected = stress_error(Matrix{}, hooke_stress(R, dim), dim);
+    for (const std::string target : {"stvk", "neohookean"})
+      EXPECT_NEAR(stress_error_value(element, target), expected, 1e-9 * expected) << type << " " << target;
+  }
+}
+
+/// Small strains: every rich law agrees with Hooke to first order, so R_P
+/// shrinks with the square of the strain (R_NL alike), unlike the strain.
+TEST(CriteriaStressError, ShrinksWithTheSquareOfASmallStrain) {
+  TestElement element = make_element("tet4", regular_tet());
+  deform_affine(element, stretch_x(1.0 + 1e-2));
+  const double larger = stress_error_value(element, "neohookean");
+  deform_affine(element, stretch_x(1.0 + 1e-3));
+  const double smaller = stress_error_value(element, "neohookean");
+  EXPECT_NEAR(larger / smaller, 100.0, 5.0);
+}
+
+TEST(CriteriaStressError, InvertedCellUnderNeoHookeanIsInfinite) {
+  TestElement element = make_element("tet4", regular_tet());
+  deform_affine(element, diagonal(1.0, 1.0, -0.5));
+  EXPECT_EQ(stress_error_value(element, "neohookean"), std::numeric_limits<double>::infinity());
+}
+
+TEST(CriteriaStressError, LawsWithoutStressKernelsAreRefusedByName) {
+  try {
+    make_criterion("R_P", {"hooke", "no_such_law"});
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("no_such_law"), std::string::npos) << error.what();
+  }
+}
 
 // --- Cost ------------------------------------------------------------------------------------------
 
