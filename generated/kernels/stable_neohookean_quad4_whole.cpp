@@ -233,3 +233,16 @@ extern "C" void tm_stable_neohookean_quad4_whole_gradient_hessian_batch(const do
   if (gradient) tensormass::kernel::scatter_gradient_batch<kLanes, kDim, kNodes>(g, gradient);
   tensormass::kernel::scatter_hessian_batch<kLanes, kDim, kNodes>(K, hessian);
 }
+
+// P: the weighted stress with weight 1 (1 * x == x).
+extern "C" void tm_stable_neohookean_quad4_whole_stress_batch(const double* u, const double* consts, double* stress) {
+  for (int q = 0; q < kPoints; ++q) {
+    const double* point = consts + (kDerived + q * kStride) * kLanes;
+    alignas(64) double H[kDim * kDim * kLanes], P[kDim * kDim * kLanes];
+    tensormass::kernel::displacement_gradient_batch<kLanes, kDim, kNodes>(u, point + kLanes, H);
+    TENSORMASS_SIMD_LOOP
+    for (int l = 0; l < kLanes; ++l) law_weighted_stress(InLane{H + l}, 1.0, InLane{consts + l}, OutLane{P + l});
+    for (int l = 0; l < kLanes; ++l)
+      for (int k = 0; k < kDim * kDim; ++k) stress[(l * kPoints + q) * kDim * kDim + k] = P[k * kLanes + l];
+  }
+}

@@ -52,7 +52,7 @@ Vector lane_of(const Vector& batched, int width, int lane) {
 }
 
 /// Every lane of a full and of a one-element batch matches the per-element
-/// gradient_hessian, at small and large strains.
+/// gradient_hessian and stress, at small and large strains.
 TEST_P(KernelBatch, EveryLaneEqualsTheElementKernel) {
   const tm_kernel& kernel = *GetParam();
   const int width = kernel.batch_width;
@@ -61,18 +61,22 @@ TEST_P(KernelBatch, EveryLaneEqualsTheElementKernel) {
     for (const double strain : {0.05, 0.2}) {
       Batch batch = make_batch(kernel, used, strain);
       for (const Element& e : batch.elements) ASSERT_EQ(e.status, 0);
-      Vector g(dofs * width), K(dofs * dofs * width), g_only(dofs * width);
+      const auto stresses = static_cast<std::size_t>(kernel.quadrature_points * kernel.dim * kernel.dim);
+      Vector g(dofs * width), K(dofs * dofs * width), g_only(dofs * width), P(stresses * width);
       kernel.gradient_hessian_batch(batch.u.data(), batch.consts.data(), g.data(), K.data());
       kernel.gradient_batch(batch.u.data(), batch.consts.data(), g_only.data());
+      kernel.stress_batch(batch.u.data(), batch.consts.data(), P.data());
       for (int lane = 0; lane < width; ++lane) {
         const int source = lane < used ? lane : 0;
         const Element& e = batch.elements[source];
         const Vector& u = batch.displacements[source];
-        Vector expected_g(dofs), expected_K(dofs * dofs);
+        Vector expected_g(dofs), expected_K(dofs * dofs), expected_P(stresses);
         kernel.gradient_hessian(u.data(), e.consts.data(), expected_g.data(), expected_K.data());
+        kernel.stress(u.data(), e.consts.data(), expected_P.data());
         EXPECT_LE(relative_error(lane_of(g, width, lane), expected_g), kTolerance) << "lane " << lane;
         EXPECT_LE(relative_error(lane_of(g_only, width, lane), expected_g), kTolerance) << "lane " << lane;
         EXPECT_LE(relative_error(lane_of(K, width, lane), expected_K), kTolerance) << "lane " << lane;
+        EXPECT_LE(relative_error(lane_of(P, width, lane), expected_P), kTolerance) << "lane " << lane;
       }
     }
 }
@@ -107,10 +111,12 @@ TEST(KernelBatch, BatchesWhereTheyPayAndTheOthersSayTheyDoNot) {
       EXPECT_TRUE(kernel->batch_width == 2 || kernel->batch_width == 4 || kernel->batch_width == 8);
       EXPECT_NE(kernel->gradient_batch, nullptr);
       EXPECT_NE(kernel->gradient_hessian_batch, nullptr);
+      EXPECT_NE(kernel->stress_batch, nullptr);
     } else {
       EXPECT_EQ(kernel->batch_width, 0);
       EXPECT_EQ(kernel->gradient_batch, nullptr);
       EXPECT_EQ(kernel->gradient_hessian_batch, nullptr);
+      EXPECT_EQ(kernel->stress_batch, nullptr);
     }
   }
 }

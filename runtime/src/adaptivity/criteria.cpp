@@ -492,11 +492,15 @@ class StressErrorCriterion final : public Criterion {
     return value(*pair, view.kernel.quadrature_points, view.dim, view.u, view.consts);
   }
 
-  /// The block's laws looked up once, the nodes gathered inline (as evaluate_cells).
+  /// The block's laws looked up once, the nodes gathered inline (as
+  /// evaluate_cells); where both laws have batched stress kernels, a batch of
+  /// cells per call (the same values to round-off: the batch tests hold the
+  /// batched stresses to 1e-12 of the per-element ones).
   void evaluate_block(const BlockInput& in, std::span<double> values) const override {
     const LawPair* pair = pair_on(in.block.element->name);
     with_shape(in.model.dim(), in.block.element->nodes, [&]<int D, int N>() {
       if constexpr (N == 0) Criterion::evaluate_block(in, values);
+      else if (pair && batched(*pair)) evaluate_batches<D, N>(*pair, in, values);
       else evaluate_cells<D, N>(pair, in, values);
     });
   }
@@ -528,6 +532,11 @@ class StressErrorCriterion final : public Criterion {
     double base[kMaxStress], target[kMaxStress];
     pair.base->stress(u, consts, base);
     pair.target->stress(u, consts, target);
+    return from_stresses(points, dim, base, target, consts);
+  }
+
+  /// R_P from the two laws' stresses at the cell's points (points by dim by dim each).
+  static double from_stresses(int points, int dim, const double* base, const double* target, const double* consts) {
     const int entries = dim * dim;
     double largest = 0.0;
     bool finite = true;
@@ -565,6 +574,80 @@ class StressErrorCriterion final : public Criterion {
       gather_nodes<D, N>(model.cell_nodes(cell).data(), u_all, D, u);
       values[cell] = value(*pair, kernel.quadrature_points, D, u, model.consts(cell));
     }
+  }
+
+  static constexpr int kMaxLanes = 8;
+
+  static bool batched(const LawPair& pair) {
+    return pair.base->stress_batch && pair.target->stress_batch && pair.base->batch_width == pair.target->batch_width &&
+           pair.base->batch_width <= kMaxLanes;
+  }
+
+  /// Lanes of `width` cells: the pending cells' displacements and constants
+  /// packed (kernel_abi.h), both laws' stresses in one call each.
+  struct Batches {
+    int width, dofs, consts, stresses;
+    std::vector<double> u, c, base, target;
+    int pending[kMaxLanes];
+    int used = 0;
+
+    Batches(const LawPair& pair, int dim)
+        : width(pair.base->batch_width),
+          dofs(pair.base->dofs),
+          consts(std::max(pair.base->consts, pair.target->consts)),
+          stresses(pair.base->quadrature_points * dim * dim),
+          u(static_cast<std::size_t>(dofs) * width),
+          c(static_cast<std::size_t>(consts) * width),
+          base(static_cast<std::size_t>(stresses) * width),
+          target(static_cast<std::size_t>(stresses) * width) {}
+  };
+
+  template <int D, int N>
+  void evaluate_batches(const LawPair& pair, const BlockInput& in, std::span<double> values) const {
+    const Model& model = in.model;
+    const ElementBlock& block = in.block;
+    Batches batches(pair, D);
+    const tm_kernel* fitting = nullptr;
+#pragma omp for schedule(static) nowait
+    for (int local = 0; local < block.count(); ++local) {
+      const int cell = block.first_cell + local;
+      if (in.distribution && !in.distribution->owns_cell(cell)) continue;
+      if (in.selected && in.selected[cell] != 1) continue;
+      const tm_kernel& kernel = model.kernel(cell);
+      if (&kernel != fitting) {
+        if (!fits(kernel, pair) || kernel.dofs != batches.dofs) {
+          values[cell] = 0.0;
+          continue;
+        }
+        fitting = &kernel;
+      }
+      batches.pending[batches.used++] = cell;
+      if (batches.used == batches.width) run_batch<D, N>(pair, in, batches, values);
+    }
+    if (batches.used > 0) run_batch<D, N>(pair, in, batches, values);
+  }
+
+  template <int D, int N>
+  void run_batch(const LawPair& pair, const BlockInput& in, Batches& b, std::span<double> values) const {
+    const Model& model = in.model;
+    const int W = b.width;
+    for (int lane = 0; lane < W; ++lane) {
+      const int cell = b.pending[lane < b.used ? lane : 0];
+      const int* nodes = model.cell_nodes(cell).data();
+      for (int j = 0; j < N; ++j)
+        for (int a = 0; a < D; ++a) b.u[(j * D + a) * W + lane] = in.u[static_cast<std::size_t>(nodes[j]) * D + a];
+      const double* consts = model.consts(cell);
+      for (int i = 0; i < b.consts; ++i) b.c[i * W + lane] = consts[i];
+    }
+    pair.base->stress_batch(b.u.data(), b.c.data(), b.base.data());
+    pair.target->stress_batch(b.u.data(), b.c.data(), b.target.data());
+    for (int lane = 0; lane < b.used; ++lane) {
+      const int cell = b.pending[lane];
+      const std::size_t offset = static_cast<std::size_t>(lane) * b.stresses;
+      values[cell] = from_stresses(pair.base->quadrature_points, D, b.base.data() + offset, b.target.data() + offset,
+                                   model.consts(cell));
+    }
+    b.used = 0;
   }
 
   std::vector<LawPair> pairs_;

@@ -33,9 +33,11 @@ typedef void (*tm_stress_fn)(const double* u, const double* consts, double* stre
 ///   consts    consts by W (each element's `precompute` output, transposed)
 ///   gradient  W by dofs (may be NULL in gradient_hessian_batch)
 ///   hessian   W by dofs*dofs, each element's Hessian row-major as above
+///   stress    W by Q by d by d, each element's `stress` as above
 /// A partial batch fills its unused lanes with a copy of a used one.
 typedef void (*tm_gradient_batch_fn)(const double* u, const double* consts, double* gradient);
 typedef void (*tm_gradient_hessian_batch_fn)(const double* u, const double* consts, double* gradient, double* hessian);
+typedef void (*tm_stress_batch_fn)(const double* u, const double* consts, double* stress);
 
 /// Layout shared by every split: consts[0 .. derived_params) are the law's
 /// derived parameters (lam, mu, ...), then per quadrature point q the weight
@@ -70,12 +72,13 @@ typedef struct tm_kernel {
   int invertible;
   /// Elements per batched call (the SIMD width the kernels were built for:
   /// 8 with AVX-512, 4 with AVX, else 2); 0 when the kernel has no batched
-  /// entry points and the two below are NULL. The `whole` split has them for
+  /// entry points and the three below are NULL. The `whole` split has them for
   /// the elements where they are faster (tri3, quad4, tri6, quad8, tet4,
   /// prism6, pyramid5; not hex8, tet10, hex20).
   int batch_width;
   tm_gradient_batch_fn gradient_batch;
   tm_gradient_hessian_batch_fn gradient_hessian_batch;
+  tm_stress_batch_fn stress_batch;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).
