@@ -9,7 +9,8 @@ side by side through
 tensormass.Simulation:
   hooke, neohookean, stable_neohookean      every cell under one law
   adaptive R_NL T                           cells start under Hooke and climb to
-                                            neo-Hookean where R_NL >= T
+                                            neo-Hookean where R_NL >= T (--criterion
+                                            R_P: the stress Hooke gets wrong, over E)
 and prints, per run: mean ms per step (assembly, solve, criteria), cells per
 law at the end, and the error against pure neo-Hookean (largest nodal
 distance over all steps / the neo-Hookean run's largest displacement), then
@@ -59,7 +60,7 @@ def make_mesh(binary, work):
     return os.path.join(work, "thorax.yaml")
 
 
-def overrides_for(label, law, threshold, args, work):
+def overrides_for(label, law, threshold, args, work, criterion="R_NL"):
     o = {f"materials.{m}.law": law for m in range(LAWS)}
     o.update({"prescribed.1.displacement": [None, None, -args.depth], "solver.steps": args.steps,
               "output.directory": os.path.join(work, "out", label), "output.every": 0, "output.track": []})
@@ -70,7 +71,7 @@ def overrides_for(label, law, threshold, args, work):
     if threshold is None:
         o["adaptivity"] = None
     else:
-        o["adaptivity"] = {"criteria": [{"name": "R_NL", "threshold": threshold}], "ladder": ["hooke", "neohookean"],
+        o["adaptivity"] = {"criteria": [{"name": criterion, "threshold": threshold}], "ladder": ["hooke", "neohookean"],
                            "every": args.every}
     return o
 
@@ -81,7 +82,7 @@ def explicit_steps(args):
 
 
 def simulate(scene, label, law, threshold, args, work):
-    sim = tm.Simulation(scene, overrides=overrides_for(label, law, threshold, args, work))
+    sim = tm.Simulation(scene, overrides=overrides_for(label, law, threshold, args, work, args.criterion))
     trajectory, failure, step = [], None, 0
     start = time.perf_counter()
     try:
@@ -132,7 +133,9 @@ def main():
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "tensormass"))
     parser.add_argument("--depth", type=float, default=0.05, help="diaphragm descent (m)")
     parser.add_argument("--steps", type=int, default=40, help="implicit steps of 0.05 s (40: to the deepest point)")
-    parser.add_argument("--thresholds", default="0.005,0.01,0.03", help="R_NL thresholds of the adaptive runs")
+    parser.add_argument("--criterion", choices=("R_NL", "R_P"), default="R_NL", help="the adaptive runs' criterion")
+    parser.add_argument("--thresholds", default=None,
+                        help="thresholds of the adaptive runs (default 0.005,0.01,0.03 for R_NL, 0.05,0.1,0.2 for R_P)")
     parser.add_argument("--explicit", action="store_true",
                         help="explicit (symplectic Euler) steps of --explicit-dt over the same time, no stiffness "
                              "damping (the explicit solver has mass damping only)")
@@ -150,7 +153,8 @@ def main():
     work = tempfile.mkdtemp(prefix="tm-deep-breath-")
     scene = make_mesh(os.path.abspath(args.binary), work)
     plans = [(law, law, None) for law in ("hooke", "neohookean", "stable_neohookean")]
-    plans += [(f"adaptive R_NL {t:g}", "hooke", t) for t in (float(t) for t in args.thresholds.split(","))]
+    thresholds = args.thresholds or ("0.05,0.1,0.2" if args.criterion == "R_P" else "0.005,0.01,0.03")
+    plans += [(f"adaptive {args.criterion} {t:g}", "hooke", t) for t in (float(t) for t in thresholds.split(","))]
     rounds = []
     for round_ in range(args.rounds):
         rounds.append([simulate(scene, label, law, threshold, args, work) for label, law, threshold in plans])
@@ -163,7 +167,7 @@ def main():
     stepping = (f"{explicit_steps(args)} explicit steps of {args.explicit_dt * 1e3:g} ms, criteria every {args.every}"
                 if args.explicit else f"{args.steps} steps of 0.05 s")
     print(f"## thorax deep breath: {cells} cells, diaphragm {args.depth * 100:g} cm over {stepping}, "
-          "ladder [hooke, neohookean], criterion R_NL, default settings\n")
+          f"ladder [hooke, neohookean], criterion {args.criterion}, default settings\n")
     print(f"medians of {args.rounds} rounds; x rich: the median of each round's ratio, and its range\n")
     print("| run | ms/step | x rich | range | assembly | solve | criteria | lin. its | factor. | cells per law (end) "
           "| error |")
