@@ -28,6 +28,7 @@ thorax deep breath of bench/thorax_deep_breath.py (11,512 mixed cells,
 diaphragm 5 cm down). Every run uses the default solver settings. About 5 minutes for all four.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/adaptive_oracle.py [--only NAME] [--fractions 0.1,0.2,...]
+        [--steps N]
 """
 import argparse
 import itertools
@@ -95,9 +96,10 @@ class BlockScene(Scene):
             output={"directory": os.path.join(WORK, self.name), "every": 0}, **keys)
 
 
-def pressed_block(name, half_width, depth):
+def pressed_block(name, half_width, depth, steps=50):
     """The 10 x 5 x 10 cm block of `tensormass-bench adaptive` (E 5 kPa, nu 0.45), a square of the top
-    face of half-width `half_width` pushed `depth` down over 0.5 s, 50 implicit steps of 0.01 s."""
+    face of half-width `half_width` pushed `depth` down over 0.5 s, in implicit steps of 0.01 s: 50 steps
+    reach the full depth, fewer stop on the way."""
     size = np.array([0.1, 0.05, 0.1])
     points, tets = tet_block(size, (20, 10, 20))
     base = np.flatnonzero(points[:, 1] < 1e-9)
@@ -105,36 +107,36 @@ def pressed_block(name, half_width, depth):
     near = np.all(np.abs(points[:, [0, 2]] - 0.05) <= half_width + 1e-9, axis=1)
     tool = np.flatnonzero(top & near)
     what = (f"{len(tets)} tet4, E 5 kPa, nu 0.45, {200 * half_width:g} x {200 * half_width:g} cm tool "
-            f"{100 * depth:g} cm into 5 cm, 50 implicit steps")
+            f"{100 * depth:g} cm into 5 cm, {steps} implicit steps")
     return BlockScene(name, what, "neohookean", 5e3, 0.45, points, tets, {"base": base, "tool": tool},
                       density=1000.0, fixed=["base"],
                       prescribed=[{"region": "tool", "displacement": [0, -depth, 0],
                                    "profile": {"type": "ramp", "duration": 0.5}}],
-                      solver={"type": "implicit", "dt": 0.01, "steps": 50})
+                      solver={"type": "implicit", "dt": 0.01, "steps": steps})
 
 
-def cantilever():
+def cantilever(steps=150):
     """`tensormass-bench adaptive`'s cantilever: 5 x 1 x 1 m, 30 x 6 x 8 hexahedra cut into 6 tets,
-    E 20 MPa, nu 0.3, clamped at x = 0, under gravity, 150 implicit steps of 0.01 s."""
+    E 20 MPa, nu 0.3, clamped at x = 0, under gravity, `steps` implicit steps of 0.01 s."""
     points, tets = tet_block((5.0, 1.0, 1.0), (30, 6, 8))
     clamp = np.flatnonzero(points[:, 0] < 1e-9)
-    return BlockScene("cantilever", f"{len(tets)} tet4, 5 x 1 x 1 m, E 20 MPa, gravity, 150 implicit steps", "stvk",
-                      2e7, 0.3, points, tets, {"clamp": clamp}, density=1000.0, fixed=["clamp"],
-                      loads={"gravity": [0, -9.81, 0]}, solver={"type": "implicit", "dt": 0.01, "steps": 150})
+    return BlockScene("cantilever", f"{len(tets)} tet4, 5 x 1 x 1 m, E 20 MPa, gravity, {steps} implicit steps",
+                      "stvk", 2e7, 0.3, points, tets, {"clamp": clamp}, density=1000.0, fixed=["clamp"],
+                      loads={"gravity": [0, -9.81, 0]}, solver={"type": "implicit", "dt": 0.01, "steps": steps})
 
 
 class ThoraxScene(Scene):
     """bench/thorax_deep_breath.py's scene: the example thorax, diaphragm 5 cm down over 40 steps."""
 
-    def __init__(self):
-        super().__init__("thorax", "the thorax deep breath, diaphragm 5 cm over 40 implicit steps", "neohookean",
-                         None, None)
+    def __init__(self, steps=40):
+        super().__init__("thorax", f"the thorax deep breath, diaphragm 5 cm, {steps} implicit steps of 0.05 s",
+                         "neohookean", None, None)
         sys.path.insert(0, HERE)
         import thorax_deep_breath as breath
         self.breath = breath
         self.work = tempfile.mkdtemp(prefix="tm-oracle-thorax-")
         self.scene = breath.make_mesh(os.path.join(os.path.dirname(HERE), "build", "tensormass"), self.work)
-        self.args = argparse.Namespace(depth=0.05, steps=40, explicit=False, every=1)
+        self.args = argparse.Namespace(depth=0.05, steps=steps, explicit=False, every=1)
 
     def simulation(self, law, adaptivity=None):
         overrides = self.breath.overrides_for("oracle", law, None, self.args, self.work)
@@ -142,11 +144,11 @@ class ThoraxScene(Scene):
         return tm.Simulation(self.scene, overrides=overrides)
 
 
-SCENES = {
-    "indentation": lambda: pressed_block("indentation", 0.01, 0.015),
-    "needle": lambda: pressed_block("needle", 0.005, 0.01),
-    "cantilever": cantilever,
-    "thorax": ThoraxScene,
+SCENES = {  # name -> the scene, given its steps (None: the benchmark's own)
+    "indentation": lambda steps: pressed_block("indentation", 0.01, 0.015, steps or 50),
+    "needle": lambda steps: pressed_block("needle", 0.005, 0.01, steps or 50),
+    "cantilever": lambda steps: cantilever(steps or 150),
+    "thorax": lambda steps: ThoraxScene(steps or 40),
 }
 
 
@@ -223,6 +225,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", choices=sorted(SCENES), action="append", help="one scene (repeatable)")
     parser.add_argument("--fractions", default=FRACTIONS, help="shares of the cells under the rich law")
+    parser.add_argument("--steps", type=int, default=None,
+                        help="run only this many steps of every scene (a shallower push, a shorter sag or "
+                             "breath; default each benchmark's own)")
     args = parser.parse_args()
     try:
         fractions = [float(f) for f in args.fractions.split(",")]
@@ -230,11 +235,13 @@ def main():
         parser.error(f"--fractions: a comma-separated list of numbers, not {args.fractions!r}")
     if not fractions or any(not 0.0 < f <= 1.0 for f in fractions):
         parser.error("--fractions: each share must lie in (0, 1]")
+    if args.steps is not None and args.steps < 1:
+        parser.error(f"--steps must be at least 1, not {args.steps}")
     print("# the least non-linear set, chosen with hindsight (bench/adaptive_oracle.py)\n")
     print("error against the pure rich run with the top share of the cells (ranked by each indicator's largest")
     print("value over that run) under the rich law from the first step, every other cell under Hooke\n")
     for name in args.only or list(SCENES):
-        report(SCENES[name](), sorted(fractions))
+        report(SCENES[name](args.steps), sorted(fractions))
     return 0
 
 

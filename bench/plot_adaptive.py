@@ -7,7 +7,7 @@ One panel per scene of the JSON that `tensormass-bench adaptive --json`
 writes: every run as a point, its mean step over the pure rich law's (x)
 against its error in % of the rich run's largest displacement (y, log
 scale); pure laws as squares, adaptive runs on the two-rung ladder as
-circles labelled with their threshold, three-rung runs as triangles; the
+circles labelled with their R_NL threshold (diamonds: R_P), three-rung runs as triangles; the
 issue's targets as dashed lines (1 % error, the scene's cost target).
 Failed runs (an inverted element) are left out and counted in the title.
 The PNG is written atomically (OUT.tmp.png, then renamed).
@@ -59,6 +59,9 @@ def draw(axis, scene):
             axis.annotate(label, (x, y), textcoords="offset points", xytext=(5, 3), fontsize=7)
         elif label.startswith("3 rungs"):
             axis.plot(x, y, "^", color="tab:red", markersize=7)
+        elif label.startswith("adaptive R_P"):
+            axis.plot(x, y, "D", color="tab:green", markersize=6)
+            axis.annotate(f"{run['threshold']:g}", (x, y), textcoords="offset points", xytext=(5, -9), fontsize=7)
         else:
             axis.plot(x, y, "o", color="tab:blue", markersize=7)
             axis.annotate(f"{run['threshold']:g}", (x, y), textcoords="offset points", xytext=(5, -9), fontsize=7)
@@ -97,7 +100,8 @@ def main(argv):
     for axis in list(axes.flat)[len(scenes):]:
         axis.axis("off")
     figure.suptitle("tensormass bench adaptive: error against cost (squares: pure laws; circles: adaptive "
-                    "[linear, rich] at its R_NL threshold; triangles: 3 rungs; dashed: targets)", fontsize=9)
+                    "[linear, rich] at its R_NL threshold; diamonds: the same at its R_P threshold; triangles: 3 rungs; "
+                    "dashed: targets)", fontsize=9)
     figure.tight_layout(rect=(0, 0, 1, 0.96))
     tmp = argv[2] + ".tmp.png"
     figure.savefig(tmp, dpi=100)
