@@ -2,7 +2,9 @@
 /// The criteria of criteria.hpp. Every evaluation reads the element's
 /// constants (per quadrature point: w_q det(J0_q), then G^T, see
 /// kernel_abi.h), its rest positions and displacements, and allocates
-/// nothing: the only arrays are D by D matrices on the stack. The dimension
+/// nothing: the only arrays are on the stack (D by D matrices; R_P's two
+/// stresses). R_P's block evaluation allocates its batch buffers once per
+/// block and thread. The dimension
 /// (2 or 3) and, for the node counts of the registry's elements, the number
 /// of nodes N are template parameters so that the loops unroll; N = 0 reads
 /// the node count at run time.
