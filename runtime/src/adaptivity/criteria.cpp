@@ -553,11 +553,13 @@ class StressErrorCriterion final : public Criterion {
     return std::sqrt(largest) * (lam + mu) / (mu * (3.0 * lam + 2.0 * mu));  // over E
   }
 
-  template <int D, int N>
-  void evaluate_cells(const LawPair* pair, const BlockInput& in, std::span<double> values) const {
+  /// visit(cell, kernel) for the block's cells this call evaluates (the
+  /// schedule of Criterion::evaluate_block) whose constants fit the pair; the
+  /// others read 0.
+  template <class Visit>
+  static void for_fitting_cells(const LawPair* pair, const BlockInput& in, std::span<double> values, Visit&& visit) {
     const Model& model = in.model;
     const ElementBlock& block = in.block;
-    const double* u_all = in.u.data();
     const tm_kernel* fitting = nullptr;  // the last kernel seen that fits the pair
 #pragma omp for schedule(static) nowait
     for (int local = 0; local < block.count(); ++local) {
@@ -572,10 +574,17 @@ class StressErrorCriterion final : public Criterion {
         }
         fitting = &kernel;
       }
-      double u[D * N];
-      gather_nodes<D, N>(model.cell_nodes(cell).data(), u_all, D, u);
-      values[cell] = value(*pair, kernel.quadrature_points, D, u, model.consts(cell));
+      visit(cell, kernel);
     }
+  }
+
+  template <int D, int N>
+  void evaluate_cells(const LawPair* pair, const BlockInput& in, std::span<double> values) const {
+    for_fitting_cells(pair, in, values, [&](int cell, const tm_kernel& kernel) {
+      double u[D * N];
+      gather_nodes<D, N>(in.model.cell_nodes(cell).data(), in.u.data(), D, u);
+      values[cell] = value(*pair, kernel.quadrature_points, D, u, in.model.consts(cell));
+    });
   }
 
   static constexpr int kMaxLanes = 8;
@@ -588,17 +597,16 @@ class StressErrorCriterion final : public Criterion {
   /// Lanes of `width` cells: the pending cells' displacements and constants
   /// packed (kernel_abi.h), both laws' stresses in one call each.
   struct Batches {
-    int width, dofs, consts, stresses;
+    int width, consts, stresses;
     std::vector<double> u, c, base, target;
     int pending[kMaxLanes];
     int used = 0;
 
     Batches(const LawPair& pair, int dim)
         : width(pair.base->batch_width),
-          dofs(pair.base->dofs),
           consts(std::max(pair.base->consts, pair.target->consts)),
           stresses(pair.base->quadrature_points * dim * dim),
-          u(static_cast<std::size_t>(dofs) * width),
+          u(static_cast<std::size_t>(pair.base->dofs) * width),
           c(static_cast<std::size_t>(consts) * width),
           base(static_cast<std::size_t>(stresses) * width),
           target(static_cast<std::size_t>(stresses) * width) {}
@@ -606,26 +614,11 @@ class StressErrorCriterion final : public Criterion {
 
   template <int D, int N>
   void evaluate_batches(const LawPair& pair, const BlockInput& in, std::span<double> values) const {
-    const Model& model = in.model;
-    const ElementBlock& block = in.block;
     Batches batches(pair, D);
-    const tm_kernel* fitting = nullptr;
-#pragma omp for schedule(static) nowait
-    for (int local = 0; local < block.count(); ++local) {
-      const int cell = block.first_cell + local;
-      if (in.distribution && !in.distribution->owns_cell(cell)) continue;
-      if (in.selected && in.selected[cell] != 1) continue;
-      const tm_kernel& kernel = model.kernel(cell);
-      if (&kernel != fitting) {
-        if (!fits(kernel, pair) || kernel.dofs != batches.dofs) {
-          values[cell] = 0.0;
-          continue;
-        }
-        fitting = &kernel;
-      }
+    for_fitting_cells(&pair, in, values, [&](int cell, const tm_kernel&) {
       batches.pending[batches.used++] = cell;
       if (batches.used == batches.width) run_batch<D, N>(pair, in, batches, values);
-    }
+    });
     if (batches.used > 0) run_batch<D, N>(pair, in, batches, values);
   }
 
