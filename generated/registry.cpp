@@ -4,31 +4,31 @@
 #include "tensormass/kernels/kernel_support.hpp"
 
 extern "C" {
-int tm_corotational_hex20_whole_precompute(const double*, const double*, double*);
+int tm_corotational_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_whole_energy(const double*, const double*);
 void tm_corotational_hex20_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex20_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_whole_stress(const double*, const double*, double*);
-int tm_corotational_hex20_terms_precompute(const double*, const double*, double*);
+int tm_corotational_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_terms_energy(const double*, const double*);
 void tm_corotational_hex20_terms_gradient(const double*, const double*, double*);
 void tm_corotational_hex20_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_terms_stress(const double*, const double*, double*);
-int tm_corotational_hex8_whole_precompute(const double*, const double*, double*);
+int tm_corotational_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_whole_energy(const double*, const double*);
 void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_whole_stress(const double*, const double*, double*);
-int tm_corotational_hex8_terms_precompute(const double*, const double*, double*);
+int tm_corotational_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_terms_energy(const double*, const double*);
 void tm_corotational_hex8_terms_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_terms_stress(const double*, const double*, double*);
-int tm_corotational_prism6_whole_precompute(const double*, const double*, double*);
+int tm_corotational_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_whole_energy(const double*, const double*);
 void tm_corotational_prism6_whole_gradient(const double*, const double*, double*);
 void tm_corotational_prism6_whole_hessian(const double*, const double*, double*);
@@ -37,13 +37,13 @@ void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_prism6_terms_precompute(const double*, const double*, double*);
+int tm_corotational_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_terms_energy(const double*, const double*);
 void tm_corotational_prism6_terms_gradient(const double*, const double*, double*);
 void tm_corotational_prism6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_prism6_terms_stress(const double*, const double*, double*);
-int tm_corotational_pyramid5_whole_precompute(const double*, const double*, double*);
+int tm_corotational_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_whole_energy(const double*, const double*);
 void tm_corotational_pyramid5_whole_gradient(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_hessian(const double*, const double*, double*);
@@ -52,13 +52,13 @@ void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*
 void tm_corotational_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_pyramid5_terms_precompute(const double*, const double*, double*);
+int tm_corotational_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_terms_energy(const double*, const double*);
 void tm_corotational_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_corotational_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_corotational_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_terms_stress(const double*, const double*, double*);
-int tm_corotational_quad4_whole_precompute(const double*, const double*, double*);
+int tm_corotational_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_whole_energy(const double*, const double*);
 void tm_corotational_quad4_whole_gradient(const double*, const double*, double*);
 void tm_corotational_quad4_whole_hessian(const double*, const double*, double*);
@@ -67,13 +67,13 @@ void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad4_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_quad4_terms_precompute(const double*, const double*, double*);
+int tm_corotational_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_terms_energy(const double*, const double*);
 void tm_corotational_quad4_terms_gradient(const double*, const double*, double*);
 void tm_corotational_quad4_terms_hessian(const double*, const double*, double*);
 void tm_corotational_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad4_terms_stress(const double*, const double*, double*);
-int tm_corotational_quad8_whole_precompute(const double*, const double*, double*);
+int tm_corotational_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_whole_energy(const double*, const double*);
 void tm_corotational_quad8_whole_gradient(const double*, const double*, double*);
 void tm_corotational_quad8_whole_hessian(const double*, const double*, double*);
@@ -82,25 +82,25 @@ void tm_corotational_quad8_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad8_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_quad8_terms_precompute(const double*, const double*, double*);
+int tm_corotational_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_terms_energy(const double*, const double*);
 void tm_corotational_quad8_terms_gradient(const double*, const double*, double*);
 void tm_corotational_quad8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad8_terms_stress(const double*, const double*, double*);
-int tm_corotational_tet10_whole_precompute(const double*, const double*, double*);
+int tm_corotational_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_whole_energy(const double*, const double*);
 void tm_corotational_tet10_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tet10_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet10_whole_stress(const double*, const double*, double*);
-int tm_corotational_tet10_terms_precompute(const double*, const double*, double*);
+int tm_corotational_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_terms_energy(const double*, const double*);
 void tm_corotational_tet10_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tet10_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet10_terms_stress(const double*, const double*, double*);
-int tm_corotational_tet4_whole_precompute(const double*, const double*, double*);
+int tm_corotational_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet4_whole_energy(const double*, const double*);
 void tm_corotational_tet4_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tet4_whole_hessian(const double*, const double*, double*);
@@ -109,13 +109,13 @@ void tm_corotational_tet4_whole_stress(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tet4_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_tet4_terms_precompute(const double*, const double*, double*);
+int tm_corotational_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet4_terms_energy(const double*, const double*);
 void tm_corotational_tet4_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tet4_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet4_terms_stress(const double*, const double*, double*);
-int tm_corotational_tri3_whole_precompute(const double*, const double*, double*);
+int tm_corotational_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri3_whole_energy(const double*, const double*);
 void tm_corotational_tri3_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tri3_whole_hessian(const double*, const double*, double*);
@@ -124,13 +124,13 @@ void tm_corotational_tri3_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri3_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_tri3_terms_precompute(const double*, const double*, double*);
+int tm_corotational_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri3_terms_energy(const double*, const double*);
 void tm_corotational_tri3_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tri3_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri3_terms_stress(const double*, const double*, double*);
-int tm_corotational_tri6_whole_precompute(const double*, const double*, double*);
+int tm_corotational_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri6_whole_energy(const double*, const double*);
 void tm_corotational_tri6_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tri6_whole_hessian(const double*, const double*, double*);
@@ -139,43 +139,43 @@ void tm_corotational_tri6_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri6_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_tri6_terms_precompute(const double*, const double*, double*);
+int tm_corotational_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri6_terms_energy(const double*, const double*);
 void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tri6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri6_terms_stress(const double*, const double*, double*);
-int tm_hooke_hex20_whole_precompute(const double*, const double*, double*);
+int tm_hooke_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex20_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_whole_stress(const double*, const double*, double*);
-int tm_hooke_hex20_terms_precompute(const double*, const double*, double*);
+int tm_hooke_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_terms_energy(const double*, const double*);
 void tm_hooke_hex20_terms_gradient(const double*, const double*, double*);
 void tm_hooke_hex20_terms_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_terms_stress(const double*, const double*, double*);
-int tm_hooke_hex8_whole_precompute(const double*, const double*, double*);
+int tm_hooke_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_whole_energy(const double*, const double*);
 void tm_hooke_hex8_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_whole_stress(const double*, const double*, double*);
-int tm_hooke_hex8_terms_precompute(const double*, const double*, double*);
+int tm_hooke_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_terms_energy(const double*, const double*);
 void tm_hooke_hex8_terms_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_terms_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_terms_stress(const double*, const double*, double*);
-int tm_hooke_hex8_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_tensor_energy(const double*, const double*);
 void tm_hooke_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_tensor_stress(const double*, const double*, double*);
-int tm_hooke_prism6_whole_precompute(const double*, const double*, double*);
+int tm_hooke_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_whole_energy(const double*, const double*);
 void tm_hooke_prism6_whole_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_whole_hessian(const double*, const double*, double*);
@@ -184,19 +184,19 @@ void tm_hooke_prism6_whole_stress(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_prism6_terms_precompute(const double*, const double*, double*);
+int tm_hooke_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_terms_energy(const double*, const double*);
 void tm_hooke_prism6_terms_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_terms_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_terms_stress(const double*, const double*, double*);
-int tm_hooke_prism6_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_tensor_energy(const double*, const double*);
 void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_tensor_stress(const double*, const double*, double*);
-int tm_hooke_pyramid5_whole_precompute(const double*, const double*, double*);
+int tm_hooke_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_whole_energy(const double*, const double*);
 void tm_hooke_pyramid5_whole_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_hessian(const double*, const double*, double*);
@@ -205,19 +205,19 @@ void tm_hooke_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_pyramid5_terms_precompute(const double*, const double*, double*);
+int tm_hooke_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_terms_energy(const double*, const double*);
 void tm_hooke_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_hooke_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_terms_stress(const double*, const double*, double*);
-int tm_hooke_pyramid5_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_tensor_energy(const double*, const double*);
 void tm_hooke_pyramid5_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid5_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_pyramid5_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_tensor_stress(const double*, const double*, double*);
-int tm_hooke_quad4_whole_precompute(const double*, const double*, double*);
+int tm_hooke_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_whole_energy(const double*, const double*);
 void tm_hooke_quad4_whole_gradient(const double*, const double*, double*);
 void tm_hooke_quad4_whole_hessian(const double*, const double*, double*);
@@ -226,19 +226,19 @@ void tm_hooke_quad4_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad4_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_quad4_terms_precompute(const double*, const double*, double*);
+int tm_hooke_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_terms_energy(const double*, const double*);
 void tm_hooke_quad4_terms_gradient(const double*, const double*, double*);
 void tm_hooke_quad4_terms_hessian(const double*, const double*, double*);
 void tm_hooke_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad4_terms_stress(const double*, const double*, double*);
-int tm_hooke_quad4_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_tensor_energy(const double*, const double*);
 void tm_hooke_quad4_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_quad4_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_quad4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad4_tensor_stress(const double*, const double*, double*);
-int tm_hooke_quad8_whole_precompute(const double*, const double*, double*);
+int tm_hooke_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad8_whole_energy(const double*, const double*);
 void tm_hooke_quad8_whole_gradient(const double*, const double*, double*);
 void tm_hooke_quad8_whole_hessian(const double*, const double*, double*);
@@ -247,25 +247,25 @@ void tm_hooke_quad8_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad8_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_quad8_terms_precompute(const double*, const double*, double*);
+int tm_hooke_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad8_terms_energy(const double*, const double*);
 void tm_hooke_quad8_terms_gradient(const double*, const double*, double*);
 void tm_hooke_quad8_terms_hessian(const double*, const double*, double*);
 void tm_hooke_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad8_terms_stress(const double*, const double*, double*);
-int tm_hooke_tet10_whole_precompute(const double*, const double*, double*);
+int tm_hooke_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_whole_energy(const double*, const double*);
 void tm_hooke_tet10_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tet10_whole_hessian(const double*, const double*, double*);
 void tm_hooke_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet10_whole_stress(const double*, const double*, double*);
-int tm_hooke_tet10_terms_precompute(const double*, const double*, double*);
+int tm_hooke_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_terms_energy(const double*, const double*);
 void tm_hooke_tet10_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tet10_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet10_terms_stress(const double*, const double*, double*);
-int tm_hooke_tet4_whole_precompute(const double*, const double*, double*);
+int tm_hooke_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_whole_energy(const double*, const double*);
 void tm_hooke_tet4_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tet4_whole_hessian(const double*, const double*, double*);
@@ -274,19 +274,19 @@ void tm_hooke_tet4_whole_stress(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tet4_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_tet4_terms_precompute(const double*, const double*, double*);
+int tm_hooke_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_terms_energy(const double*, const double*);
 void tm_hooke_tet4_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tet4_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet4_terms_stress(const double*, const double*, double*);
-int tm_hooke_tet4_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_tensor_energy(const double*, const double*);
 void tm_hooke_tet4_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_tet4_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_tet4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet4_tensor_stress(const double*, const double*, double*);
-int tm_hooke_tri3_whole_precompute(const double*, const double*, double*);
+int tm_hooke_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_whole_energy(const double*, const double*);
 void tm_hooke_tri3_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tri3_whole_hessian(const double*, const double*, double*);
@@ -295,19 +295,19 @@ void tm_hooke_tri3_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri3_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_tri3_terms_precompute(const double*, const double*, double*);
+int tm_hooke_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_terms_energy(const double*, const double*);
 void tm_hooke_tri3_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tri3_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri3_terms_stress(const double*, const double*, double*);
-int tm_hooke_tri3_tensor_precompute(const double*, const double*, double*);
+int tm_hooke_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_tensor_energy(const double*, const double*);
 void tm_hooke_tri3_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_tri3_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_tri3_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri3_tensor_stress(const double*, const double*, double*);
-int tm_hooke_tri6_whole_precompute(const double*, const double*, double*);
+int tm_hooke_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri6_whole_energy(const double*, const double*);
 void tm_hooke_tri6_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tri6_whole_hessian(const double*, const double*, double*);
@@ -316,37 +316,37 @@ void tm_hooke_tri6_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri6_whole_stress_batch(const double*, const double*, double*);
-int tm_hooke_tri6_terms_precompute(const double*, const double*, double*);
+int tm_hooke_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri6_terms_energy(const double*, const double*);
 void tm_hooke_tri6_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tri6_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri6_terms_stress(const double*, const double*, double*);
-int tm_neohookean_hex20_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_whole_stress(const double*, const double*, double*);
-int tm_neohookean_hex20_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_terms_energy(const double*, const double*);
 void tm_neohookean_hex20_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_hex20_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_terms_stress(const double*, const double*, double*);
-int tm_neohookean_hex8_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_whole_stress(const double*, const double*, double*);
-int tm_neohookean_hex8_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_terms_energy(const double*, const double*);
 void tm_neohookean_hex8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_terms_stress(const double*, const double*, double*);
-int tm_neohookean_prism6_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_neohookean_prism6_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_hessian(const double*, const double*, double*);
@@ -355,13 +355,13 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_prism6_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_terms_energy(const double*, const double*);
 void tm_neohookean_prism6_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_terms_stress(const double*, const double*, double*);
-int tm_neohookean_pyramid5_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_hessian(const double*, const double*, double*);
@@ -370,13 +370,13 @@ void tm_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_pyramid5_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_terms_energy(const double*, const double*);
 void tm_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
-int tm_neohookean_quad4_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_neohookean_quad4_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_hessian(const double*, const double*, double*);
@@ -385,13 +385,13 @@ void tm_neohookean_quad4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_quad4_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_terms_energy(const double*, const double*);
 void tm_neohookean_quad4_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_quad4_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_terms_stress(const double*, const double*, double*);
-int tm_neohookean_quad8_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_neohookean_quad8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_hessian(const double*, const double*, double*);
@@ -400,25 +400,25 @@ void tm_neohookean_quad8_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_quad8_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_terms_energy(const double*, const double*);
 void tm_neohookean_quad8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_terms_stress(const double*, const double*, double*);
-int tm_neohookean_tet10_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet10_whole_stress(const double*, const double*, double*);
-int tm_neohookean_tet10_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_terms_energy(const double*, const double*);
 void tm_neohookean_tet10_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tet10_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet10_terms_stress(const double*, const double*, double*);
-int tm_neohookean_tet4_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_neohookean_tet4_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_hessian(const double*, const double*, double*);
@@ -427,13 +427,13 @@ void tm_neohookean_tet4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_tet4_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet4_terms_energy(const double*, const double*);
 void tm_neohookean_tet4_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tet4_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_terms_stress(const double*, const double*, double*);
-int tm_neohookean_tri3_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_neohookean_tri3_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_hessian(const double*, const double*, double*);
@@ -442,13 +442,13 @@ void tm_neohookean_tri3_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_tri3_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_terms_energy(const double*, const double*);
 void tm_neohookean_tri3_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tri3_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_terms_stress(const double*, const double*, double*);
-int tm_neohookean_tri6_whole_precompute(const double*, const double*, double*);
+int tm_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_neohookean_tri6_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_hessian(const double*, const double*, double*);
@@ -457,37 +457,37 @@ void tm_neohookean_tri6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_tri6_terms_precompute(const double*, const double*, double*);
+int tm_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_terms_energy(const double*, const double*);
 void tm_neohookean_tri6_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tri6_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_hex20_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_whole_stress(const double*, const double*, double*);
-int tm_stable_neohookean_hex20_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex20_terms_energy(const double*, const double*);
 void tm_stable_neohookean_hex20_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_hex8_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_whole_stress(const double*, const double*, double*);
-int tm_stable_neohookean_hex8_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_terms_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_prism6_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_prism6_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_hessian(const double*, const double*, double*);
@@ -496,13 +496,13 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_prism6_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_terms_energy(const double*, const double*);
 void tm_stable_neohookean_prism6_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_pyramid5_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_whole_hessian(const double*, const double*, double*);
@@ -511,13 +511,13 @@ void tm_stable_neohookean_pyramid5_whole_stress(const double*, const double*, do
 void tm_stable_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_pyramid5_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_terms_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_quad4_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_whole_hessian(const double*, const double*, double*);
@@ -526,13 +526,13 @@ void tm_stable_neohookean_quad4_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_quad4_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_terms_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_quad8_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_whole_hessian(const double*, const double*, double*);
@@ -541,25 +541,25 @@ void tm_stable_neohookean_quad8_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_quad8_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_terms_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_tet10_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet10_whole_stress(const double*, const double*, double*);
-int tm_stable_neohookean_tet10_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tet10_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet10_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_tet4_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet4_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_whole_hessian(const double*, const double*, double*);
@@ -568,13 +568,13 @@ void tm_stable_neohookean_tet4_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_tet4_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet4_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tet4_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_tri3_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_whole_hessian(const double*, const double*, double*);
@@ -583,13 +583,13 @@ void tm_stable_neohookean_tri3_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_tri3_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_terms_stress(const double*, const double*, double*);
-int tm_stable_neohookean_tri6_whole_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_whole_hessian(const double*, const double*, double*);
@@ -598,43 +598,43 @@ void tm_stable_neohookean_tri6_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_tri6_terms_precompute(const double*, const double*, double*);
+int tm_stable_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri6_terms_stress(const double*, const double*, double*);
-int tm_stvk_hex20_whole_precompute(const double*, const double*, double*);
+int tm_stvk_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex20_whole_energy(const double*, const double*);
 void tm_stvk_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_whole_stress(const double*, const double*, double*);
-int tm_stvk_hex20_terms_precompute(const double*, const double*, double*);
+int tm_stvk_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex20_terms_energy(const double*, const double*);
 void tm_stvk_hex20_terms_gradient(const double*, const double*, double*);
 void tm_stvk_hex20_terms_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_terms_stress(const double*, const double*, double*);
-int tm_stvk_hex8_whole_precompute(const double*, const double*, double*);
+int tm_stvk_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_whole_energy(const double*, const double*);
 void tm_stvk_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_whole_stress(const double*, const double*, double*);
-int tm_stvk_hex8_terms_precompute(const double*, const double*, double*);
+int tm_stvk_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_terms_energy(const double*, const double*);
 void tm_stvk_hex8_terms_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_terms_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_terms_stress(const double*, const double*, double*);
-int tm_stvk_hex8_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_tensor_energy(const double*, const double*);
 void tm_stvk_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_tensor_stress(const double*, const double*, double*);
-int tm_stvk_prism6_whole_precompute(const double*, const double*, double*);
+int tm_stvk_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_whole_energy(const double*, const double*);
 void tm_stvk_prism6_whole_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_whole_hessian(const double*, const double*, double*);
@@ -643,19 +643,19 @@ void tm_stvk_prism6_whole_stress(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_prism6_terms_precompute(const double*, const double*, double*);
+int tm_stvk_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_terms_energy(const double*, const double*);
 void tm_stvk_prism6_terms_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_terms_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_terms_stress(const double*, const double*, double*);
-int tm_stvk_prism6_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_tensor_energy(const double*, const double*);
 void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_tensor_stress(const double*, const double*, double*);
-int tm_stvk_pyramid5_whole_precompute(const double*, const double*, double*);
+int tm_stvk_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_whole_energy(const double*, const double*);
 void tm_stvk_pyramid5_whole_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_hessian(const double*, const double*, double*);
@@ -664,19 +664,19 @@ void tm_stvk_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_pyramid5_terms_precompute(const double*, const double*, double*);
+int tm_stvk_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_terms_energy(const double*, const double*);
 void tm_stvk_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_stvk_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_terms_stress(const double*, const double*, double*);
-int tm_stvk_pyramid5_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_tensor_energy(const double*, const double*);
 void tm_stvk_pyramid5_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid5_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_pyramid5_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_tensor_stress(const double*, const double*, double*);
-int tm_stvk_quad4_whole_precompute(const double*, const double*, double*);
+int tm_stvk_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_whole_energy(const double*, const double*);
 void tm_stvk_quad4_whole_gradient(const double*, const double*, double*);
 void tm_stvk_quad4_whole_hessian(const double*, const double*, double*);
@@ -685,19 +685,19 @@ void tm_stvk_quad4_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad4_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_quad4_terms_precompute(const double*, const double*, double*);
+int tm_stvk_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_terms_energy(const double*, const double*);
 void tm_stvk_quad4_terms_gradient(const double*, const double*, double*);
 void tm_stvk_quad4_terms_hessian(const double*, const double*, double*);
 void tm_stvk_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad4_terms_stress(const double*, const double*, double*);
-int tm_stvk_quad4_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_tensor_energy(const double*, const double*);
 void tm_stvk_quad4_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_quad4_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_quad4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad4_tensor_stress(const double*, const double*, double*);
-int tm_stvk_quad8_whole_precompute(const double*, const double*, double*);
+int tm_stvk_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad8_whole_energy(const double*, const double*);
 void tm_stvk_quad8_whole_gradient(const double*, const double*, double*);
 void tm_stvk_quad8_whole_hessian(const double*, const double*, double*);
@@ -706,25 +706,25 @@ void tm_stvk_quad8_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad8_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_quad8_terms_precompute(const double*, const double*, double*);
+int tm_stvk_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad8_terms_energy(const double*, const double*);
 void tm_stvk_quad8_terms_gradient(const double*, const double*, double*);
 void tm_stvk_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stvk_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad8_terms_stress(const double*, const double*, double*);
-int tm_stvk_tet10_whole_precompute(const double*, const double*, double*);
+int tm_stvk_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_whole_energy(const double*, const double*);
 void tm_stvk_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stvk_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet10_whole_stress(const double*, const double*, double*);
-int tm_stvk_tet10_terms_precompute(const double*, const double*, double*);
+int tm_stvk_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_terms_energy(const double*, const double*);
 void tm_stvk_tet10_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tet10_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet10_terms_stress(const double*, const double*, double*);
-int tm_stvk_tet4_whole_precompute(const double*, const double*, double*);
+int tm_stvk_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_whole_energy(const double*, const double*);
 void tm_stvk_tet4_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tet4_whole_hessian(const double*, const double*, double*);
@@ -733,19 +733,19 @@ void tm_stvk_tet4_whole_stress(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tet4_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_tet4_terms_precompute(const double*, const double*, double*);
+int tm_stvk_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_terms_energy(const double*, const double*);
 void tm_stvk_tet4_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tet4_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet4_terms_stress(const double*, const double*, double*);
-int tm_stvk_tet4_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_tensor_energy(const double*, const double*);
 void tm_stvk_tet4_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_tet4_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_tet4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet4_tensor_stress(const double*, const double*, double*);
-int tm_stvk_tri3_whole_precompute(const double*, const double*, double*);
+int tm_stvk_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_whole_energy(const double*, const double*);
 void tm_stvk_tri3_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tri3_whole_hessian(const double*, const double*, double*);
@@ -754,19 +754,19 @@ void tm_stvk_tri3_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri3_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_tri3_terms_precompute(const double*, const double*, double*);
+int tm_stvk_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_terms_energy(const double*, const double*);
 void tm_stvk_tri3_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tri3_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tri3_terms_stress(const double*, const double*, double*);
-int tm_stvk_tri3_tensor_precompute(const double*, const double*, double*);
+int tm_stvk_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_tensor_energy(const double*, const double*);
 void tm_stvk_tri3_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_tri3_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_tri3_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tri3_tensor_stress(const double*, const double*, double*);
-int tm_stvk_tri6_whole_precompute(const double*, const double*, double*);
+int tm_stvk_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri6_whole_energy(const double*, const double*);
 void tm_stvk_tri6_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tri6_whole_hessian(const double*, const double*, double*);
@@ -775,7 +775,7 @@ void tm_stvk_tri6_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri6_whole_stress_batch(const double*, const double*, double*);
-int tm_stvk_tri6_terms_precompute(const double*, const double*, double*);
+int tm_stvk_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri6_terms_energy(const double*, const double*);
 void tm_stvk_tri6_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tri6_terms_hessian(const double*, const double*, double*);
@@ -785,715 +785,720 @@ void tm_stvk_tri6_terms_stress(const double*, const double*, double*);
 
 namespace {
 const char* const kCorotationalParameters[] = { "young", "poisson" };
+const tm_param_limit kCorotationalLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kHookeParameters[] = { "young", "poisson" };
+const tm_param_limit kHookeLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kNeohookeanParameters[] = { "young", "poisson" };
+const tm_param_limit kNeohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kStable_neohookeanParameters[] = { "young", "poisson" };
+const tm_param_limit kStable_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kStvkParameters[] = { "young", "poisson" };
+const tm_param_limit kStvkLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 
 const tm_kernel kKernels[] = {
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
-   kCorotationalParameters, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
    tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kCorotationalParameters, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
    tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1168695,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
-   kCorotationalParameters, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
    tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kCorotationalParameters, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
    tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 75152,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
-   kCorotationalParameters, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
    tm_corotational_prism6_whole_hessian, tm_corotational_prism6_whole_gradient_hessian, tm_corotational_prism6_whole_stress, 3906, 4704, 23898,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch},
 
   {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kCorotationalParameters, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
    tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 42576,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
-   kCorotationalParameters, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
    tm_corotational_pyramid5_whole_hessian, tm_corotational_pyramid5_whole_gradient_hessian, tm_corotational_pyramid5_whole_stress, 5064, 5984, 27832,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch},
 
   {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kCorotationalParameters, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
    tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 49448,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
-   kCorotationalParameters, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
    tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch},
 
   {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kCorotationalParameters, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
    tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2880,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
-   kCorotationalParameters, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
    tm_corotational_quad8_whole_hessian, tm_corotational_quad8_whole_gradient_hessian, tm_corotational_quad8_whole_stress, 936, 1593, 10683,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
    tm_corotational_quad8_whole_stress_batch},
 
   {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kCorotationalParameters, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
    tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 14454,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
-   kCorotationalParameters, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
    tm_corotational_tet10_whole_hessian, tm_corotational_tet10_whole_gradient_hessian, tm_corotational_tet10_whole_stress, 2892, 3712, 26876,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kCorotationalParameters, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
    tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 49264,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
-   kCorotationalParameters, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
    tm_corotational_tet4_whole_hessian, tm_corotational_tet4_whole_gradient_hessian, tm_corotational_tet4_whole_stress, 615, 712, 3047,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
    tm_corotational_tet4_whole_stress_batch},
 
   {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kCorotationalParameters, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
    tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5422,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
-   kCorotationalParameters, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
    tm_corotational_tri3_whole_hessian, tm_corotational_tri3_whole_gradient_hessian, tm_corotational_tri3_whole_stress, 64, 97, 397,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
    tm_corotational_tri3_whole_stress_batch},
 
   {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kCorotationalParameters, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
    tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 581,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
-   kCorotationalParameters, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
    tm_corotational_tri6_whole_hessian, tm_corotational_tri6_whole_gradient_hessian, tm_corotational_tri6_whole_stress, 264, 435, 2397,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
    tm_corotational_tri6_whole_stress_batch},
 
   {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kCorotationalParameters, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
    tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3291,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
-   kHookeParameters, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
    tm_hooke_hex20_whole_hessian, tm_hooke_hex20_whole_gradient_hessian, tm_hooke_hex20_whole_stress, 10341, 19818, 447606,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kHookeParameters, tm_hooke_hex20_terms_precompute, tm_hooke_hex20_terms_energy, tm_hooke_hex20_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_hex20_terms_precompute, tm_hooke_hex20_terms_energy, tm_hooke_hex20_terms_gradient,
    tm_hooke_hex20_terms_hessian, tm_hooke_hex20_terms_gradient_hessian, tm_hooke_hex20_terms_stress, 10341, 60210, 270054,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
-   kHookeParameters, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
    tm_hooke_hex8_whole_hessian, tm_hooke_hex8_whole_gradient_hessian, tm_hooke_hex8_whole_stress, 1336, 2416, 25488,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kHookeParameters, tm_hooke_hex8_terms_precompute, tm_hooke_hex8_terms_energy, tm_hooke_hex8_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_hex8_terms_precompute, tm_hooke_hex8_terms_energy, tm_hooke_hex8_terms_gradient,
    tm_hooke_hex8_terms_hessian, tm_hooke_hex8_terms_gradient_hessian, tm_hooke_hex8_terms_stress, 1336, 3680, 13536,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
-   kHookeParameters, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
    tm_hooke_hex8_tensor_hessian, tm_hooke_hex8_tensor_gradient_hessian, tm_hooke_hex8_tensor_stress, 1200, 1152, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
-   kHookeParameters, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
    tm_hooke_prism6_whole_hessian, tm_hooke_prism6_whole_gradient_hessian, tm_hooke_prism6_whole_stress, 786, 1380, 11772,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
    tm_hooke_prism6_whole_stress_batch},
 
   {"hooke", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kHookeParameters, tm_hooke_prism6_terms_precompute, tm_hooke_prism6_terms_energy, tm_hooke_prism6_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_prism6_terms_precompute, tm_hooke_prism6_terms_energy, tm_hooke_prism6_terms_gradient,
    tm_hooke_prism6_terms_hessian, tm_hooke_prism6_terms_gradient_hessian, tm_hooke_prism6_terms_stress, 786, 2112, 6186,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
-   kHookeParameters, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
-   kHookeParameters, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
    tm_hooke_pyramid5_whole_hessian, tm_hooke_pyramid5_whole_gradient_hessian, tm_hooke_pyramid5_whole_stress, 904, 1552, 11664,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
    tm_hooke_pyramid5_whole_stress_batch},
 
   {"hooke", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kHookeParameters, tm_hooke_pyramid5_terms_precompute, tm_hooke_pyramid5_terms_energy, tm_hooke_pyramid5_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid5_terms_precompute, tm_hooke_pyramid5_terms_energy, tm_hooke_pyramid5_terms_gradient,
    tm_hooke_pyramid5_terms_hessian, tm_hooke_pyramid5_terms_gradient_hessian, tm_hooke_pyramid5_terms_stress, 904, 2384, 6072,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
-   kHookeParameters, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
    tm_hooke_pyramid5_tensor_hessian, tm_hooke_pyramid5_tensor_gradient_hessian, tm_hooke_pyramid5_tensor_stress, 480, 450, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
-   kHookeParameters, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
    tm_hooke_quad4_whole_hessian, tm_hooke_quad4_whole_gradient_hessian, tm_hooke_quad4_whole_stress, 180, 296, 1240,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
    tm_hooke_quad4_whole_stress_batch},
 
   {"hooke", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kHookeParameters, tm_hooke_quad4_terms_precompute, tm_hooke_quad4_terms_energy, tm_hooke_quad4_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_quad4_terms_precompute, tm_hooke_quad4_terms_energy, tm_hooke_quad4_terms_gradient,
    tm_hooke_quad4_terms_hessian, tm_hooke_quad4_terms_gradient_hessian, tm_hooke_quad4_terms_stress, 180, 464, 956,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
-   kHookeParameters, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
    tm_hooke_quad4_tensor_hessian, tm_hooke_quad4_tensor_gradient_hessian, tm_hooke_quad4_tensor_stress, 144, 128, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
-   kHookeParameters, tm_hooke_quad8_whole_precompute, tm_hooke_quad8_whole_energy, tm_hooke_quad8_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_quad8_whole_precompute, tm_hooke_quad8_whole_energy, tm_hooke_quad8_whole_gradient,
    tm_hooke_quad8_whole_hessian, tm_hooke_quad8_whole_gradient_hessian, tm_hooke_quad8_whole_stress, 693, 1242, 8910,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
    tm_hooke_quad8_whole_stress_batch},
 
   {"hooke", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kHookeParameters, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
    tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 6651,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
-   kHookeParameters, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
    tm_hooke_tet10_whole_hessian, tm_hooke_tet10_whole_gradient_hessian, tm_hooke_tet10_whole_stress, 812, 1496, 18792,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kHookeParameters, tm_hooke_tet10_terms_precompute, tm_hooke_tet10_terms_energy, tm_hooke_tet10_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tet10_terms_precompute, tm_hooke_tet10_terms_energy, tm_hooke_tet10_terms_gradient,
    tm_hooke_tet10_terms_hessian, tm_hooke_tet10_terms_gradient_hessian, tm_hooke_tet10_terms_stress, 812, 2272, 10036,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
-   kHookeParameters, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
    tm_hooke_tet4_whole_hessian, tm_hooke_tet4_whole_gradient_hessian, tm_hooke_tet4_whole_stress, 95, 158, 1026,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
    tm_hooke_tet4_whole_stress_batch},
 
   {"hooke", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kHookeParameters, tm_hooke_tet4_terms_precompute, tm_hooke_tet4_terms_energy, tm_hooke_tet4_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tet4_terms_precompute, tm_hooke_tet4_terms_energy, tm_hooke_tet4_terms_gradient,
    tm_hooke_tet4_terms_hessian, tm_hooke_tet4_terms_gradient_hessian, tm_hooke_tet4_terms_stress, 95, 244, 526,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
-   kHookeParameters, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
    tm_hooke_tet4_tensor_hessian, tm_hooke_tet4_tensor_gradient_hessian, tm_hooke_tet4_tensor_stress, 312, 288, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
-   kHookeParameters, tm_hooke_tri3_whole_precompute, tm_hooke_tri3_whole_energy, tm_hooke_tri3_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tri3_whole_precompute, tm_hooke_tri3_whole_energy, tm_hooke_tri3_whole_gradient,
    tm_hooke_tri3_whole_hessian, tm_hooke_tri3_whole_gradient_hessian, tm_hooke_tri3_whole_stress, 37, 58, 200,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
    tm_hooke_tri3_whole_stress_batch},
 
   {"hooke", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kHookeParameters, tm_hooke_tri3_terms_precompute, tm_hooke_tri3_terms_energy, tm_hooke_tri3_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tri3_terms_precompute, tm_hooke_tri3_terms_energy, tm_hooke_tri3_terms_gradient,
    tm_hooke_tri3_terms_hessian, tm_hooke_tri3_terms_gradient_hessian, tm_hooke_tri3_terms_stress, 37, 92, 154,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
-   kHookeParameters, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
    tm_hooke_tri3_tensor_hessian, tm_hooke_tri3_tensor_gradient_hessian, tm_hooke_tri3_tensor_stress, 84, 72, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
-   kHookeParameters, tm_hooke_tri6_whole_precompute, tm_hooke_tri6_whole_energy, tm_hooke_tri6_whole_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tri6_whole_precompute, tm_hooke_tri6_whole_energy, tm_hooke_tri6_whole_gradient,
    tm_hooke_tri6_whole_hessian, tm_hooke_tri6_whole_gradient_hessian, tm_hooke_tri6_whole_stress, 183, 318, 1806,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
    tm_hooke_tri6_whole_stress_batch},
 
   {"hooke", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kHookeParameters, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
+   kHookeParameters, kHookeLimits, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
    tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1371,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
-   kNeohookeanParameters, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
    tm_neohookean_hex20_whole_hessian, tm_neohookean_hex20_whole_gradient_hessian, tm_neohookean_hex20_whole_stress, 11178, 22761, 461187,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kNeohookeanParameters, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
    tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 964440,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
-   kNeohookeanParameters, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
    tm_neohookean_hex8_whole_hessian, tm_neohookean_hex8_whole_gradient_hessian, tm_neohookean_hex8_whole_stress, 1584, 3288, 29512,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kNeohookeanParameters, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
    tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 50944,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
-   kNeohookeanParameters, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
    tm_neohookean_prism6_whole_hessian, tm_neohookean_prism6_whole_gradient_hessian, tm_neohookean_prism6_whole_stress, 972, 2034, 14790,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch},
 
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kNeohookeanParameters, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
    tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 24420,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
-   kNeohookeanParameters, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
    tm_neohookean_pyramid5_whole_hessian, tm_neohookean_pyramid5_whole_gradient_hessian, tm_neohookean_pyramid5_whole_stress, 1152, 2424, 15688,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch},
 
   {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kNeohookeanParameters, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
    tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 25240,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
-   kNeohookeanParameters, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
    tm_neohookean_quad4_whole_hessian, tm_neohookean_quad4_whole_gradient_hessian, tm_neohookean_quad4_whole_stress, 216, 404, 1728,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch},
 
   {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kNeohookeanParameters, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
    tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2280,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
-   kNeohookeanParameters, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
    tm_neohookean_quad8_whole_hessian, tm_neohookean_quad8_whole_gradient_hessian, tm_neohookean_quad8_whole_stress, 774, 1485, 10008,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
    tm_neohookean_quad8_whole_stress_batch},
 
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kNeohookeanParameters, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
    tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 13104,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
-   kNeohookeanParameters, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
    tm_neohookean_tet10_whole_hessian, tm_neohookean_tet10_whole_gradient_hessian, tm_neohookean_tet10_whole_stress, 936, 1932, 20804,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kNeohookeanParameters, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
    tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 37160,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
-   kNeohookeanParameters, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
    tm_neohookean_tet4_whole_hessian, tm_neohookean_tet4_whole_gradient_hessian, tm_neohookean_tet4_whole_stress, 126, 267, 1529,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
    tm_neohookean_tet4_whole_stress_batch},
 
   {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kNeohookeanParameters, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
    tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2396,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
-   kNeohookeanParameters, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
    tm_neohookean_tri3_whole_hessian, tm_neohookean_tri3_whole_gradient_hessian, tm_neohookean_tri3_whole_stress, 46, 85, 322,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
    tm_neohookean_tri3_whole_stress_batch},
 
   {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kNeohookeanParameters, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
    tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 431,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
-   kNeohookeanParameters, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
    tm_neohookean_tri6_whole_hessian, tm_neohookean_tri6_whole_gradient_hessian, tm_neohookean_tri6_whole_stress, 210, 399, 2172,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
    tm_neohookean_tri6_whole_stress_batch},
 
   {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kNeohookeanParameters, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
    tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2841,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
-   kStable_neohookeanParameters, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
    tm_stable_neohookean_hex20_whole_hessian, tm_stable_neohookean_hex20_whole_gradient_hessian, tm_stable_neohookean_hex20_whole_stress, 12069, 24408, 460647,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kStable_neohookeanParameters, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
    tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 962820,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
-   kStable_neohookeanParameters, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
    tm_stable_neohookean_hex8_whole_hessian, tm_stable_neohookean_hex8_whole_gradient_hessian, tm_stable_neohookean_hex8_whole_stress, 1848, 3776, 29352,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kStable_neohookeanParameters, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
    tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 50752,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
-   kStable_neohookeanParameters, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
    tm_stable_neohookean_prism6_whole_hessian, tm_stable_neohookean_prism6_whole_gradient_hessian, tm_stable_neohookean_prism6_whole_stress, 1170, 2400, 14670,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch},
 
   {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kStable_neohookeanParameters, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
    tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 24276,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
-   kStable_neohookeanParameters, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
    tm_stable_neohookean_pyramid5_whole_hessian, tm_stable_neohookean_pyramid5_whole_gradient_hessian, tm_stable_neohookean_pyramid5_whole_stress, 1416, 2912, 15528,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch},
 
   {"stable_neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kStable_neohookeanParameters, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
    tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 25048,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
-   kStable_neohookeanParameters, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
    tm_stable_neohookean_quad4_whole_hessian, tm_stable_neohookean_quad4_whole_gradient_hessian, tm_stable_neohookean_quad4_whole_stress, 308, 512, 1736,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch},
 
   {"stable_neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kStable_neohookeanParameters, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
    tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2304,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
-   kStable_neohookeanParameters, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
    tm_stable_neohookean_quad8_whole_hessian, tm_stable_neohookean_quad8_whole_gradient_hessian, tm_stable_neohookean_quad8_whole_stress, 981, 1728, 10026,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad8_whole_stress_batch},
 
   {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kStable_neohookeanParameters, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
    tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 13158,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
-   kStable_neohookeanParameters, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
    tm_stable_neohookean_tet10_whole_hessian, tm_stable_neohookean_tet10_whole_gradient_hessian, tm_stable_neohookean_tet10_whole_stress, 1068, 2176, 20724,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kStable_neohookeanParameters, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
    tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 37064,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
-   kStable_neohookeanParameters, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
    tm_stable_neohookean_tet4_whole_hessian, tm_stable_neohookean_tet4_whole_gradient_hessian, tm_stable_neohookean_tet4_whole_stress, 159, 328, 1509,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
    tm_stable_neohookean_tet4_whole_stress_batch},
 
   {"stable_neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kStable_neohookeanParameters, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
    tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2372,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
-   kStable_neohookeanParameters, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
    tm_stable_neohookean_tri3_whole_hessian, tm_stable_neohookean_tri3_whole_gradient_hessian, tm_stable_neohookean_tri3_whole_stress, 69, 112, 324,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri3_whole_stress_batch},
 
   {"stable_neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kStable_neohookeanParameters, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
    tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 437,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
-   kStable_neohookeanParameters, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
    tm_stable_neohookean_tri6_whole_hessian, tm_stable_neohookean_tri6_whole_gradient_hessian, tm_stable_neohookean_tri6_whole_stress, 279, 480, 2178,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri6_whole_stress_batch},
 
   {"stable_neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kStable_neohookeanParameters, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
    tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2859,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
-   kStvkParameters, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
    tm_stvk_hex20_whole_hessian, tm_stvk_hex20_whole_gradient_hessian, tm_stvk_hex20_whole_stress, 11502, 23301, 459864,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kStvkParameters, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
    tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 952155,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
-   kStvkParameters, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
    tm_stvk_hex8_whole_hessian, tm_stvk_hex8_whole_gradient_hessian, tm_stvk_hex8_whole_stress, 1680, 3448, 29120,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kStvkParameters, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
    tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 49488,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
-   kStvkParameters, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
    tm_stvk_hex8_tensor_hessian, tm_stvk_hex8_tensor_gradient_hessian, tm_stvk_hex8_tensor_stress, 5844, 9012, 57684,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
-   kStvkParameters, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
    tm_stvk_prism6_whole_hessian, tm_stvk_prism6_whole_gradient_hessian, tm_stvk_prism6_whole_stress, 1044, 2154, 14496,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
    tm_stvk_prism6_whole_stress_batch},
 
   {"stvk", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kStvkParameters, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
    tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 23328,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
-   kStvkParameters, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
-   kStvkParameters, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
    tm_stvk_pyramid5_whole_hessian, tm_stvk_pyramid5_whole_gradient_hessian, tm_stvk_pyramid5_whole_stress, 1248, 2584, 15296,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
    tm_stvk_pyramid5_whole_stress_batch},
 
   {"stvk", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kStvkParameters, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
    tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 23784,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
-   kStvkParameters, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
    tm_stvk_pyramid5_tensor_hessian, tm_stvk_pyramid5_tensor_gradient_hessian, tm_stvk_pyramid5_tensor_stress, 1515, 2400, 11850,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
-   kStvkParameters, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
    tm_stvk_quad4_whole_hessian, tm_stvk_quad4_whole_gradient_hessian, tm_stvk_quad4_whole_stress, 248, 472, 1736,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
    tm_stvk_quad4_whole_stress_batch},
 
   {"stvk", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kStvkParameters, tm_stvk_quad4_terms_precompute, tm_stvk_quad4_terms_energy, tm_stvk_quad4_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_quad4_terms_precompute, tm_stvk_quad4_terms_energy, tm_stvk_quad4_terms_gradient,
    tm_stvk_quad4_terms_hessian, tm_stvk_quad4_terms_gradient_hessian, tm_stvk_quad4_terms_stress, 248, 816, 2248,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
-   kStvkParameters, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
    tm_stvk_quad4_tensor_hessian, tm_stvk_quad4_tensor_gradient_hessian, tm_stvk_quad4_tensor_stress, 574, 886, 3078,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
-   kStvkParameters, tm_stvk_quad8_whole_precompute, tm_stvk_quad8_whole_energy, tm_stvk_quad8_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_quad8_whole_precompute, tm_stvk_quad8_whole_energy, tm_stvk_quad8_whole_gradient,
    tm_stvk_quad8_whole_hessian, tm_stvk_quad8_whole_gradient_hessian, tm_stvk_quad8_whole_stress, 846, 1638, 10026,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
    tm_stvk_quad8_whole_stress_batch},
 
   {"stvk", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kStvkParameters, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
    tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 13032,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
-   kStvkParameters, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
    tm_stvk_tet10_whole_hessian, tm_stvk_tet10_whole_gradient_hessian, tm_stvk_tet10_whole_stress, 984, 2012, 20608,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kStvkParameters, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
    tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 36432,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
-   kStvkParameters, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
    tm_stvk_tet4_whole_hessian, tm_stvk_tet4_whole_gradient_hessian, tm_stvk_tet4_whole_stress, 138, 287, 1480,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
    tm_stvk_tet4_whole_stress_batch},
 
   {"stvk", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kStvkParameters, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
    tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2214,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
-   kStvkParameters, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
    tm_stvk_tet4_tensor_hessian, tm_stvk_tet4_tensor_gradient_hessian, tm_stvk_tet4_tensor_stress, 842, 1330, 5722,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
-   kStvkParameters, tm_stvk_tri3_whole_precompute, tm_stvk_tri3_whole_energy, tm_stvk_tri3_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tri3_whole_precompute, tm_stvk_tri3_whole_energy, tm_stvk_tri3_whole_gradient,
    tm_stvk_tri3_whole_hessian, tm_stvk_tri3_whole_gradient_hessian, tm_stvk_tri3_whole_stress, 54, 102, 324,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
    tm_stvk_tri3_whole_stress_batch},
 
   {"stvk", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kStvkParameters, tm_stvk_tri3_terms_precompute, tm_stvk_tri3_terms_energy, tm_stvk_tri3_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tri3_terms_precompute, tm_stvk_tri3_terms_energy, tm_stvk_tri3_terms_gradient,
    tm_stvk_tri3_terms_hessian, tm_stvk_tri3_terms_gradient_hessian, tm_stvk_tri3_terms_stress, 54, 180, 423,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
-   kStvkParameters, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
    tm_stvk_tri3_tensor_hessian, tm_stvk_tri3_tensor_gradient_hessian, tm_stvk_tri3_tensor_stress, 270, 414, 1206,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
-   kStvkParameters, tm_stvk_tri6_whole_precompute, tm_stvk_tri6_whole_energy, tm_stvk_tri6_whole_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tri6_whole_precompute, tm_stvk_tri6_whole_energy, tm_stvk_tri6_whole_gradient,
    tm_stvk_tri6_whole_hessian, tm_stvk_tri6_whole_gradient_hessian, tm_stvk_tri6_whole_stress, 234, 450, 2178,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch},
 
   {"stvk", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kStvkParameters, tm_stvk_tri6_terms_precompute, tm_stvk_tri6_terms_energy, tm_stvk_tri6_terms_gradient,
+   kStvkParameters, kStvkLimits, tm_stvk_tri6_terms_precompute, tm_stvk_tri6_terms_energy, tm_stvk_tri6_terms_gradient,
    tm_stvk_tri6_terms_hessian, tm_stvk_tri6_terms_gradient_hessian, tm_stvk_tri6_terms_stress, 234, 756, 2817,
    0, 0,
    0, nullptr, nullptr, nullptr},

@@ -15,7 +15,7 @@ from pathlib import Path
 import jinja2
 
 from .ir import ElementIR, KernelIR, LoweredIR, TensorIR, TermsIR, WholeIR
-from .model import Block
+from .model import Block, LawSpec, ParamLimit
 from .printer import double_literal, print_expr
 
 
@@ -47,6 +47,25 @@ def _printed(block: Block, names: dict[str, str], dim: int = 0) -> dict:
 
 def _literals(values) -> list[str]:
     return [double_literal(v) for v in values]
+
+
+def _limit_context(limit: ParamLimit) -> dict:
+    """One tm_param_limit initialiser's fields as C text."""
+    return {
+        "lower": "-HUGE_VAL" if limit.lower is None else double_literal(float(limit.lower)),
+        "upper": "HUGE_VAL" if limit.upper is None else double_literal(float(limit.upper)),
+        "lower_inclusive": int(limit.lower_inclusive),
+        "upper_inclusive": int(limit.upper_inclusive),
+    }
+
+
+def law_context(law: LawSpec) -> dict:
+    """The template context of one law (an item of registry.cpp.j2's `laws`)."""
+    return {
+        "name": law.name,
+        "parameters": list(law.parameters),
+        "limits": [_limit_context(law.limit(p)) for p in law.parameters],
+    }
 
 
 def _tangent_fill(k: KernelIR) -> list[str]:
@@ -89,6 +108,7 @@ def kernel_context(k: KernelIR) -> dict:
         "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched,
         "rotation": "rotation" in k.law_ir.tangent.auxiliaries,
         "parameters": list(law.parameters),
+        "limits": [_limit_context(law.limit(p)) for p in law.parameters],
         "derived": [name for name, _ in law.derived],
         "derived_code": [(name, print_expr(expr, names)) for name, expr in law.derived],
         "weights": _literals(k.tables.weights),
@@ -161,7 +181,8 @@ def emit(lowered: LoweredIR, templates: Path) -> dict[str, str]:
             part_template = env.get_template("kernel_terms_part.cpp.j2")
             for part in context["parts"]:
                 files[f"kernels/{context['prefix'][3:]}_part{part['index']}.cpp"] = part_template.render(k=context, p=part)
-    files["registry.cpp"] = env.get_template("registry.cpp.j2").render(kernels=contexts, laws=lowered.laws)
+    files["registry.cpp"] = env.get_template("registry.cpp.j2").render(
+        kernels=contexts, laws=[law_context(law) for law in lowered.laws])
     files["elements.cpp"] = env.get_template("elements.cpp.j2").render(
         elements=[element_context(e) for e in lowered.elements])
     files["sources.cmake"] = env.get_template("sources.cmake.j2").render(files=sorted(files))

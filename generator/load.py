@@ -7,13 +7,14 @@ later stages rely on about the files' structure is checked here.
 """
 from __future__ import annotations
 
+import re
 import tomllib
 from pathlib import Path
 from typing import Any
 
 import sympy
 
-from .model import ElementSpec, FormatOrder, Inputs, LawSpec, QuadratureRule
+from .model import ElementSpec, FormatOrder, Inputs, LawSpec, ParamLimit, QuadratureRule
 
 REFERENCE_VARIABLES = sympy.symbols("r s t", real=True)
 ELEMENT_KEYS = {
@@ -25,7 +26,9 @@ ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
 RULE_KEYS = {"degree", "points", "weights"}
 FORMAT_KEYS = {"type", "node_order"}
 LAW_KEYS = {"name", "description", "energy", "parameters", "derived"}
-LAW_OPTIONAL_KEYS = {"invertible"}
+LAW_OPTIONAL_KEYS = {"invertible", "limits"}
+# One limit: `parameter op number`, op one of > >= < <=.
+_LIMIT = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|>|<)\s*([^<>=\s].*?)\s*$")
 
 
 class GeneratorInputError(Exception):
@@ -189,6 +192,35 @@ def load_element(path: Path) -> ElementSpec:
     )
 
 
+def _limits(data: Any, parameters: list[str], source: str) -> tuple[ParamLimit, ...]:
+    """One ParamLimit per parameter from the `limits` list ("young > 0", "poisson < 1/2", ...)."""
+    if not isinstance(data, list):
+        raise _fail(source, "limits", 'expected a list of inequalities such as "young > 0"')
+    bounds: dict[str, dict] = {p: {} for p in parameters}
+    for i, text in enumerate(data):
+        key = f"limits[{i}]"
+        match = _LIMIT.match(text) if isinstance(text, str) else None
+        if not match:
+            raise _fail(source, key, f"expected \"parameter op number\" with op one of > >= < <=, got {text!r}")
+        name, op, number = match.groups()
+        if name not in bounds:
+            raise _fail(source, key, f"'{name}' is not a parameter; parameters are {parameters}")
+        value = _number(number, source, key)
+        side = "lower" if op.startswith(">") else "upper"
+        if side in bounds[name]:
+            raise _fail(source, key, f"a second {side} bound for '{name}'")
+        bounds[name][side] = (value, op.endswith("="))
+    limits = []
+    for name in parameters:
+        lower, upper = bounds[name].get("lower"), bounds[name].get("upper")
+        limit = ParamLimit(lower=lower[0] if lower else None, upper=upper[0] if upper else None,
+                           lower_inclusive=bool(lower and lower[1]), upper_inclusive=bool(upper and upper[1]))
+        if lower and upper and (lower[0] > upper[0] or (lower[0] == upper[0] and not (lower[1] and upper[1]))):
+            raise _fail(source, "limits", f"no value of '{name}' satisfies its limits")
+        limits.append(limit)
+    return tuple(limits)
+
+
 def load_law(path: Path) -> LawSpec:
     source = str(path)
     data = _read_toml(path)
@@ -226,6 +258,7 @@ def load_law(path: Path) -> LawSpec:
         parameters=tuple(parameters),
         derived=tuple(derived),
         invertible=data.get("invertible", False),
+        limits=_limits(data.get("limits", []), parameters, source),
     )
 
 

@@ -72,6 +72,17 @@ class ElementSpec:
 
 
 @dataclass(frozen=True)
+class ParamLimit:
+    """The values one parameter may take, from the law file's `limits`:
+    lower < p (lower <= p when lower_inclusive), likewise for upper; None
+    where the file states no bound."""
+    lower: Optional[sympy.Expr] = None
+    upper: Optional[sympy.Expr] = None
+    lower_inclusive: bool = False
+    upper_inclusive: bool = False
+
+
+@dataclass(frozen=True)
 class LawSpec:
     name: str
     description: str
@@ -80,6 +91,12 @@ class LawSpec:
     parameters: tuple[str, ...]  # user-facing parameters, in kernel order
     derived: tuple[tuple[str, sympy.Expr], ...]  # (name, expression of parameters)
     invertible: bool = False  # defined and finite for det F <= 0 (checked by the symbolic stage)
+    limits: tuple[ParamLimit, ...] = ()  # one per parameter (unbounded when the file gives none)
+
+    def limit(self, parameter: str) -> ParamLimit:
+        """The limits of one parameter (unbounded when none are stated)."""
+        index = self.parameters.index(parameter)
+        return self.limits[index] if self.limits else ParamLimit()
 
 
 @dataclass(frozen=True)

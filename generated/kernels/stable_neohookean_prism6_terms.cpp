@@ -19,7 +19,9 @@ constexpr int kDim = 3;
 constexpr int kNodes = 6;
 constexpr int kDofs = 18;
 constexpr int kPoints = 6;
+constexpr int kParams = 2;
 constexpr int kDerived = 2;
+constexpr tm_param_limit kLimits[kParams] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 constexpr int kStride = 1 + kDim * kNodes;  // per point: w*det(J), then G^T
 constexpr double kWeights[kPoints] = { 0.16666666666666666, 0.16666666666666666, 0.16666666666666666, 0.16666666666666666, 0.16666666666666666, 0.16666666666666666 };
 constexpr double kReferenceGradients[kPoints][kNodes][kDim] = {
@@ -305,7 +307,9 @@ inline void law_tangent(Matrix H, double w, Params consts, Out wP, Out wA) {
 }
 }  // namespace
 
-extern "C" int tm_stable_neohookean_prism6_terms_precompute(const double* rest_positions, const double* params, double* consts) {
+extern "C" int tm_stable_neohookean_prism6_terms_precompute(const double* rest_positions, const double* params, int param_count,
+                                                            double* consts) {
+  if (const int status = tensormass::kernel::check_parameters(params, param_count, kLimits)) return status;
   const double young = params[0];
   const double poisson = params[1];
   consts[0] = poisson*young/((1.0 - 2.0*poisson)*(poisson + 1.0));

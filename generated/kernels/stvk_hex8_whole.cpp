@@ -12,7 +12,9 @@ constexpr int kDim = 3;
 constexpr int kNodes = 8;
 constexpr int kDofs = 24;
 constexpr int kPoints = 8;
+constexpr int kParams = 2;
 constexpr int kDerived = 2;
+constexpr tm_param_limit kLimits[kParams] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 constexpr int kStride = 1 + kDim * kNodes;  // per point: w*det(J), then G^T
 constexpr double kWeights[kPoints] = { 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0 };
 constexpr double kReferenceGradients[kPoints][kNodes][kDim] = {
@@ -319,7 +321,9 @@ inline void law_tangent(Matrix H, double w, Params consts, Out wP, Out wA) {
 }
 }  // namespace
 
-extern "C" int tm_stvk_hex8_whole_precompute(const double* rest_positions, const double* params, double* consts) {
+extern "C" int tm_stvk_hex8_whole_precompute(const double* rest_positions, const double* params, int param_count,
+                                             double* consts) {
+  if (const int status = tensormass::kernel::check_parameters(params, param_count, kLimits)) return status;
   const double young = params[0];
   const double poisson = params[1];
   consts[0] = poisson*young/((1.0 - 2.0*poisson)*(poisson + 1.0));

@@ -17,3 +17,27 @@ def regenerated():
     """(files, report) of `generate(ROOT)`: every generated file's text and the stage report."""
     from generator.compiler import generate
     return generate(ROOT)
+
+
+def value_inside(limit, index: int = 0) -> float:
+    """A parameter value inside a law's limits (generator.model.ParamLimit),
+    away from the bounds and different per parameter index."""
+    lower = None if limit.lower is None else float(limit.lower)
+    upper = None if limit.upper is None else float(limit.upper)
+    if lower is not None and upper is not None:
+        return lower + (0.77 - 0.05 * index) * (upper - lower)
+    if lower is not None:
+        return lower + 1.3 + 0.4 * index
+    if upper is not None:
+        return upper - 1.3 - 0.4 * index
+    return 1.3 + 0.4 * index
+
+
+def values_outside(limit) -> list[float]:
+    """Finite values a law's limits refuse: on an exclusive bound, beyond an inclusive one."""
+    values = []
+    if limit.lower is not None:
+        values.append(float(limit.lower) - (1.0 if limit.lower_inclusive else 0.0))
+    if limit.upper is not None:
+        values.append(float(limit.upper) + (1.0 if limit.upper_inclusive else 0.0))
+    return values

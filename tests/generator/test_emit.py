@@ -80,3 +80,62 @@ def test_tensor_kernels_call_the_support_code(regenerated):
         assert "for (int p = 0;" not in text and "kPairOf" not in text, f"{name} still carries the pair loops"
     template = (TEMPLATES / "kernel_tensor.cpp.j2").read_text()
     assert len(template.splitlines()) < 80, "the tensor split's loops belong in tensor_split.hpp"
+
+
+def test_precompute_checks_the_parameters_before_writing_constants(tmp_path):
+    """Compiled and run: TM_PRECOMPUTE_PARAM_COUNT for a wrong count, TM_PRECOMPUTE_BAD_PARAM - p for a
+    parameter p that is not finite or outside its limits (consts untouched), q + 1 for a flat element, 0 else."""
+    import json
+    import shutil
+    import subprocess
+
+    from conftest import value_inside, values_outside
+    from generator.load import load_element, load_law
+
+    compiler = shutil.which("g++")
+    if not compiler:
+        import pytest
+        pytest.skip("no g++")
+    rows = json.loads((ROOT / "generated" / "manifest.json").read_text())["kernels"]
+    row = next(r for r in rows if r["split"] == "whole" and load_law(ROOT / "laws" / f"{r['law']}.toml").limits)
+    law = load_law(ROOT / "laws" / f"{row['law']}.toml")
+    element = load_element(ROOT / "elements" / f"{row['element']}.toml")
+    limits = [law.limit(p) for p in law.parameters]
+    good = [value_inside(limit, i) for i, limit in enumerate(limits)]
+    cases = [(good + [1.0], len(good) + 1, -1), (good, len(good) - 1, -1), (good, len(good), 0)]
+    for p, limit in enumerate(limits):
+        for bad in values_outside(limit) + ["NAN", "INFINITY", "-INFINITY"]:
+            params = list(good)
+            params[p] = bad
+            cases.append((params, len(good), -2 - p))
+    rest = [float(x) for node in element.nodes for x in node]
+    prefix = f"tm_{row['law']}_{row['element']}_whole"
+    calls = "\n".join(
+        f"  {{ const double p[] = {{ {', '.join(map(str, params))} }}; fill(); "
+        f"const int code = {prefix}_precompute(rest, p, {count}, consts); "
+        f"std::printf(\"%d %d\\n\", code, untouched()); }}"
+        for params, count, _ in cases)
+    main = tmp_path / "main.cpp"
+    main.write_text(f"""#include <cmath>
+#include <cstdio>
+extern "C" int {prefix}_precompute(const double*, const double*, int, double*);
+static double consts[{row['consts']}];
+static void fill() {{ for (double& c : consts) c = 7.0; }}
+static int untouched() {{ for (double c : consts) if (c != 7.0) return 0; return 1; }}
+int main() {{
+  const double rest[] = {{ {', '.join(map(str, rest))} }};
+{calls}
+  {{ const double flat[{len(rest)}] = {{}}; const double p[] = {{ {', '.join(map(str, good))} }};
+    std::printf("%d\\n", {prefix}_precompute(flat, p, {len(good)}, consts)); }}
+}}
+""")
+    binary = tmp_path / "main"
+    subprocess.run([compiler, "-std=c++20", "-O0", "-I", str(ROOT / "runtime" / "include"), str(main),
+                    str(ROOT / "generated" / "kernels" / f"{row['law']}_{row['element']}_whole.cpp"),
+                    "-o", str(binary)], check=True, capture_output=True)
+    lines = subprocess.run([str(binary)], check=True, capture_output=True, text=True).stdout.split("\n")
+    for (params, count, expected), line in zip(cases, lines):
+        code, untouched = map(int, line.split())
+        assert code == expected, (params, count)
+        assert untouched == (expected != 0), (params, count)
+    assert int(lines[len(cases)]) == 1  # the first quadrature point's rest Jacobian is singular

@@ -6,6 +6,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+import sympy
 
 from conftest import ROOT
 from generator.load import GeneratorInputError, load_all, load_element, load_law
@@ -84,3 +85,41 @@ def test_law_invertible_must_be_a_boolean(tmp_path):
                                                                                    'invertible = "yes"'))
     with pytest.raises(GeneratorInputError, match=r"stable_neohookean.toml.*invertible.*true or false"):
         load_law(path)
+
+
+def _law_with_limits(tmp_path: Path, limits: str) -> Path:
+    """A copy of a law file with (young, poisson) whose `limits` line is replaced."""
+    source = next(p for p in sorted((ROOT / "laws").glob("*.toml"))
+                  if 'parameters = ["young", "poisson"]' in p.read_text())
+    lines = [line for line in source.read_text().splitlines() if not line.startswith("limits")]
+    lines.insert(next(i for i, line in enumerate(lines) if line.startswith("parameters")) + 1, limits)
+    path = tmp_path / source.name
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_limits_give_one_interval_per_parameter(tmp_path):
+    from generator.model import ParamLimit
+    law = load_law(_law_with_limits(tmp_path, 'limits = ["young > 0", "poisson >= -1", "poisson < 1/2"]'))
+    assert law.limits == (ParamLimit(lower=0, upper=None), ParamLimit(lower=-1, upper=sympy.Rational(1, 2),
+                                                                      lower_inclusive=True))
+    assert law.limit("poisson").upper == sympy.Rational(1, 2)
+    unbounded = load_law(_law_with_limits(tmp_path, ""))
+    assert unbounded.limit("young") == ParamLimit()
+
+
+@pytest.mark.parametrize("limits, key, message", [
+    ('limits = ["nu > 0"]', "limits[0]", "not a parameter"),
+    ('limits = ["young > 0", "young >> 1"]', "limits[1]", "op one of"),
+    ('limits = ["young = 1"]', "limits[0]", "op one of"),
+    ('limits = ["young > q"]', "limits[0]", "not a finite real number"),
+    ('limits = ["young > 0", "young >= 1"]', "limits[1]", "second lower bound"),
+    ('limits = ["young > 1", "young < 1"]', "limits", "no value"),
+    ('limits = "young > 0"', "limits", "list of inequalities"),
+    ('limits = [1]', "limits[0]", "parameter op number"),
+])
+def test_limit_errors_name_file_and_key(tmp_path, limits, key, message):
+    path = _law_with_limits(tmp_path, limits)
+    with pytest.raises(GeneratorInputError) as error:
+        load_law(path)
+    assert str(path) in str(error.value) and f"'{key}'" in str(error.value) and message in str(error.value)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/polar_decomposition.hpp"
 
 // Loops over the nodes are marked for vectorisation: with -fopenmp-simd (set
@@ -30,6 +31,22 @@ extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
 #endif
 
 namespace tensormass::kernel {
+
+/// precompute's parameter check (kernel_abi.h): TM_PRECOMPUTE_PARAM_COUNT when
+/// param_count is not P, TM_PRECOMPUTE_BAD_PARAM - p for the first parameter
+/// p that is not finite or outside limits[p], else 0.
+template <int P>
+inline int check_parameters(const double* params, int param_count, const tm_param_limit (&limits)[P]) {
+  if (param_count != P) return TM_PRECOMPUTE_PARAM_COUNT;
+  for (int p = 0; p < P; ++p) {
+    const double value = params[p];
+    const tm_param_limit& limit = limits[p];
+    const bool above = limit.lower_inclusive ? value >= limit.lower : value > limit.lower;
+    const bool below = limit.upper_inclusive ? value <= limit.upper : value < limit.upper;
+    if (!std::isfinite(value) || !above || !below) return TM_PRECOMPUTE_BAD_PARAM - p;
+  }
+  return 0;
+}
 
 /// Fills, for each quadrature point, w*det(J) and G^T (D by N) from the rest
 /// positions (N by D) and the reference gradients dN/dr (Q by N by D).
