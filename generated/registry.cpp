@@ -322,6 +322,147 @@ void tm_hooke_tri6_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tri6_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri6_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex20_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_hex20_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex20_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex20_whole_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_hex20_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex20_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_hex20_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex20_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex20_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex8_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex8_whole_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_hex8_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex8_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_hex8_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex8_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism6_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_prism6_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_prism6_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism6_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_prism6_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism6_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_pyramid5_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_pyramid5_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_pyramid5_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad4_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_quad4_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad4_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_quad4_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad4_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_quad4_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad4_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad8_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_quad8_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad8_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_quad8_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad8_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_quad8_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad8_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tet10_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_tet10_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tet10_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet10_whole_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_tet10_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tet10_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_tet10_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tet10_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet10_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tet4_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_tet4_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet4_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_tet4_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tet4_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_tet4_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet4_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tri3_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_tri3_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri3_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_tri3_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tri3_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_tri3_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri3_terms_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tri6_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_tri6_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri6_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_tri6_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tri6_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_tri6_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri6_terms_stress(const double*, const double*, double*);
 int tm_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_neohookean_hex20_whole_gradient(const double*, const double*, double*);
@@ -788,6 +929,8 @@ const char* const kCorotationalParameters[] = { "young", "poisson" };
 const tm_param_limit kCorotationalLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kHookeParameters[] = { "young", "poisson" };
 const tm_param_limit kHookeLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
+const char* const kMooney_rivlinParameters[] = { "c10", "c01", "kappa" };
+const tm_param_limit kMooney_rivlinLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 const char* const kNeohookeanParameters[] = { "young", "poisson" };
 const tm_param_limit kNeohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kStable_neohookeanParameters[] = { "young", "poisson" };
@@ -1084,6 +1227,133 @@ const tm_kernel kKernels[] = {
    kHookeParameters, kHookeLimits, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
    tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1371,
    1, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
+   tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 32103, 495450,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_terms_precompute, tm_mooney_rivlin_hex20_terms_energy, tm_mooney_rivlin_hex20_terms_gradient,
+   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 121635, 1129410,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
+   tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 6056, 39664,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
+   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 10960, 70496,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
+   tm_mooney_rivlin_prism6_whole_hessian, tm_mooney_rivlin_prism6_whole_gradient_hessian, tm_mooney_rivlin_prism6_whole_stress, 1236, 4110, 22404,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_prism6_whole_stress_batch},
+
+  {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
+   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 7572, 39084,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
+   tm_mooney_rivlin_pyramid5_whole_hessian, tm_mooney_rivlin_pyramid5_whole_gradient_hessian, tm_mooney_rivlin_pyramid5_whole_stress, 1504, 5192, 25840,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_pyramid5_whole_stress_batch},
+
+  {"mooney_rivlin", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_terms_precompute, tm_mooney_rivlin_pyramid5_terms_energy, tm_mooney_rivlin_pyramid5_terms_gradient,
+   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 9664, 44792,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
+   tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 824, 2840,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_quad4_whole_stress_batch},
+
+  {"mooney_rivlin", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_terms_precompute, tm_mooney_rivlin_quad4_terms_energy, tm_mooney_rivlin_quad4_terms_gradient,
+   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1520, 4336,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
+   tm_mooney_rivlin_quad8_whole_hessian, tm_mooney_rivlin_quad8_whole_gradient_hessian, tm_mooney_rivlin_quad8_whole_stress, 999, 2430, 12510,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_quad8_whole_stress_batch},
+
+  {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
+   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 4284, 17730,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
+   tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 3316, 25880,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_terms_precompute, tm_mooney_rivlin_tet10_terms_energy, tm_mooney_rivlin_tet10_terms_gradient,
+   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 5912, 46936,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
+   tm_mooney_rivlin_tet4_whole_hessian, tm_mooney_rivlin_tet4_whole_gradient_hessian, tm_mooney_rivlin_tet4_whole_stress, 170, 613, 2798,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_tet4_whole_stress_batch},
+
+  {"mooney_rivlin", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_terms_precompute, tm_mooney_rivlin_tet4_terms_energy, tm_mooney_rivlin_tet4_terms_gradient,
+   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 1154, 4840,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
+   tm_mooney_rivlin_tri3_whole_hessian, tm_mooney_rivlin_tri3_whole_gradient_hessian, tm_mooney_rivlin_tri3_whole_stress, 71, 190, 600,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_tri3_whole_stress_batch},
+
+  {"mooney_rivlin", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_terms_precompute, tm_mooney_rivlin_tri3_terms_energy, tm_mooney_rivlin_tri3_terms_gradient,
+   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 356, 945,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
+   tm_mooney_rivlin_tri6_whole_hessian, tm_mooney_rivlin_tri6_whole_gradient_hessian, tm_mooney_rivlin_tri6_whole_stress, 285, 714, 3006,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_tri6_whole_stress_batch},
+
+  {"mooney_rivlin", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_terms_precompute, tm_mooney_rivlin_tri6_terms_energy, tm_mooney_rivlin_tri6_terms_gradient,
+   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1284, 4383,
+   0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
@@ -1506,8 +1776,8 @@ const tm_kernel kKernels[] = {
 };
 }  // namespace
 
-extern "C" int tm_kernel_count(void) { return 112; }
+extern "C" int tm_kernel_count(void) { return 132; }
 
 extern "C" const tm_kernel* tm_kernel_at(int index) {
-  return index >= 0 && index < 112 ? &kKernels[index] : nullptr;
+  return index >= 0 && index < 132 ? &kKernels[index] : nullptr;
 }

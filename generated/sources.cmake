@@ -94,6 +94,49 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_tri6_terms_part0.cpp
   kernels/hooke_tri6_terms_part1.cpp
   kernels/hooke_tri6_whole.cpp
+  kernels/mooney_rivlin_hex20_terms.cpp
+  kernels/mooney_rivlin_hex20_terms_part0.cpp
+  kernels/mooney_rivlin_hex20_terms_part1.cpp
+  kernels/mooney_rivlin_hex20_terms_part2.cpp
+  kernels/mooney_rivlin_hex20_terms_part3.cpp
+  kernels/mooney_rivlin_hex20_terms_part4.cpp
+  kernels/mooney_rivlin_hex20_whole.cpp
+  kernels/mooney_rivlin_hex8_terms.cpp
+  kernels/mooney_rivlin_hex8_terms_part0.cpp
+  kernels/mooney_rivlin_hex8_terms_part1.cpp
+  kernels/mooney_rivlin_hex8_whole.cpp
+  kernels/mooney_rivlin_prism6_terms.cpp
+  kernels/mooney_rivlin_prism6_terms_part0.cpp
+  kernels/mooney_rivlin_prism6_terms_part1.cpp
+  kernels/mooney_rivlin_prism6_whole.cpp
+  kernels/mooney_rivlin_pyramid5_terms.cpp
+  kernels/mooney_rivlin_pyramid5_terms_part0.cpp
+  kernels/mooney_rivlin_pyramid5_terms_part1.cpp
+  kernels/mooney_rivlin_pyramid5_whole.cpp
+  kernels/mooney_rivlin_quad4_terms.cpp
+  kernels/mooney_rivlin_quad4_terms_part0.cpp
+  kernels/mooney_rivlin_quad4_terms_part1.cpp
+  kernels/mooney_rivlin_quad4_whole.cpp
+  kernels/mooney_rivlin_quad8_terms.cpp
+  kernels/mooney_rivlin_quad8_terms_part0.cpp
+  kernels/mooney_rivlin_quad8_terms_part1.cpp
+  kernels/mooney_rivlin_quad8_whole.cpp
+  kernels/mooney_rivlin_tet10_terms.cpp
+  kernels/mooney_rivlin_tet10_terms_part0.cpp
+  kernels/mooney_rivlin_tet10_terms_part1.cpp
+  kernels/mooney_rivlin_tet10_whole.cpp
+  kernels/mooney_rivlin_tet4_terms.cpp
+  kernels/mooney_rivlin_tet4_terms_part0.cpp
+  kernels/mooney_rivlin_tet4_terms_part1.cpp
+  kernels/mooney_rivlin_tet4_whole.cpp
+  kernels/mooney_rivlin_tri3_terms.cpp
+  kernels/mooney_rivlin_tri3_terms_part0.cpp
+  kernels/mooney_rivlin_tri3_terms_part1.cpp
+  kernels/mooney_rivlin_tri3_whole.cpp
+  kernels/mooney_rivlin_tri6_terms.cpp
+  kernels/mooney_rivlin_tri6_terms_part0.cpp
+  kernels/mooney_rivlin_tri6_terms_part1.cpp
+  kernels/mooney_rivlin_tri6_whole.cpp
   kernels/neohookean_hex20_terms.cpp
   kernels/neohookean_hex20_terms_part0.cpp
   kernels/neohookean_hex20_terms_part1.cpp

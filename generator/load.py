@@ -25,8 +25,8 @@ ELEMENT_KEYS = {
 ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
 RULE_KEYS = {"degree", "points", "weights"}
 FORMAT_KEYS = {"type", "node_order"}
-LAW_KEYS = {"name", "description", "energy", "parameters", "derived"}
-LAW_OPTIONAL_KEYS = {"invertible", "limits"}
+LAW_KEYS = {"name", "description", "parameters"}
+LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "derived", "invertible", "limits", "rotation_invariant"}
 # One limit: `parameter op number`, op one of > >= < <=.
 _LIMIT = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|>|<)\s*([^<>=\s].*?)\s*$")
 
@@ -221,24 +221,42 @@ def _limits(data: Any, parameters: list[str], source: str) -> tuple[ParamLimit, 
     return tuple(limits)
 
 
+def _energy_text(data: dict, source: str) -> tuple[str, str, str]:
+    """(energy, isochoric, volumetric): `energy`, or the pair `isochoric` + `volumetric`."""
+    split = [key for key in ("isochoric", "volumetric") if key in data]
+    if "energy" in data and split:
+        raise _fail(source, split[0], "give either `energy` or `isochoric` and `volumetric`, not both")
+    if "energy" not in data and len(split) != 2:
+        missing = "energy" if not split else ({"isochoric", "volumetric"} - set(split)).pop()
+        raise _fail(source, missing, "missing (give `energy`, or `isochoric` and `volumetric`)")
+    for key in ("energy", "isochoric", "volumetric"):
+        if key in data and not isinstance(data[key], str):
+            raise _fail(source, key, "expected a string")
+    if "energy" in data:
+        return data["energy"], "", ""
+    return f"({data['isochoric']}) + ({data['volumetric']})", data["isochoric"], data["volumetric"]
+
+
 def load_law(path: Path) -> LawSpec:
     source = str(path)
     data = _read_toml(path)
     _check_keys(data, LAW_KEYS | LAW_OPTIONAL_KEYS, LAW_KEYS, source, "")
-    if not isinstance(data.get("invertible", False), bool):
-        raise _fail(source, "invertible", "expected true or false")
+    for key in ("invertible", "rotation_invariant"):
+        if not isinstance(data.get(key, False), bool):
+            raise _fail(source, key, "expected true or false")
     if data["name"] != path.stem:
         raise _fail(source, "name", f"'{data['name']}' must equal the file name '{path.stem}'")
     parameters = data["parameters"]
     if not isinstance(parameters, list) or not parameters or not all(isinstance(p, str) and p.isidentifier() for p in parameters):
         raise _fail(source, "parameters", "expected a non-empty list of identifiers")
-    if not isinstance(data["energy"], str):
-        raise _fail(source, "energy", "expected a string")
+    if len(set(parameters)) != len(parameters):
+        raise _fail(source, "parameters", "a parameter is listed twice")
+    energy, isochoric, volumetric = _energy_text(data, source)
     symbols = {p: sympy.Symbol(p, real=True) for p in parameters}
     derived = []
-    if not isinstance(data["derived"], dict):
+    if not isinstance(data.get("derived", {}), dict):
         raise _fail(source, "derived", "expected a table name = expression")
-    for name, text in data["derived"].items():
+    for name, text in data.get("derived", {}).items():
         key = f"derived.{name}"
         if not name.isidentifier() or not isinstance(text, str):
             raise _fail(source, key, "expected identifier = \"expression\"")
@@ -254,11 +272,14 @@ def load_law(path: Path) -> LawSpec:
         name=data["name"],
         description=str(data["description"]),
         source=source,
-        energy=data["energy"],
+        energy=energy,
         parameters=tuple(parameters),
         derived=tuple(derived),
         invertible=data.get("invertible", False),
         limits=_limits(data.get("limits", []), parameters, source),
+        isochoric=isochoric,
+        volumetric=volumetric,
+        rotation_invariant=data.get("rotation_invariant", True),
     )
 
 

@@ -58,7 +58,7 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     lowering = _LOWERINGS[split](triple)
     names = _base_symbol_names(element)
     names.update(lowering.symbol_names)
-    consts = len(law.derived) + len(tables.weights) * point_stride(element) + lowering.extra_consts
+    consts = len(law.constants) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
                     linear=derivatives.linear, invertible=law.invertible)

@@ -84,14 +84,36 @@ class ParamLimit:
 
 @dataclass(frozen=True)
 class LawSpec:
+    """A law file. The energy reads `constants`: the derived parameters when
+    the file has a [derived] table, else the parameters themselves; they are
+    the leading doubles of every kernel's consts, in this order.
+
+    energy is the whole energy density; a file that gives `isochoric` and
+    `volumetric` instead has energy = (isochoric) + (volumetric), the
+    isochoric part a function of I1bar and I2bar, the volumetric one of J."""
     name: str
     description: str
     source: str
     energy: str  # SymPy text in the kinematic symbols
     parameters: tuple[str, ...]  # user-facing parameters, in kernel order
-    derived: tuple[tuple[str, sympy.Expr], ...]  # (name, expression of parameters)
+    derived: tuple[tuple[str, sympy.Expr], ...]  # (name, expression of parameters); () without [derived]
     invertible: bool = False  # defined and finite for det F <= 0 (checked by the symbolic stage)
     limits: tuple[ParamLimit, ...] = ()  # one per parameter (unbounded when the file gives none)
+    isochoric: str = ""  # the isochoric part of the energy, when the file splits it
+    volumetric: str = ""  # the volumetric part U(J), when the file splits it
+    rotation_invariant: bool = True  # W(QF) = W(F) for every rotation Q (the file's claim, checked by tests)
+
+    @property
+    def constants(self) -> tuple[tuple[str, sympy.Expr], ...]:
+        """(name, expression of the parameters) of each symbol the energy reads besides the kinematics."""
+        if self.derived:
+            return self.derived
+        return tuple((name, sympy.Symbol(name, real=True)) for name in self.parameters)
+
+    @property
+    def split_volumetric(self) -> bool:
+        """True when the file gives the energy as isochoric + volumetric(J)."""
+        return bool(self.volumetric)
 
     def limit(self, parameter: str) -> ParamLimit:
         """The limits of one parameter (unbounded when none are stated)."""
@@ -149,7 +171,7 @@ class LawDerivatives:
         tangent A is constant and P(0) = 0, so an element's force is K u with
         K independent of u (the runtime folds such cells into one constant matrix).
         A tangent with any symbol besides the parameters (H.., or the rotation's R.., Y..) is not constant."""
-        parameters = {sympy.Symbol(name, real=True) for name, _ in self.law.derived}
+        parameters = {sympy.Symbol(name, real=True) for name, _ in self.law.constants}
         if any(entry.free_symbols - parameters for row in self.tangent for entry in row):
             return False
         at_rest = {sympy.Symbol(f"H{i}", real=True): 0 for i in range(self.dim * self.dim)}
@@ -172,6 +194,13 @@ class SymbolicIR:
 
 
 # --- Stage 3 (optimise) ------------------------------------------------------
+
+class RationalRoot(sympy.Function):
+    """root(x, e) = x^e for e = 1/q or -1/q (q >= 2): the one root a block
+    computes per base, whose integer powers give every x^(p/q) it reads
+    (optimize.eliminate). Printed as std::sqrt for q = 2, else as
+    std::exp(e*std::log(x)), which batched kernels vectorise (libmvec)."""
+    nargs = 2
 
 @dataclass(frozen=True)
 class Assignment:

@@ -7,9 +7,12 @@ stress, tangent) with their flop counts.
 
 `eliminate` turns named SymPy outputs (target lvalue -> expression) into a
 `Block` (temporaries first); the lower stage uses it for the split-specific
-entries too. Flops: each +, -, *, / counts 1; an integer power x^n counts n-1
-multiplications (emitted as products, never pow()); a negative power adds one
-division; each transcendental call (log, exp, sqrt) counts 1.
+entries too. Fractional powers x^(p/q) (other than sqrt) become integer
+powers of one root x^(1/q) or x^(-1/q) per base (`RationalRoot`), so J^(-2/3),
+J^(-5/3), J^(-8/3) cost one exp and one log together. Flops: each +, -, *, /
+counts 1; an integer power x^n counts n-1 multiplications (emitted as
+products, never pow()); a negative power adds one division; each
+transcendental call (log, exp, sqrt) counts 1, a root through exp and log 3.
 """
 from __future__ import annotations
 
@@ -17,7 +20,7 @@ from typing import Optional
 
 import sympy
 
-from .model import Assignment, Block, LawDerivatives, LawKernelIR, OptimisedIR, SymbolicIR
+from .model import Assignment, Block, LawDerivatives, LawKernelIR, OptimisedIR, RationalRoot, SymbolicIR
 
 WEIGHT = sympy.Symbol("w", real=True)
 
@@ -33,6 +36,10 @@ AUXILIARY_FLOPS = {("rotation", 2): 12, ("rotation", 3): 6 * 80 + 9,
 def count_flops(expr: sympy.Expr) -> int:
     if expr.is_Atom:
         return 0
+    if isinstance(expr, RationalRoot):
+        base, exponent = expr.args
+        cost = (1 + (1 if exponent < 0 else 0)) if exponent.q == 2 else 3
+        return cost + count_flops(base)
     if isinstance(expr, sympy.Add):
         return len(expr.args) - 1 + sum(count_flops(a) for a in expr.args)
     if isinstance(expr, sympy.Mul):
@@ -65,14 +72,48 @@ def _auxiliaries(exprs: list[sympy.Expr], dim: int) -> tuple[tuple[str, ...], in
     return used, sum(AUXILIARY_FLOPS[(aux, dim)] for aux in used)
 
 
+def _fractional(exponent: sympy.Expr) -> bool:
+    """A rational, non-integer exponent other than +-1/2 (which print as sqrt)."""
+    return exponent.is_Rational and not exponent.is_Integer and abs(exponent) != sympy.Rational(1, 2)
+
+
+def _rational_roots(assignments: list[Assignment], prefix: str) -> list[Assignment]:
+    """x^(p/q) -> r^n with one temporary r = x^(+-1/q) per (x, q), declared
+    before the first assignment that reads it (its sign that of the first power met)."""
+    roots: dict[tuple[sympy.Expr, int], tuple[sympy.Symbol, int]] = {}
+    result: list[Assignment] = []
+
+    def rewrite(expr: sympy.Expr) -> sympy.Expr:
+        if expr.is_Atom:
+            return expr
+        args = tuple(rewrite(a) for a in expr.args)
+        if isinstance(expr, sympy.Pow) and _fractional(expr.exp):
+            base, exponent = args[0], expr.exp
+            key = (base, exponent.q)
+            if key not in roots:
+                sign = 1 if exponent > 0 else -1
+                root = sympy.Symbol(f"{prefix}r{len(roots)}", real=True)
+                roots[key] = (root, sign)
+                result.append(Assignment(root.name, RationalRoot(base, sympy.Rational(sign, exponent.q)), declare=True))
+            root, sign = roots[key]
+            return root ** (exponent.p * sign)
+        return expr.func(*args) if args != expr.args else expr
+
+    for a in assignments:
+        expr = rewrite(a.expr) if any(_fractional(p.exp) for p in a.expr.atoms(sympy.Pow)) else a.expr
+        result.append(Assignment(a.target, expr, a.declare))
+    return result
+
+
 def eliminate(outputs: list[tuple[str, sympy.Expr]], prefix: str, dim: int = 0) -> Block:
-    """CSE over all outputs; temporaries are named prefix0, prefix1, ...
+    """CSE over all outputs; temporaries are named prefix0, prefix1, ..., roots prefixr0, ...
 
     dim: the space dimension, needed when the outputs read auxiliaries (R.., Y..)."""
     exprs = [expr for _, expr in outputs]
     replacements, reduced = sympy.cse(exprs, symbols=sympy.numbered_symbols(prefix, real=True), order="canonical")
     assignments = [Assignment(str(symbol), value, declare=True) for symbol, value in replacements]
     assignments += [Assignment(target, expr) for (target, _), expr in zip(outputs, reduced)]
+    assignments = _rational_roots(assignments, prefix)
     auxiliaries, auxiliary_flops = _auxiliaries(exprs, dim) if dim else ((), 0)
     return Block(tuple(assignments), sum(count_flops(a.expr) for a in assignments) + auxiliary_flops, auxiliaries)
 

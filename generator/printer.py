@@ -4,6 +4,8 @@
 - rationals and floats print as the shortest decimal that round-trips a
   double (byte-stable across machines; never integer division)
 - symbols print through a name map (H3 -> H[3]) so templates own the storage
+- a RationalRoot x^(+-1/q) prints as std::sqrt for q = 2, else as
+  std::exp(e*std::log(x)) (vectorised in batched kernels, kernel_support.hpp)
 """
 from __future__ import annotations
 
@@ -51,6 +53,14 @@ class KernelPrinter(C99CodePrinter):
         if exponent == -sympy.Rational(1, 2):
             return f"(1.0/std::sqrt({self._print(base)}))"
         return f"std::pow({self._print(base)}, {self._print(exponent)})"
+
+    def _print_RationalRoot(self, expr):
+        base, exponent = expr.args
+        if exponent == sympy.Rational(1, 2):
+            return f"std::sqrt({self._print(base)})"
+        if exponent == -sympy.Rational(1, 2):
+            return f"(1.0/std::sqrt({self._print(base)}))"
+        return f"std::exp({self._print(exponent)}*std::log({self._print(base)}))"
 
     def _print_log(self, expr):
         return f"std::log({self._print(expr.args[0])})"

@@ -29,8 +29,12 @@ import sympy
 from .load import REFERENCE_VARIABLES, GeneratorInputError
 from .model import ElementSpec, ElementTables, Inputs, LawDerivatives, LawSpec, StrainQuadratic, SymbolicIR
 
-# Names a law's energy may use, besides its derived parameters.
-KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "R", "S", "d", "I")
+# Names a law's energy may use, besides its constants (docs/laws.md). In 2D
+# (plane strain, F33 = 1) the invariants are those of the 3D C = diag(C2, 1).
+KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "I1bar", "I2bar", "R", "S", "d", "I")
+# The names each part of a split energy may read besides constants and functions.
+ISOCHORIC_NAMES = ("I1bar", "I2bar")
+VOLUMETRIC_NAMES = ("J",)
 ROTATION_NAMES = ("R", "S")
 FUNCTION_NAMES = ("tr", "det", "inv", "log", "exp", "sqrt", "transpose")
 _DIGITS = 40  # evaluation precision before rounding to double
@@ -100,25 +104,45 @@ def rotation_derivatives(dim: int) -> tuple[sympy.Matrix, ...]:
 
 
 def parameter_symbols(law: LawSpec) -> dict[str, sympy.Symbol]:
-    return {name: sympy.Symbol(name, real=True) for name, _ in law.derived}
+    """The symbols of the constants the energy reads (derived parameters, or the parameters)."""
+    return {name: sympy.Symbol(name, real=True) for name, _ in law.constants}
 
 
-def _energy_names(law: LawSpec) -> set[str]:
+def _names(law: LawSpec, key: str, text: str) -> set[str]:
     try:
-        tree = ast.parse(law.energy.replace("^", "**"), mode="eval")
+        tree = ast.parse(text.replace("^", "**"), mode="eval")
     except SyntaxError as error:
-        raise GeneratorInputError(f"{law.source}: key 'energy': cannot parse: {error}") from None
+        raise GeneratorInputError(f"{law.source}: key '{key}': cannot parse: {error}") from None
     return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
 
 
+def _energy_names(law: LawSpec) -> set[str]:
+    if law.split_volumetric:
+        return _names(law, "isochoric", law.isochoric) | _names(law, "volumetric", law.volumetric)
+    return _names(law, "energy", law.energy)
+
+
 def _check_energy_names(law: LawSpec) -> None:
-    allowed = set(KINEMATIC_NAMES) | set(FUNCTION_NAMES) | {name for name, _ in law.derived}
-    unknown = _energy_names(law) - allowed
-    if unknown:
-        raise GeneratorInputError(
-            f"{law.source}: key 'energy': unknown names {sorted(unknown)}; available: "
-            f"kinematics {', '.join(KINEMATIC_NAMES)}, functions {', '.join(FUNCTION_NAMES)}, "
-            f"derived parameters {', '.join(n for n, _ in law.derived)}")
+    constants = [name for name, _ in law.constants]
+    reserved = sorted(set(constants) & (set(KINEMATIC_NAMES) | set(FUNCTION_NAMES)))
+    if reserved:
+        key = "derived" if law.derived else "parameters"
+        raise GeneratorInputError(f"{law.source}: key '{key}': {reserved} are names of kinematic quantities "
+                                  f"or functions; rename them")
+    parts = ([("isochoric", law.isochoric, ISOCHORIC_NAMES), ("volumetric", law.volumetric, VOLUMETRIC_NAMES)]
+             if law.split_volumetric else [("energy", law.energy, KINEMATIC_NAMES)])
+    for key, text, kinematics in parts:
+        unknown = _names(law, key, text) - set(kinematics) - set(FUNCTION_NAMES) - set(constants)
+        if unknown & set(law.parameters):
+            raise GeneratorInputError(
+                f"{law.source}: key '{key}': reads the parameters {sorted(unknown & set(law.parameters))}; "
+                "with a [derived] table the energy reads the derived parameters only (add name = \"name\" to it)")
+        if unknown:
+            what = "derived parameters" if law.derived else "parameters"
+            raise GeneratorInputError(
+                f"{law.source}: key '{key}': unknown names {sorted(unknown)}; available: "
+                f"kinematics {', '.join(kinematics)}, functions {', '.join(FUNCTION_NAMES)}, "
+                f"{what} {', '.join(constants)}")
 
 
 def _functions() -> dict:
@@ -146,17 +170,25 @@ def _evaluate(law: LawSpec, names: dict) -> sympy.Expr:
 
 @functools.lru_cache(maxsize=None)
 def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
-    """psi as an expression of H0.. and the derived parameters."""
+    """psi as an expression of H0.. and the law's constants.
+
+    The invariants are those of the 3D right Cauchy-Green tensor; in 2D
+    (plane strain) C33 = 1 adds 1 to tr(C) and to tr(C^2)."""
     _check_energy_names(law)
     identity = sympy.eye(dim)
     H = sympy.Matrix(dim, dim, gradient_symbols(dim))
     F = identity + H
     C = F.T * F
     R = sympy.Matrix(dim, dim, rotation_symbols(dim))
+    out_of_plane = 3 - dim  # C33 = 1 in plane strain
+    J = F.det()
+    I1 = C.trace() + out_of_plane
+    I2 = (I1 ** 2 - ((C * C).trace() + out_of_plane)) / 2
     names = {
         "F": F, "H": H, "C": C, "E": (C - identity) / 2, "eps": (H + H.T) / 2,
-        "J": F.det(), "I1": C.trace(), "I2": (C.trace() ** 2 - (C * C).trace()) / 2,
-        "I3": C.det(), "R": R, "S": R.T * F, "d": sympy.Integer(dim), "I": identity,
+        "J": J, "I1": I1, "I2": I2, "I3": C.det(),
+        "I1bar": J ** sympy.Rational(-2, 3) * I1, "I2bar": J ** sympy.Rational(-4, 3) * I2,
+        "R": R, "S": R.T * F, "d": sympy.Integer(dim), "I": identity,
     }
     psi = _evaluate(law, names)
     allowed = set(gradient_symbols(dim)) | set(parameter_symbols(law).values()) | set(rotation_symbols(dim))

@@ -82,7 +82,7 @@ inline void law_stress(const double* H, const double* consts, double* P) {
 /// w P(H) at one point. H, consts and wP are pointers (one element) or
 /// kernel::Lane views (one lane of a batch).
 template <class Matrix, class Params, class Out>
-inline void law_weighted_stress(Matrix H, double w, Params consts, Out wP) {
+TENSORMASS_LANE_INLINE void law_weighted_stress(Matrix H, double w, Params consts, Out wP) {
   [[maybe_unused]] const double lam = consts[0];
   [[maybe_unused]] const double mu = consts[1];
   const double s0 = (0.5)*mu;
@@ -120,7 +120,7 @@ inline void law_weighted_stress(Matrix H, double w, Params consts, Out wP) {
 /// w P(H) and the full weighted tangent w A(H) (d^2 by d^2) at one point;
 /// pointers or kernel::Lane views as above.
 template <class Matrix, class Params, class Out>
-inline void law_tangent(Matrix H, double w, Params consts, Out wP, Out wA) {
+TENSORMASS_LANE_INLINE void law_tangent(Matrix H, double w, Params consts, Out wP, Out wA) {
   [[maybe_unused]] const double lam = consts[0];
   [[maybe_unused]] const double mu = consts[1];
   const double a0 = (0.5)*mu;

@@ -9,7 +9,7 @@ from __future__ import annotations
 import sympy
 
 from ..ir import Flops, WholeIR
-from ..model import ElementSpec, LawKernelIR
+from ..model import ElementSpec, LawKernelIR, RationalRoot
 from .common import SplitLowering, Triple
 
 
@@ -37,11 +37,13 @@ def quadrature_flops(element: ElementSpec, points: int, law_ir: LawKernelIR) -> 
 # - at most BATCH_BLOCK_LIMIT doubles of component-pair blocks per lane. Above
 #   it (hex8, tet10, hex20) the batched kernel was 1.8 to 8x slower than the
 #   per-element one, which is already vectorised along its 8 or more nodes.
-# - no library calls but `log`. With scalar calls per lane neo-Hookean and
+# - no library calls but `log` and `exp` (fractional powers x^(p/q) other
+#   than sqrt reach the block as one root exp(+-log(x)/q) per base,
+#   optimize.eliminate). With scalar calls per lane neo-Hookean and
 #   corotational ran batched at 0.8 to 1.0x alone and 1.07 to 1.13x in the
 #   assembly, where packing the batch costs more than the kernel saves. `log`
-#   is declared with glibc's vector variants (kernel_support.hpp: libmvec's,
-#   as -ffast-math would), so its lanes run in one SIMD call.
+#   and `exp` are declared with glibc's vector variants (kernel_support.hpp:
+#   libmvec's, as -ffast-math would), so their lanes run in one SIMD call.
 # - auxiliaries: only the polar rotation and its inverse term. The batch
 #   computes the lanes' rotations together before the SIMD loop
 #   (polar_rotation_batch, one Newton-Schulz iteration over all lanes), and the
@@ -56,9 +58,16 @@ def batch_pays(element: ElementSpec, law_ir: LawKernelIR) -> bool:
     if d * (d + 1) // 2 * n * n > BATCH_BLOCK_LIMIT:
         return False
     block = law_ir.tangent
-    calls = any(any(not isinstance(f, sympy.log) for f in a.expr.atoms(sympy.Function)) or
+    calls = any(any(not _vector_call(f) for f in a.expr.atoms(sympy.Function)) or
                 any(not p.exp.is_Integer for p in a.expr.atoms(sympy.Pow)) for a in block.assignments)
     return not calls and set(block.auxiliaries) <= BATCHED_AUXILIARIES
+
+
+def _vector_call(function: sympy.Expr) -> bool:
+    """A call that runs on all lanes at once through libmvec: log, exp, a root printed as exp(e*log(x))."""
+    if isinstance(function, RationalRoot):
+        return function.args[1].q != 2
+    return isinstance(function, (sympy.log, sympy.exp))
 
 
 def lower(triple: Triple) -> SplitLowering:

@@ -123,3 +123,37 @@ def test_limit_errors_name_file_and_key(tmp_path, limits, key, message):
     with pytest.raises(GeneratorInputError) as error:
         load_law(path)
     assert str(path) in str(error.value) and f"'{key}'" in str(error.value) and message in str(error.value)
+
+
+_SPLIT_LAW = '''name = "split"
+description = "a law file given as isochoric + volumetric"
+parameters = ["c10", "kappa"]
+'''
+
+
+@pytest.mark.parametrize("body, key", [
+    ('energy = "c10*(I1bar - 3)"\nisochoric = "c10*(I1bar - 3)"\nvolumetric = "kappa*(J - 1)**2"\n', "isochoric"),
+    ('isochoric = "c10*(I1bar - 3)"\n', "volumetric"),
+    ('volumetric = "kappa*(J - 1)**2"\n', "isochoric"),
+    ("", "energy"),
+    ('energy = "c10*(I1bar - 3)"\nrotation_invariant = "yes"\n', "rotation_invariant"),
+    ('energy = "c10*(I1bar - 3)"\nparameters = ["c10", "c10"]\n', "parameters"),
+])
+def test_energy_keys_errors_name_file_and_key(tmp_path, body, key):
+    path = tmp_path / "split.toml"
+    text = _SPLIT_LAW + body
+    if body.count("parameters"):
+        text = text.replace('parameters = ["c10", "kappa"]\n', "")
+    path.write_text(text)
+    with pytest.raises(GeneratorInputError) as error:
+        load_law(path)
+    assert str(path) in str(error.value) and f"'{key}'" in str(error.value)
+
+
+def test_split_energy_without_derived_reads_its_parameters(tmp_path):
+    path = tmp_path / "split.toml"
+    path.write_text(_SPLIT_LAW + 'isochoric = "c10*(I1bar - 3)"\nvolumetric = "kappa/2*(J - 1)**2"\n')
+    law = load_law(path)
+    assert law.split_volumetric and law.rotation_invariant and law.derived == ()
+    assert law.energy == "(c10*(I1bar - 3)) + (kappa/2*(J - 1)**2)"
+    assert law.constants == ((("c10", sympy.Symbol("c10", real=True)), ("kappa", sympy.Symbol("kappa", real=True))))

@@ -50,3 +50,30 @@ def test_optimise_gives_one_law_ir_per_law_and_dimension():
     law_ir = optimised.law_ir(inputs.laws[0], 2)
     assert isinstance(law_ir, LawKernelIR) and law_ir.law == "hooke" and law_ir.dim == 2
     assert len(optimised.laws) == 1
+
+
+def test_fractional_powers_share_one_root_per_base():
+    """x^(-2/3), x^(-5/3) and x^(1/3) read one root r = x^(-1/3) (the sign of the first power met)."""
+    from generator.model import RationalRoot
+    from generator.printer import print_expr
+    x, y = sympy.symbols("x y", real=True)
+    block = eliminate([("a", (x + y) ** sympy.Rational(-2, 3) * y), ("b", (x + y) ** sympy.Rational(-5, 3)),
+                       ("c", (x + y) ** sympy.Rational(1, 3))], "t")
+    roots = [a for a in block.assignments if isinstance(a.expr, RationalRoot)]
+    assert len(roots) == 1 and roots[0].declare and roots[0].expr.args[1] == sympy.Rational(-1, 3)
+    code = " ".join(print_expr(a.expr) for a in block.assignments)
+    assert "pow(" not in code and code.count("std::log(") == 1 and code.count("std::exp(") == 1
+    r = sympy.Symbol(roots[0].target, real=True)
+    outputs = {a.target: a.expr for a in block.assignments if not a.declare}
+    assert outputs["b"] == r ** 5 and outputs["c"] == 1 / r
+    assert count_flops(roots[0].expr) == 3  # exp, multiply, log of the temporary t0 = x + y
+
+
+def test_batched_kernels_allow_log_exp_and_roots_but_not_sqrt():
+    from generator.model import RationalRoot
+    from generator.splits.whole import _vector_call
+    x = sympy.Symbol("x", real=True)
+    assert _vector_call(sympy.log(x)) and _vector_call(sympy.exp(x))
+    assert _vector_call(RationalRoot(x, sympy.Rational(-1, 3)))
+    assert not _vector_call(RationalRoot(x, sympy.Rational(1, 2)))
+    assert not _vector_call(sympy.sin(x))

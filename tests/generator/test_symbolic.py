@@ -8,7 +8,7 @@ import sympy
 from conftest import ROOT
 from generator.load import GeneratorInputError, load_element, load_law
 from generator.model import Inputs, LawDerivatives, SymbolicIR
-from generator.symbolic import derive, derive_law, gradient_symbols, law_derivatives, strain_quadratic
+from generator.symbolic import derive, derive_law, gradient_symbols, law_derivatives, law_energy, strain_quadratic
 
 LAM, MU = sympy.Symbol("lam", real=True), sympy.Symbol("mu", real=True)
 H_VALUES = [0.03, -0.02, 0.05, 0.01, 0.04, -0.03, 0.02, 0.06, -0.01]
@@ -175,3 +175,42 @@ def test_stable_neohookean_is_invertible_and_stress_free_at_rest(dim):
     assert all(sympy.simplify(p.subs(at_rest)) == 0 for p in derivatives.stress)
     assert sympy.simplify(derivatives.energy.subs(at_rest)) == 0
     assert not derivatives.linear
+
+
+def _split_law(tmp_path, body: str, parameters: str = '["c10", "kappa"]'):
+    path = tmp_path / "split.toml"
+    path.write_text(f'name = "split"\ndescription = "test law"\nparameters = {parameters}\n{body}')
+    return load_law(path)
+
+
+@pytest.mark.parametrize("body, message", [
+    ('isochoric = "c10*(I1bar - 3) + c10*J"\nvolumetric = "kappa*(J - 1)**2"\n', r"'isochoric'.*\['J'\]"),
+    ('isochoric = "c10*(I1bar - 3)"\nvolumetric = "kappa*(J - 1)**2 + I1"\n', r"'volumetric'.*\['I1'\]"),
+    ('energy = "c10*(I1 - 3)"\n[derived]\nmu = "c10/2"\n', r"'energy'.*reads the parameters \['c10'\]"),
+])
+def test_energy_parts_read_only_their_own_names(tmp_path, body, message):
+    with pytest.raises(GeneratorInputError, match=message):
+        law_energy(_split_law(tmp_path, body), 3)
+
+
+def test_constants_may_not_shadow_kinematic_names(tmp_path):
+    with pytest.raises(GeneratorInputError, match=r"'parameters'.*\['J'\]"):
+        law_energy(_split_law(tmp_path, 'energy = "J*(I1 - 3)"\n', '["J"]'), 3)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_invariants_are_the_3d_ones_in_plane_strain(tmp_path, dim):
+    """I1, I2, I3, J, I1bar, I2bar of F (2D: F33 = 1) against their definitions on the 3D F."""
+    H = gradient_symbols(dim)
+    values = dict(zip(H, H_VALUES))
+    F3 = sympy.eye(3)
+    F3[:dim, :dim] += sympy.Matrix(dim, dim, H_VALUES[:dim * dim])
+    C3 = F3.T * F3
+    J = F3.det()
+    I1, I2 = C3.trace(), (C3.trace() ** 2 - (C3 * C3).trace()) / 2
+    expected = {"I1": I1, "I2": I2, "I3": C3.det(), "J": J, "I1bar": J ** sympy.Rational(-2, 3) * I1,
+                "I2bar": J ** sympy.Rational(-4, 3) * I2}
+    for name, value in expected.items():
+        law = _split_law(tmp_path, f'energy = "c10*{name}"\n')
+        got = law_energy(law, dim).subs(values).subs(sympy.Symbol("c10", real=True), 1)
+        assert float(got) == pytest.approx(float(value), rel=1e-14), name

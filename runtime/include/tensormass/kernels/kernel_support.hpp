@@ -20,14 +20,25 @@
 #define TENSORMASS_SIMD_LOOP
 #endif
 
-// log with glibc's vector variants (libmvec), as <math.h> declares it under
-// -ffast-math: a SIMD loop over a batch's lanes then takes the log of all of
-// them in one call instead of one scalar call per lane (neo-Hookean's batched
-// kernels). Set by the build (with -fno-math-errno and libmvec) for the
-// kernels only; libmvec's log is within 4 ulp. Clang has no such attribute
-// (its lanes call log one by one).
+// log and exp with glibc's vector variants (libmvec), as <math.h> declares
+// them under -ffast-math: a SIMD loop over a batch's lanes then takes the log
+// (or exp) of all of them in one call instead of one scalar call per lane
+// (neo-Hookean's batched kernels; the roots J^(-1/3) of the isochoric
+// invariants, printed as exp(-log(J)/3)). Set by the build (with
+// -fno-math-errno and libmvec) for the kernels only; libmvec's log and exp
+// are within 4 ulp. Clang has no such attribute (its lanes call them one by one).
 #if defined(TENSORMASS_VECTOR_LOG) && !defined(__clang__)
 extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
+extern "C" double exp(double) noexcept __attribute__((simd("notinbranch")));
+#endif
+
+// The law blocks a batch's SIMD loop calls (law_weighted_stress, law_tangent
+// of batched kernels): always inlined, since a block left out of line runs
+// lane by lane, its exp and log calls scalar.
+#if defined(__GNUC__)
+#define TENSORMASS_LANE_INLINE __attribute__((always_inline)) inline
+#else
+#define TENSORMASS_LANE_INLINE inline
 #endif
 
 namespace tensormass::kernel {
