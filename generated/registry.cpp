@@ -947,7 +947,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
-   tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1168695,
+   tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1086480,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -959,7 +959,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
-   tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 75152,
+   tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 71168,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -972,7 +972,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
-   tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 42576,
+   tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 40902,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -985,7 +985,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
-   tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 49448,
+   tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 47912,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -998,7 +998,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
-   tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2880,
+   tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2800,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1011,7 +1011,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
-   tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 14454,
+   tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 13644,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1023,7 +1023,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
-   tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 49264,
+   tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 46156,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1036,7 +1036,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
-   tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5422,
+   tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5302,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1049,7 +1049,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
-   tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 581,
+   tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 571,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1062,7 +1062,7 @@ const tm_kernel kKernels[] = {
 
   {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
-   tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3291,
+   tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3144,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1074,7 +1074,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_terms_precompute, tm_hooke_hex20_terms_energy, tm_hooke_hex20_terms_gradient,
-   tm_hooke_hex20_terms_hessian, tm_hooke_hex20_terms_gradient_hessian, tm_hooke_hex20_terms_stress, 10341, 60210, 270054,
+   tm_hooke_hex20_terms_hessian, tm_hooke_hex20_terms_gradient_hessian, tm_hooke_hex20_terms_stress, 10341, 60210, 309015,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1086,7 +1086,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_terms_precompute, tm_hooke_hex8_terms_energy, tm_hooke_hex8_terms_gradient,
-   tm_hooke_hex8_terms_hessian, tm_hooke_hex8_terms_gradient_hessian, tm_hooke_hex8_terms_stress, 1336, 3680, 13536,
+   tm_hooke_hex8_terms_hessian, tm_hooke_hex8_terms_gradient_hessian, tm_hooke_hex8_terms_stress, 1336, 3680, 14736,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1105,7 +1105,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_terms_precompute, tm_hooke_prism6_terms_energy, tm_hooke_prism6_terms_gradient,
-   tm_hooke_prism6_terms_hessian, tm_hooke_prism6_terms_gradient_hessian, tm_hooke_prism6_terms_stress, 786, 2112, 6186,
+   tm_hooke_prism6_terms_hessian, tm_hooke_prism6_terms_gradient_hessian, tm_hooke_prism6_terms_stress, 786, 2112, 6552,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1124,7 +1124,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_terms_precompute, tm_hooke_pyramid5_terms_energy, tm_hooke_pyramid5_terms_gradient,
-   tm_hooke_pyramid5_terms_hessian, tm_hooke_pyramid5_terms_gradient_hessian, tm_hooke_pyramid5_terms_stress, 904, 2384, 6072,
+   tm_hooke_pyramid5_terms_hessian, tm_hooke_pyramid5_terms_gradient_hessian, tm_hooke_pyramid5_terms_stress, 904, 2384, 6312,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1143,7 +1143,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_terms_precompute, tm_hooke_quad4_terms_energy, tm_hooke_quad4_terms_gradient,
-   tm_hooke_quad4_terms_hessian, tm_hooke_quad4_terms_gradient_hessian, tm_hooke_quad4_terms_stress, 180, 464, 956,
+   tm_hooke_quad4_terms_hessian, tm_hooke_quad4_terms_gradient_hessian, tm_hooke_quad4_terms_stress, 180, 464, 960,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1162,7 +1162,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
-   tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 6651,
+   tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 7164,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1174,7 +1174,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_terms_precompute, tm_hooke_tet10_terms_energy, tm_hooke_tet10_terms_gradient,
-   tm_hooke_tet10_terms_hessian, tm_hooke_tet10_terms_gradient_hessian, tm_hooke_tet10_terms_stress, 812, 2272, 10036,
+   tm_hooke_tet10_terms_hessian, tm_hooke_tet10_terms_gradient_hessian, tm_hooke_tet10_terms_stress, 812, 2272, 11136,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1187,7 +1187,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_terms_precompute, tm_hooke_tet4_terms_energy, tm_hooke_tet4_terms_gradient,
-   tm_hooke_tet4_terms_hessian, tm_hooke_tet4_terms_gradient_hessian, tm_hooke_tet4_terms_stress, 95, 244, 526,
+   tm_hooke_tet4_terms_hessian, tm_hooke_tet4_terms_gradient_hessian, tm_hooke_tet4_terms_stress, 95, 244, 534,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1206,7 +1206,7 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_terms_precompute, tm_hooke_tri3_terms_energy, tm_hooke_tri3_terms_gradient,
-   tm_hooke_tri3_terms_hessian, tm_hooke_tri3_terms_gradient_hessian, tm_hooke_tri3_terms_stress, 37, 92, 154,
+   tm_hooke_tri3_terms_hessian, tm_hooke_tri3_terms_gradient_hessian, tm_hooke_tri3_terms_stress, 37, 92, 151,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1225,134 +1225,134 @@ const tm_kernel kKernels[] = {
 
   {"hooke", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kHookeParameters, kHookeLimits, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
-   tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1371,
+   tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1434,
    1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
-   tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 32103, 495450,
+   tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 28863, 476118,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_terms_precompute, tm_mooney_rivlin_hex20_terms_energy, tm_mooney_rivlin_hex20_terms_gradient,
-   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 121635, 1129410,
+   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 105435, 955125,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
-   tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 6056, 39664,
+   tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 5096, 33936,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
-   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 10960, 70496,
+   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55600,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
-   tm_mooney_rivlin_prism6_whole_hessian, tm_mooney_rivlin_prism6_whole_gradient_hessian, tm_mooney_rivlin_prism6_whole_stress, 1236, 4110, 22404,
+   tm_mooney_rivlin_prism6_whole_hessian, tm_mooney_rivlin_prism6_whole_gradient_hessian, tm_mooney_rivlin_prism6_whole_stress, 1236, 3390, 18108,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch},
 
   {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
-   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 7572, 39084,
+   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29226,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
-   tm_mooney_rivlin_pyramid5_whole_hessian, tm_mooney_rivlin_pyramid5_whole_gradient_hessian, tm_mooney_rivlin_pyramid5_whole_stress, 1504, 5192, 25840,
+   tm_mooney_rivlin_pyramid5_whole_hessian, tm_mooney_rivlin_pyramid5_whole_gradient_hessian, tm_mooney_rivlin_pyramid5_whole_stress, 1504, 4232, 20112,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch},
 
   {"mooney_rivlin", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_terms_precompute, tm_mooney_rivlin_pyramid5_terms_energy, tm_mooney_rivlin_pyramid5_terms_gradient,
-   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 9664, 44792,
+   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 7744, 32344,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
-   tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 824, 2840,
+   tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 720, 2384,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch},
 
   {"mooney_rivlin", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_terms_precompute, tm_mooney_rivlin_quad4_terms_energy, tm_mooney_rivlin_quad4_terms_gradient,
-   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1520, 4336,
+   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1312, 3480,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
-   tm_mooney_rivlin_quad8_whole_hessian, tm_mooney_rivlin_quad8_whole_gradient_hessian, tm_mooney_rivlin_quad8_whole_stress, 999, 2430, 12510,
+   tm_mooney_rivlin_quad8_whole_hessian, tm_mooney_rivlin_quad8_whole_gradient_hessian, tm_mooney_rivlin_quad8_whole_stress, 999, 2196, 11484,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad8_whole_stress_batch},
 
   {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
-   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 4284, 17730,
+   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15174,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
-   tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 3316, 25880,
+   tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 2836, 23016,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_terms_precompute, tm_mooney_rivlin_tet10_terms_energy, tm_mooney_rivlin_tet10_terms_gradient,
-   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 5912, 46936,
+   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 4952, 38372,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
-   tm_mooney_rivlin_tet4_whole_hessian, tm_mooney_rivlin_tet4_whole_gradient_hessian, tm_mooney_rivlin_tet4_whole_stress, 170, 613, 2798,
+   tm_mooney_rivlin_tet4_whole_hessian, tm_mooney_rivlin_tet4_whole_gradient_hessian, tm_mooney_rivlin_tet4_whole_stress, 170, 493, 2082,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_whole_stress_batch},
 
   {"mooney_rivlin", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_terms_precompute, tm_mooney_rivlin_tet4_terms_energy, tm_mooney_rivlin_tet4_terms_gradient,
-   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 1154, 4840,
+   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 914, 3356,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
-   tm_mooney_rivlin_tri3_whole_hessian, tm_mooney_rivlin_tri3_whole_gradient_hessian, tm_mooney_rivlin_tri3_whole_stress, 71, 190, 600,
+   tm_mooney_rivlin_tri3_whole_hessian, tm_mooney_rivlin_tri3_whole_gradient_hessian, tm_mooney_rivlin_tri3_whole_stress, 71, 164, 486,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_whole_stress_batch},
 
   {"mooney_rivlin", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_terms_precompute, tm_mooney_rivlin_tri3_terms_energy, tm_mooney_rivlin_tri3_terms_gradient,
-   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 356, 945,
+   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 304, 741,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
-   tm_mooney_rivlin_tri6_whole_hessian, tm_mooney_rivlin_tri6_whole_gradient_hessian, tm_mooney_rivlin_tri6_whole_stress, 285, 714, 3006,
+   tm_mooney_rivlin_tri6_whole_hessian, tm_mooney_rivlin_tri6_whole_gradient_hessian, tm_mooney_rivlin_tri6_whole_stress, 285, 636, 2664,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri6_whole_stress_batch},
 
   {"mooney_rivlin", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_terms_precompute, tm_mooney_rivlin_tri6_terms_energy, tm_mooney_rivlin_tri6_terms_gradient,
-   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1284, 4383,
+   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1128, 3654,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1364,7 +1364,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
-   tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 964440,
+   tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 882225,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1376,7 +1376,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
-   tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 50944,
+   tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 46960,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1389,7 +1389,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
-   tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 24420,
+   tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22746,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1402,7 +1402,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
-   tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 25240,
+   tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 23704,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1415,7 +1415,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
-   tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2280,
+   tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2200,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1428,7 +1428,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
-   tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 13104,
+   tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12294,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1440,7 +1440,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
-   tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 37160,
+   tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 34052,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1453,7 +1453,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
-   tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2396,
+   tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2276,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1466,7 +1466,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
-   tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 431,
+   tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 421,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1479,7 +1479,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
-   tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2841,
+   tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2694,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1491,7 +1491,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
-   tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 962820,
+   tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 880605,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1503,7 +1503,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
-   tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 50752,
+   tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46768,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1516,7 +1516,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
-   tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 24276,
+   tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22602,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1529,7 +1529,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
-   tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 25048,
+   tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 23512,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1542,7 +1542,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
-   tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2304,
+   tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2224,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1555,7 +1555,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
-   tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 13158,
+   tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12348,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1567,7 +1567,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
-   tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 37064,
+   tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 33956,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1580,7 +1580,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
-   tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2372,
+   tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2252,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1593,7 +1593,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
-   tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 437,
+   tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 427,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1606,7 +1606,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
-   tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2859,
+   tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2712,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -1618,7 +1618,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
-   tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 952155,
+   tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 869940,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1630,7 +1630,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
-   tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 49488,
+   tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 45504,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1649,7 +1649,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
-   tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 23328,
+   tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 21654,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1668,7 +1668,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
-   tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 23784,
+   tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 22248,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1687,7 +1687,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_terms_precompute, tm_stvk_quad4_terms_energy, tm_stvk_quad4_terms_gradient,
-   tm_stvk_quad4_terms_hessian, tm_stvk_quad4_terms_gradient_hessian, tm_stvk_quad4_terms_stress, 248, 816, 2248,
+   tm_stvk_quad4_terms_hessian, tm_stvk_quad4_terms_gradient_hessian, tm_stvk_quad4_terms_stress, 248, 816, 2168,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1706,7 +1706,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
-   tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 13032,
+   tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 12222,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1718,7 +1718,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
-   tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 36432,
+   tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 33324,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1731,7 +1731,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
-   tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2214,
+   tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2094,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1750,7 +1750,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_terms_precompute, tm_stvk_tri3_terms_energy, tm_stvk_tri3_terms_gradient,
-   tm_stvk_tri3_terms_hessian, tm_stvk_tri3_terms_gradient_hessian, tm_stvk_tri3_terms_stress, 54, 180, 423,
+   tm_stvk_tri3_terms_hessian, tm_stvk_tri3_terms_gradient_hessian, tm_stvk_tri3_terms_stress, 54, 180, 413,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1769,7 +1769,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kStvkParameters, kStvkLimits, tm_stvk_tri6_terms_precompute, tm_stvk_tri6_terms_energy, tm_stvk_tri6_terms_gradient,
-   tm_stvk_tri6_terms_hessian, tm_stvk_tri6_terms_gradient_hessian, tm_stvk_tri6_terms_stress, 234, 756, 2817,
+   tm_stvk_tri6_terms_hessian, tm_stvk_tri6_terms_gradient_hessian, tm_stvk_tri6_terms_stress, 234, 756, 2670,
    0, 0,
    0, nullptr, nullptr, nullptr},
 

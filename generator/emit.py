@@ -14,7 +14,7 @@ from pathlib import Path
 
 import jinja2
 
-from .ir import ElementIR, KernelIR, LoweredIR, TensorIR, TermsIR, WholeIR
+from .ir import ElementIR, KernelIR, LoweredIR, ProductBlock, SumOfProducts, TensorIR, TermsIR, WholeIR
 from .model import Block, LawSpec, ParamLimit
 from .printer import double_literal, print_expr
 
@@ -35,12 +35,40 @@ _AUXILIARY_CODE = {
 }
 
 
+# Printed law blocks by (id(block), dim): the law's blocks are shared by every
+# kernel of a (law, dim) and read only H, R, Y, the constants and their own
+# temporaries, so each is printed once (the block is kept to pin its id).
+_PRINTED: dict[tuple[int, int], tuple[Block, dict]] = {}
+
+
+def _printed_law_block(block: Block, names: dict[str, str], dim: int) -> dict:
+    key = (id(block), dim)
+    if key not in _PRINTED:
+        _PRINTED[key] = (block, _printed(block, names, dim))
+    return _PRINTED[key][1]
+
+
 def _printed(block: Block, names: dict[str, str], dim: int = 0) -> dict:
     sizes = {"d": dim, "dd": dim * dim, "y": 9 if dim == 3 else 1}
     return {
         "flops": block.flops,
         "prelude": [line.format(**sizes) for aux in block.auxiliaries for line in _AUXILIARY_CODE[aux]],
         "assignments": [{"target": a.target, "declare": a.declare, "code": print_expr(a.expr, names)}
+                        for a in block.assignments],
+    }
+
+
+def _sum_of_products(assignment: SumOfProducts) -> str:
+    return " + ".join(("" if c == 1 else double_literal(c) + "*") + "*".join(factors)
+                      for c, factors in assignment.terms)
+
+
+def _printed_products(block: ProductBlock) -> dict:
+    """A ProductBlock in the shape of `_printed` (no prelude)."""
+    return {
+        "flops": block.flops,
+        "prelude": [],
+        "assignments": [{"target": a.target, "declare": a.declare, "code": _sum_of_products(a)}
                         for a in block.assignments],
     }
 
@@ -74,9 +102,9 @@ def _tangent_fill(k: KernelIR) -> list[str]:
 
 def _terms_context(terms: TermsIR, names: dict[str, str]) -> dict:
     return {
-        "terms_h": _printed(terms.h_block, names),
-        "parts": [{"index": i, "nodes": list(p.nodes), "gradient": _printed(p.gradient, names),
-                   "hessian": _printed(p.hessian, names)} for i, p in enumerate(terms.parts)],
+        "terms_h": _printed_products(terms.h_block),
+        "parts": [{"index": i, "nodes": list(p.nodes), "gradient": _printed_products(p.gradient),
+                   "hessian": _printed_products(p.hessian)} for i, p in enumerate(terms.parts)],
     }
 
 
@@ -113,11 +141,11 @@ def kernel_context(k: KernelIR) -> dict:
         "derived_code": [(name, print_expr(expr, names)) for name, expr in law.constants],
         "weights": _literals(k.tables.weights),
         "reference_gradients": [[_literals(row) for row in q] for q in k.tables.reference_gradients],
-        "law_energy": _printed(k.law_ir.energy, names, k.element.dim),
-        "law_stress": _printed(k.law_ir.stress, names, k.element.dim),
-        "law_weighted_stress": _printed(k.law_ir.weighted_stress, names, k.element.dim),
-        "law_tangent": _printed(k.law_ir.tangent, names, k.element.dim),
-        "law_tangent_only": _printed(k.law_ir.tangent_only, names, k.element.dim),
+        "law_energy": _printed_law_block(k.law_ir.energy, names, k.element.dim),
+        "law_stress": _printed_law_block(k.law_ir.stress, names, k.element.dim),
+        "law_weighted_stress": _printed_law_block(k.law_ir.weighted_stress, names, k.element.dim),
+        "law_tangent": _printed_law_block(k.law_ir.tangent, names, k.element.dim),
+        "law_tangent_only": _printed_law_block(k.law_ir.tangent_only, names, k.element.dim),
         "tangent_fill": _tangent_fill(k),
     }
     if isinstance(k.split_ir, TermsIR):
@@ -156,35 +184,76 @@ def element_context(e: ElementIR) -> dict:
     }
 
 
-def manifest(lowered: LoweredIR) -> str:
-    """manifest.json: every kernel with its sizes and flops, every refusal with its reason."""
-    rows = [{"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
-             "dim": k.element.dim, "consts": k.consts_size, "flops_energy": k.flops.energy,
-             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
-             "invertible": k.invertible, "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched}
-            for k in lowered.kernels]
-    refused = [{"law": r.law, "element": r.element, "split": r.split, "reason": r.reason} for r in lowered.refused]
-    return json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"
+SPLIT_ORDER = ("whole", "terms", "tensor")  # lower.SPLITS, the registry's order within a (law, element)
+
+
+def kernel_row(k: KernelIR, sources: list[str]) -> dict:
+    """The kernel's manifest.json row: what registry.cpp and sources.cmake need, so that
+    an update regenerating some kernels renders the tables without the others' IR."""
+    return {"law": k.law.name, "element": k.element.name, "split": k.split, "nodes": k.element.node_count,
+            "dim": k.element.dim, "points": len(k.tables.weights), "params": len(k.law.parameters),
+            "derived_params": len(k.law.constants), "consts": k.consts_size, "flops_energy": k.flops.energy,
+            "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
+            "invertible": k.invertible, "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched,
+            "sources": sources}
+
+
+def row_order(row: dict) -> tuple:
+    """Kernels and refusals sort by law, element, then split in lower.SPLITS order."""
+    return row["law"], row["element"], SPLIT_ORDER.index(row["split"])
+
+
+def _registry_context(row: dict) -> dict:
+    """A manifest row as registry.cpp.j2's `k`."""
+    return dict(row, prefix=f"tm_{row['law']}_{row['element']}_{row['split']}", dofs=row["nodes"] * row["dim"])
+
+
+def emit_kernel(k: KernelIR, env: jinja2.Environment) -> tuple[dict[str, str], dict]:
+    """One kernel's files (the terms split's parts included) and its manifest row."""
+    context = kernel_context(k)
+    stem = f"kernels/{context['prefix'][3:]}"
+    files = {f"{stem}.cpp": env.get_template(f"kernel_{k.split}.cpp.j2").render(k=context)}
+    if isinstance(k.split_ir, TermsIR):
+        part_template = env.get_template("kernel_terms_part.cpp.j2")
+        for part in context["parts"]:
+            files[f"{stem}_part{part['index']}.cpp"] = part_template.render(k=context, p=part)
+    return files, kernel_row(k, sorted(files))
+
+
+def emit_tables(rows: list[dict], refused: list[dict], laws: list[LawSpec], env: jinja2.Environment,
+                elements: list[ElementIR] | None = None) -> dict[str, str]:
+    """registry.cpp, sources.cmake and manifest.json from the kernels' rows (and elements.cpp when given)."""
+    rows = sorted(rows, key=row_order)
+    refused = sorted(refused, key=row_order)
+    files = {"registry.cpp": env.get_template("registry.cpp.j2").render(
+        kernels=[_registry_context(row) for row in rows], laws=[law_context(law) for law in laws])}
+    if elements is not None:
+        files["elements.cpp"] = env.get_template("elements.cpp.j2").render(
+            elements=[element_context(e) for e in elements])
+    sources = sorted({source for row in rows for source in row["sources"]} | {"registry.cpp", "elements.cpp"})
+    files["sources.cmake"] = env.get_template("sources.cmake.j2").render(files=sources)
+    files["manifest.json"] = json.dumps({"kernels": rows, "refused": refused}, indent=1, sort_keys=True) + "\n"
+    return files
+
+
+def refusal_row(r) -> dict:
+    return {"law": r.law, "element": r.element, "split": r.split, "reason": r.reason}
+
+
+def environment(templates: Path) -> jinja2.Environment:
+    """The strict Jinja2 environment of the templates directory."""
+    return _environment(templates)
 
 
 def emit(lowered: LoweredIR, templates: Path) -> dict[str, str]:
     """Stage 5: every generated file's text, by its path relative to generated/."""
     env = _environment(templates)
     files: dict[str, str] = {}
-    contexts = []
+    rows = []
     for k in lowered.kernels:
-        context = kernel_context(k)
-        contexts.append(context)
-        name = f"kernels/{context['prefix'][3:]}.cpp"
-        files[name] = env.get_template(f"kernel_{k.split}.cpp.j2").render(k=context)
-        if isinstance(k.split_ir, TermsIR):
-            part_template = env.get_template("kernel_terms_part.cpp.j2")
-            for part in context["parts"]:
-                files[f"kernels/{context['prefix'][3:]}_part{part['index']}.cpp"] = part_template.render(k=context, p=part)
-    files["registry.cpp"] = env.get_template("registry.cpp.j2").render(
-        kernels=contexts, laws=[law_context(law) for law in lowered.laws])
-    files["elements.cpp"] = env.get_template("elements.cpp.j2").render(
-        elements=[element_context(e) for e in lowered.elements])
-    files["sources.cmake"] = env.get_template("sources.cmake.j2").render(files=sorted(files))
-    files["manifest.json"] = manifest(lowered)
+        kernel_files, row = emit_kernel(k, env)
+        files.update(kernel_files)
+        rows.append(row)
+    files.update(emit_tables(rows, [refusal_row(r) for r in lowered.refused], list(lowered.laws), env,
+                             list(lowered.elements)))
     return files

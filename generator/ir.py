@@ -34,20 +34,40 @@ class WholeIR:
 
 
 @dataclass(frozen=True)
+class SumOfProducts:
+    """`target = sum of coefficient * product of factors;` in emitted code: the
+    terms split's straight-line entries, built directly (no SymPy).
+
+    terms: (integer coefficient, C names of the factors) per term; declare:
+    the target is a new `const double` temporary (else an lvalue the template
+    declared, such as `K[5]`, assigned with the template's operator)."""
+    target: str
+    terms: tuple[tuple[int, tuple[str, ...]], ...]
+    declare: bool = False
+
+
+@dataclass(frozen=True)
+class ProductBlock:
+    """Straight-line sums of products, temporaries before their uses, with their flop count."""
+    assignments: tuple[SumOfProducts, ...]
+    flops: int
+
+
+@dataclass(frozen=True)
 class TermsPart:
     """One translation unit of the terms split."""
     nodes: tuple[int, ...]  # the node rows this part computes
-    gradient: Block  # defines g[...] entries (accumulated with +=)
-    hessian: Block  # defines K[...] upper-triangle entries (accumulated with +=)
+    gradient: ProductBlock  # defines g[...] entries (accumulated with +=)
+    hessian: ProductBlock  # defines K[...] upper-triangle entries (accumulated with +=)
 
 
 @dataclass(frozen=True)
 class TermsIR:
     """The gradient and Hessian written out entry by entry, cut into parts.
 
-    h_block: H[...] from u and GT at one point (straight-line, CSE'd)."""
+    h_block: H[...] from u and GT at one point (straight-line)."""
     parts: tuple[TermsPart, ...]
-    h_block: Block
+    h_block: ProductBlock
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ Glossary (the same names are used in the C++ runtime):
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Optional
 
@@ -165,7 +166,7 @@ class LawDerivatives:
     quadratic: Optional[StrainQuadratic]
     not_quadratic: str = ""
 
-    @property
+    @functools.cached_property
     def linear(self) -> bool:
         """True when psi is quadratic in H with a stress-free reference: the
         tangent A is constant and P(0) = 0, so an element's force is K u with

@@ -131,6 +131,27 @@ def _tangent_fill(tangent_map: tuple[tuple[Optional[str], ...], ...]) -> tuple[t
     return tuple(fills)
 
 
+def _test_point(exprs: list[sympy.Expr]) -> dict:
+    """Values of the expressions' symbols at which equal polynomials agree and distinct ones almost surely differ."""
+    symbols = sorted({s for e in exprs for s in e.free_symbols} | {WEIGHT}, key=lambda s: s.name)
+    return {s: sympy.Float(sympy.Rational(7 * k + 3, 11 * k + 13) + sympy.Rational(1, 997), 40)
+            for k, s in enumerate(symbols)}
+
+
+def _fingerprint(expr: sympy.Expr, point: dict) -> sympy.Float:
+    return sympy.Float(expr.xreplace(point), 30)
+
+
+def _equal(a: sympy.Expr, b: sympy.Expr, fa, fb, polynomial: bool) -> bool:
+    """a == b as expressions: structurally, or for polynomials expanded (tried only where their values
+    at the test point agree, so that distinct entries cost no expansion)."""
+    if a == b:
+        return True
+    if not polynomial or fb is None or abs(fa - fb) > 1e-20 * (1 + abs(fa)):
+        return False
+    return sympy.expand(a - b) == 0
+
+
 def build_law_ir(derivatives: LawDerivatives) -> LawKernelIR:
     """The law's blocks at one point; symmetric or repeated tangent entries are computed once."""
     psi, P, A = derivatives.energy, derivatives.stress, derivatives.tangent
@@ -140,17 +161,21 @@ def build_law_ir(derivatives: LawDerivatives) -> LawKernelIR:
     stress = eliminate([(f"P[{i}]", p) for i, p in enumerate(P)], "s", dim)
     weighted = [(f"wP[{i}]", WEIGHT * p) for i, p in enumerate(P)]
     weighted_stress = eliminate(weighted, "s", dim)
-    outputs, canonical, tangent_map = list(weighted), {}, [[None] * d2 for _ in range(d2)]
+    outputs, canonical, tangent_map = list(weighted), [], [[None] * d2 for _ in range(d2)]
+    point = _test_point([A[i][j] for i in range(d2) for j in range(i, d2)])
     for i in range(d2):
         for j in range(i, d2):
             entry = WEIGHT * A[i][j]
-            key = sympy.expand(entry) if A[i][j].is_polynomial() else entry
-            if key == 0:
+            polynomial = A[i][j].is_polynomial()
+            if A[i][j] == 0 or (polynomial and _fingerprint(entry, point) == 0 and sympy.expand(entry) == 0):
                 continue
-            if key not in canonical:
-                canonical[key] = f"wA[{i * d2 + j}]"
-                outputs.append((canonical[key], entry))
-            tangent_map[i][j] = tangent_map[j][i] = canonical[key]
+            fingerprint = _fingerprint(entry, point) if polynomial else None
+            name = next((n for e, f, n in canonical if _equal(entry, e, fingerprint, f, polynomial)), None)
+            if name is None:
+                name = f"wA[{i * d2 + j}]"
+                canonical.append((entry, fingerprint, name))
+                outputs.append((name, entry))
+            tangent_map[i][j] = tangent_map[j][i] = name
     tangent = eliminate(outputs, "a", dim)
     tangent_only = eliminate(outputs[len(weighted):], "a", dim)
     tangent_map = tuple(tuple(row) for row in tangent_map)

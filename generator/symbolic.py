@@ -168,12 +168,19 @@ def _evaluate(law: LawSpec, names: dict) -> sympy.Expr:
     return sympy.sympify(value)
 
 
-@functools.lru_cache(maxsize=None)
-def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
-    """psi as an expression of H0.. and the law's constants.
+# J^(-1/3) while differentiating: the isochoric invariants are polynomials in
+# H and this symbol, whose derivative dJr/dH = -Jr^4 dJ/dH / 3 the chain rule
+# applies (`law_derivatives`); the results then read J^(-k/3) again.
+ROOT_J = sympy.Symbol("Jr", positive=True)
 
-    The invariants are those of the 3D right Cauchy-Green tensor; in 2D
-    (plane strain) C33 = 1 adds 1 to tr(C) and to tr(C^2)."""
+
+def _determinant(dim: int) -> sympy.Expr:
+    return (sympy.eye(dim) + sympy.Matrix(dim, dim, gradient_symbols(dim))).det()
+
+
+@functools.lru_cache(maxsize=None)
+def _law_energy(law: LawSpec, dim: int) -> sympy.Expr:
+    """psi as an expression of H0.., the law's constants and ROOT_J (standing for J^(-1/3))."""
     _check_energy_names(law)
     identity = sympy.eye(dim)
     H = sympy.Matrix(dim, dim, gradient_symbols(dim))
@@ -181,20 +188,38 @@ def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
     C = F.T * F
     R = sympy.Matrix(dim, dim, rotation_symbols(dim))
     out_of_plane = 3 - dim  # C33 = 1 in plane strain
-    J = F.det()
-    I1 = C.trace() + out_of_plane
-    I2 = (I1 ** 2 - ((C * C).trace() + out_of_plane)) / 2
-    names = {
-        "F": F, "H": H, "C": C, "E": (C - identity) / 2, "eps": (H + H.T) / 2,
-        "J": J, "I1": I1, "I2": I2, "I3": C.det(),
-        "I1bar": J ** sympy.Rational(-2, 3) * I1, "I2bar": J ** sympy.Rational(-4, 3) * I2,
-        "R": R, "S": R.T * F, "d": sympy.Integer(dim), "I": identity,
+    I1 = lambda: C.trace() + out_of_plane  # noqa: E731
+    I2 = lambda: (I1() ** 2 - ((C * C).trace() + out_of_plane)) / 2  # noqa: E731
+    names = {  # built only when the energy reads them
+        "F": lambda: F, "H": lambda: H, "C": lambda: C, "E": lambda: (C - identity) / 2,
+        "eps": lambda: (H + H.T) / 2, "J": F.det, "I1": I1, "I2": I2, "I3": lambda: F.det() ** 2,
+        "I1bar": lambda: ROOT_J ** 2 * I1(), "I2bar": lambda: ROOT_J ** 4 * I2(),
+        "R": lambda: R, "S": lambda: R.T * F, "d": lambda: sympy.Integer(dim), "I": lambda: identity,
     }
-    psi = _evaluate(law, names)
+    used = _energy_names(law)
+    psi = _evaluate(law, {name: value() for name, value in names.items() if name in used})
     allowed = set(gradient_symbols(dim)) | set(parameter_symbols(law).values()) | set(rotation_symbols(dim))
-    if psi.free_symbols - allowed:
-        raise GeneratorInputError(f"{law.source}: key 'energy': unexpected symbols {psi.free_symbols - allowed}")
+    if psi.free_symbols - allowed - {ROOT_J}:
+        raise GeneratorInputError(f"{law.source}: key 'energy': unexpected symbols "
+                                  f"{psi.free_symbols - allowed - {ROOT_J}}")
     return psi
+
+
+def _without_root(expr: sympy.Expr, dim: int) -> sympy.Expr:
+    """ROOT_J replaced by J^(-1/3)."""
+    if ROOT_J not in expr.free_symbols:
+        return expr
+    return expr.xreplace({ROOT_J: _determinant(dim) ** sympy.Rational(-1, 3)})
+
+
+@functools.lru_cache(maxsize=None)
+def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
+    """psi as an expression of H0.. and the law's constants.
+
+    The invariants are those of the 3D right Cauchy-Green tensor; in 2D
+    (plane strain) C33 = 1 adds 1 to tr(C) and to tr(C^2); I1bar = J^(-2/3) I1,
+    I2bar = J^(-4/3) I2."""
+    return _without_root(_law_energy(law, dim), dim)
 
 
 def _rational_polar_point(dim: int) -> tuple[dict, dict]:
@@ -239,22 +264,33 @@ def _check_rotation_enters_through_stretch(law: LawSpec, psi: sympy.Expr, dim: i
 def law_derivatives(law: LawSpec, dim: int) -> tuple[sympy.Expr, tuple, tuple]:
     """(psi, P, A): P[I] = dpsi/dH_I, A[I][J] = d2psi/dH_I dH_J (full, symmetric).
 
-    With R: P holds R fixed (see the module docstring) and A adds dP/dR : dR/dH_J."""
-    psi = law_energy(law, dim)
+    With R: P holds R fixed (see the module docstring) and A adds dP/dR : dR/dH_J.
+    With the isochoric invariants: psi is differentiated as a polynomial in H
+    and Jr = J^(-1/3), with dJr/dH = -Jr^4 dJ/dH / 3."""
+    psi = _law_energy(law, dim)
     H = gradient_symbols(dim)
-    P = tuple(sympy.diff(psi, h) for h in H)
+    root = ROOT_J in psi.free_symbols
+    if root:
+        J = _determinant(dim)
+        droot = [-ROOT_J ** 4 * sympy.diff(J, h) / 3 for h in H]
+
+    def derivative(expr, i):
+        value = sympy.diff(expr, H[i])
+        return value + sympy.diff(expr, ROOT_J) * droot[i] if root else value
+
+    P = tuple(derivative(psi, i) for i in range(len(H)))
     rotation = uses_rotation(law)
     if rotation:
-        _check_rotation_enters_through_stretch(law, psi, dim)
+        _check_rotation_enters_through_stretch(law, _without_root(psi, dim), dim)
         R, dR = rotation_symbols(dim), rotation_derivatives(dim)
     A = [[None] * len(H) for _ in H]
     for i in range(len(H)):
         for j in range(i, len(H)):
-            entry = sympy.diff(P[i], H[j])
+            entry = derivative(P[i], j)
             if rotation:
                 entry += sum(sympy.diff(P[i], r) * dr for r, dr in zip(R, dR[j]))
-            A[i][j] = A[j][i] = entry
-    return psi, P, tuple(tuple(row) for row in A)
+            A[i][j] = A[j][i] = _without_root(entry, dim)
+    return (_without_root(psi, dim), tuple(_without_root(p, dim) for p in P), tuple(tuple(row) for row in A))
 
 
 def strain_quadratic(law: LawSpec, dim: int) -> StrainQuadratic:

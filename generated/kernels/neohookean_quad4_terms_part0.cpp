@@ -2,7 +2,7 @@
 // Regenerate with `cmake --build build --target generate`.
 // Law: neohookean   Element: quad4   Split: terms
 // Part 0 of 2: rows of nodes 0, 1.
-// Gradient 12 and Hessian 187 flops per point after CSE.
+// Gradient 12 and Hessian 171 flops per point.
 #include <cmath>
 
 namespace tm_generated {
@@ -92,65 +92,69 @@ void tm_neohookean_quad4_terms_hessian_part0(const double* u, const double* cons
     wA[10] = w*(a22*a6 - a23*a8 + a23 + mu);
     wA[11] = w*(H[1]*a14*a3*mu - H[1]*a19 - H[1]*a21);
     wA[15] = w*((a13*a13)*a4 - a13*a14*a6 + a19*a20 + mu);
-    const double y0 = (GT[0]*GT[0]);
-    const double y1 = (GT[4]*GT[4]);
-    const double y2 = GT[0]*GT[4];
-    const double y3 = 2.0*y2;
+    const double y0 = GT[0]*GT[0];
+    const double y1 = GT[0]*GT[4];
+    const double y2 = GT[4]*GT[4];
+    K[0] += wA[0]*y0 + 2.0*wA[1]*y1 + wA[5]*y2;
+    const double y3 = wA[3] + wA[6];
+    K[1] += wA[2]*y0 + y3*y1 + wA[7]*y2;
+    K[9] += wA[10]*y0 + 2.0*wA[11]*y1 + wA[15]*y2;
     const double y4 = GT[0]*GT[1];
-    const double y5 = GT[0]*GT[5];
-    const double y6 = GT[1]*GT[4];
-    const double y7 = GT[4]*GT[5];
-    const double y8 = wA[2]*y4 + wA[7]*y7;
-    const double y9 = GT[0]*GT[2];
-    const double y10 = GT[0]*GT[6];
-    const double y11 = GT[2]*GT[4];
-    const double y12 = GT[4]*GT[6];
-    const double y13 = wA[2]*y9 + wA[7]*y12;
-    const double y14 = GT[0]*GT[3];
-    const double y15 = GT[0]*GT[7];
-    const double y16 = GT[3]*GT[4];
+    const double y5 = GT[4]*GT[5];
+    const double y6 = GT[0]*GT[5];
+    const double y7 = GT[4]*GT[1];
+    const double y8 = y6 + y7;
+    K[2] += wA[0]*y4 + wA[5]*y5 + wA[1]*y8;
+    const double y9 = wA[2]*y4 + wA[7]*y5;
+    K[3] += y9 + wA[3]*y6 + wA[6]*y7;
+    K[10] += y9 + wA[6]*y6 + wA[3]*y7;
+    K[11] += wA[10]*y4 + wA[15]*y5 + wA[11]*y8;
+    const double y10 = GT[0]*GT[2];
+    const double y11 = GT[4]*GT[6];
+    const double y12 = GT[0]*GT[6];
+    const double y13 = GT[4]*GT[2];
+    const double y14 = y12 + y13;
+    K[4] += wA[0]*y10 + wA[5]*y11 + wA[1]*y14;
+    const double y15 = wA[2]*y10 + wA[7]*y11;
+    K[5] += y15 + wA[3]*y12 + wA[6]*y13;
+    K[12] += y15 + wA[6]*y12 + wA[3]*y13;
+    K[13] += wA[10]*y10 + wA[15]*y11 + wA[11]*y14;
+    const double y16 = GT[0]*GT[3];
     const double y17 = GT[4]*GT[7];
-    const double y18 = wA[2]*y14 + wA[7]*y17;
-    const double y19 = (GT[1]*GT[1]);
-    const double y20 = (GT[5]*GT[5]);
-    const double y21 = GT[1]*GT[5];
-    const double y22 = 2.0*y21;
-    const double y23 = GT[1]*GT[2];
-    const double y24 = GT[1]*GT[6];
-    const double y25 = GT[2]*GT[5];
+    const double y18 = GT[0]*GT[7];
+    const double y19 = GT[4]*GT[3];
+    const double y20 = y18 + y19;
+    K[6] += wA[0]*y16 + wA[5]*y17 + wA[1]*y20;
+    const double y21 = wA[2]*y16 + wA[7]*y17;
+    K[7] += y21 + wA[3]*y18 + wA[6]*y19;
+    K[14] += y21 + wA[6]*y18 + wA[3]*y19;
+    K[15] += wA[10]*y16 + wA[15]*y17 + wA[11]*y20;
+    const double y22 = GT[1]*GT[1];
+    const double y23 = GT[1]*GT[5];
+    const double y24 = GT[5]*GT[5];
+    K[18] += wA[0]*y22 + 2.0*wA[1]*y23 + wA[5]*y24;
+    K[19] += wA[2]*y22 + y3*y23 + wA[7]*y24;
+    K[27] += wA[10]*y22 + 2.0*wA[11]*y23 + wA[15]*y24;
+    const double y25 = GT[1]*GT[2];
     const double y26 = GT[5]*GT[6];
-    const double y27 = wA[2]*y23 + wA[7]*y26;
-    const double y28 = GT[1]*GT[3];
-    const double y29 = GT[1]*GT[7];
-    const double y30 = GT[3]*GT[5];
-    const double y31 = GT[5]*GT[7];
-    const double y32 = wA[2]*y28 + wA[7]*y31;
-    K[0] += wA[0]*y0 + wA[1]*y3 + wA[5]*y1;
-    K[1] += wA[2]*y0 + wA[3]*y2 + wA[6]*y2 + wA[7]*y1;
-    K[2] += wA[0]*y4 + wA[1]*y5 + wA[1]*y6 + wA[5]*y7;
-    K[3] += wA[3]*y5 + wA[6]*y6 + y8;
-    K[4] += wA[0]*y9 + wA[1]*y10 + wA[1]*y11 + wA[5]*y12;
-    K[5] += wA[3]*y10 + wA[6]*y11 + y13;
-    K[6] += wA[0]*y14 + wA[1]*y15 + wA[1]*y16 + wA[5]*y17;
-    K[7] += wA[3]*y15 + wA[6]*y16 + y18;
-    K[9] += wA[10]*y0 + wA[11]*y3 + wA[15]*y1;
-    K[10] += wA[3]*y6 + wA[6]*y5 + y8;
-    K[11] += wA[10]*y4 + wA[11]*y5 + wA[11]*y6 + wA[15]*y7;
-    K[12] += wA[3]*y11 + wA[6]*y10 + y13;
-    K[13] += wA[10]*y9 + wA[11]*y10 + wA[11]*y11 + wA[15]*y12;
-    K[14] += wA[3]*y16 + wA[6]*y15 + y18;
-    K[15] += wA[10]*y14 + wA[11]*y15 + wA[11]*y16 + wA[15]*y17;
-    K[18] += wA[0]*y19 + wA[1]*y22 + wA[5]*y20;
-    K[19] += wA[2]*y19 + wA[3]*y21 + wA[6]*y21 + wA[7]*y20;
-    K[20] += wA[0]*y23 + wA[1]*y24 + wA[1]*y25 + wA[5]*y26;
-    K[21] += wA[3]*y24 + wA[6]*y25 + y27;
-    K[22] += wA[0]*y28 + wA[1]*y29 + wA[1]*y30 + wA[5]*y31;
-    K[23] += wA[3]*y29 + wA[6]*y30 + y32;
-    K[27] += wA[10]*y19 + wA[11]*y22 + wA[15]*y20;
-    K[28] += wA[3]*y25 + wA[6]*y24 + y27;
-    K[29] += wA[10]*y23 + wA[11]*y24 + wA[11]*y25 + wA[15]*y26;
-    K[30] += wA[3]*y30 + wA[6]*y29 + y32;
-    K[31] += wA[10]*y28 + wA[11]*y29 + wA[11]*y30 + wA[15]*y31;
+    const double y27 = GT[1]*GT[6];
+    const double y28 = GT[5]*GT[2];
+    const double y29 = y27 + y28;
+    K[20] += wA[0]*y25 + wA[5]*y26 + wA[1]*y29;
+    const double y30 = wA[2]*y25 + wA[7]*y26;
+    K[21] += y30 + wA[3]*y27 + wA[6]*y28;
+    K[28] += y30 + wA[6]*y27 + wA[3]*y28;
+    K[29] += wA[10]*y25 + wA[15]*y26 + wA[11]*y29;
+    const double y31 = GT[1]*GT[3];
+    const double y32 = GT[5]*GT[7];
+    const double y33 = GT[1]*GT[7];
+    const double y34 = GT[5]*GT[3];
+    const double y35 = y33 + y34;
+    K[22] += wA[0]*y31 + wA[5]*y32 + wA[1]*y35;
+    const double y36 = wA[2]*y31 + wA[7]*y32;
+    K[23] += y36 + wA[3]*y33 + wA[6]*y34;
+    K[30] += y36 + wA[6]*y33 + wA[3]*y34;
+    K[31] += wA[10]*y31 + wA[15]*y32 + wA[11]*y35;
   }
 }
 

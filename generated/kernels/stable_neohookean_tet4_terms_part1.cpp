@@ -2,7 +2,7 @@
 // Regenerate with `cmake --build build --target generate`.
 // Law: stable_neohookean   Element: tet4   Split: terms
 // Part 1 of 2: rows of nodes 2, 3.
-// Gradient 30 and Hessian 333 flops per point after CSE.
+// Gradient 30 and Hessian 303 flops per point.
 #include <cmath>
 
 namespace tm_generated {
@@ -216,57 +216,63 @@ void tm_stable_neohookean_tet4_terms_hessian_part1(const double* u, const double
     wA[70] = w*(a0*a49*a89 + a15*a59 + a60);
     wA[71] = w*(-H[7]*a86 + a0*a52*a89);
     wA[80] = w*(a0*a52*(H[0]*a5 - 2.0*a40 + a55 + a78) - a20*a53*a54 - a24);
-    const double y0 = (GT[2]*GT[2]);
-    const double y1 = (GT[6]*GT[6]);
-    const double y2 = (GT[10]*GT[10]);
-    const double y3 = GT[2]*GT[6];
-    const double y4 = 2.0*y3;
-    const double y5 = GT[2]*GT[10];
-    const double y6 = 2.0*y5;
-    const double y7 = GT[6]*GT[10];
-    const double y8 = 2.0*y7;
-    const double y9 = GT[2]*GT[3];
-    const double y10 = GT[2]*GT[7];
-    const double y11 = GT[2]*GT[11];
-    const double y12 = GT[3]*GT[6];
-    const double y13 = GT[3]*GT[10];
-    const double y14 = GT[6]*GT[7];
-    const double y15 = GT[6]*GT[11];
-    const double y16 = GT[7]*GT[10];
+    const double y0 = GT[2]*GT[2];
+    const double y1 = GT[2]*GT[6];
+    const double y2 = GT[2]*GT[10];
+    const double y3 = GT[6]*GT[6];
+    const double y4 = GT[6]*GT[10];
+    const double y5 = GT[10]*GT[10];
+    K[78] += wA[0]*y0 + 2.0*wA[1]*y1 + 2.0*wA[2]*y2 + wA[10]*y3 + 2.0*wA[11]*y4 + wA[20]*y5;
+    const double y6 = wA[4] + wA[12];
+    const double y7 = wA[5] + wA[21];
+    const double y8 = wA[14] + wA[22];
+    K[79] += wA[3]*y0 + y6*y1 + y7*y2 + wA[13]*y3 + y8*y4 + wA[23]*y5;
+    const double y9 = wA[7] + wA[15];
+    const double y10 = wA[8] + wA[24];
+    const double y11 = wA[17] + wA[25];
+    K[80] += wA[6]*y0 + y9*y1 + y10*y2 + wA[16]*y3 + y11*y4 + wA[26]*y5;
+    K[91] += wA[30]*y0 + 2.0*wA[31]*y1 + 2.0*wA[32]*y2 + wA[40]*y3 + 2.0*wA[41]*y4 + wA[50]*y5;
+    const double y12 = wA[34] + wA[42];
+    const double y13 = wA[35] + wA[51];
+    const double y14 = wA[44] + wA[52];
+    K[92] += wA[33]*y0 + y12*y1 + y13*y2 + wA[43]*y3 + y14*y4 + wA[53]*y5;
+    K[104] += wA[60]*y0 + 2.0*wA[61]*y1 + 2.0*wA[62]*y2 + wA[70]*y3 + 2.0*wA[71]*y4 + wA[80]*y5;
+    const double y15 = GT[2]*GT[3];
+    const double y16 = GT[6]*GT[7];
     const double y17 = GT[10]*GT[11];
-    const double y18 = wA[13]*y14 + wA[23]*y17 + wA[3]*y9;
-    const double y19 = wA[16]*y14 + wA[26]*y17 + wA[6]*y9;
-    const double y20 = wA[33]*y9 + wA[43]*y14 + wA[53]*y17;
-    const double y21 = (GT[3]*GT[3]);
-    const double y22 = (GT[7]*GT[7]);
-    const double y23 = (GT[11]*GT[11]);
-    const double y24 = GT[3]*GT[7];
-    const double y25 = 2.0*y24;
-    const double y26 = GT[3]*GT[11];
-    const double y27 = 2.0*y26;
-    const double y28 = GT[7]*GT[11];
-    const double y29 = 2.0*y28;
-    K[78] += wA[0]*y0 + wA[1]*y4 + wA[10]*y1 + wA[11]*y8 + wA[2]*y6 + wA[20]*y2;
-    K[79] += wA[12]*y3 + wA[13]*y1 + wA[14]*y7 + wA[21]*y5 + wA[22]*y7 + wA[23]*y2 + wA[3]*y0 + wA[4]*y3 + wA[5]*y5;
-    K[80] += wA[15]*y3 + wA[16]*y1 + wA[17]*y7 + wA[24]*y5 + wA[25]*y7 + wA[26]*y2 + wA[6]*y0 + wA[7]*y3 + wA[8]*y5;
-    K[81] += wA[0]*y9 + wA[1]*y10 + wA[1]*y12 + wA[10]*y14 + wA[11]*y15 + wA[11]*y16 + wA[2]*y11 + wA[2]*y13 + wA[20]*y17;
-    K[82] += wA[12]*y12 + wA[14]*y15 + wA[21]*y13 + wA[22]*y16 + wA[4]*y10 + wA[5]*y11 + y18;
-    K[83] += wA[15]*y12 + wA[17]*y15 + wA[24]*y13 + wA[25]*y16 + wA[7]*y10 + wA[8]*y11 + y19;
-    K[91] += wA[30]*y0 + wA[31]*y4 + wA[32]*y6 + wA[40]*y1 + wA[41]*y8 + wA[50]*y2;
-    K[92] += wA[33]*y0 + wA[34]*y3 + wA[35]*y5 + wA[42]*y3 + wA[43]*y1 + wA[44]*y7 + wA[51]*y5 + wA[52]*y7 + wA[53]*y2;
-    K[93] += wA[12]*y10 + wA[14]*y16 + wA[21]*y11 + wA[22]*y15 + wA[4]*y12 + wA[5]*y13 + y18;
-    K[94] += wA[30]*y9 + wA[31]*y10 + wA[31]*y12 + wA[32]*y11 + wA[32]*y13 + wA[40]*y14 + wA[41]*y15 + wA[41]*y16 + wA[50]*y17;
-    K[95] += wA[34]*y10 + wA[35]*y11 + wA[42]*y12 + wA[44]*y15 + wA[51]*y13 + wA[52]*y16 + y20;
-    K[104] += wA[60]*y0 + wA[61]*y4 + wA[62]*y6 + wA[70]*y1 + wA[71]*y8 + wA[80]*y2;
-    K[105] += wA[15]*y10 + wA[17]*y16 + wA[24]*y11 + wA[25]*y15 + wA[7]*y12 + wA[8]*y13 + y19;
-    K[106] += wA[34]*y12 + wA[35]*y13 + wA[42]*y10 + wA[44]*y16 + wA[51]*y11 + wA[52]*y15 + y20;
-    K[107] += wA[60]*y9 + wA[61]*y10 + wA[61]*y12 + wA[62]*y11 + wA[62]*y13 + wA[70]*y14 + wA[71]*y15 + wA[71]*y16 + wA[80]*y17;
-    K[117] += wA[0]*y21 + wA[1]*y25 + wA[10]*y22 + wA[11]*y29 + wA[2]*y27 + wA[20]*y23;
-    K[118] += wA[12]*y24 + wA[13]*y22 + wA[14]*y28 + wA[21]*y26 + wA[22]*y28 + wA[23]*y23 + wA[3]*y21 + wA[4]*y24 + wA[5]*y26;
-    K[119] += wA[15]*y24 + wA[16]*y22 + wA[17]*y28 + wA[24]*y26 + wA[25]*y28 + wA[26]*y23 + wA[6]*y21 + wA[7]*y24 + wA[8]*y26;
-    K[130] += wA[30]*y21 + wA[31]*y25 + wA[32]*y27 + wA[40]*y22 + wA[41]*y29 + wA[50]*y23;
-    K[131] += wA[33]*y21 + wA[34]*y24 + wA[35]*y26 + wA[42]*y24 + wA[43]*y22 + wA[44]*y28 + wA[51]*y26 + wA[52]*y28 + wA[53]*y23;
-    K[143] += wA[60]*y21 + wA[61]*y25 + wA[62]*y27 + wA[70]*y22 + wA[71]*y29 + wA[80]*y23;
+    const double y18 = GT[2]*GT[7];
+    const double y19 = GT[2]*GT[11];
+    const double y20 = GT[6]*GT[3];
+    const double y21 = GT[6]*GT[11];
+    const double y22 = GT[10]*GT[3];
+    const double y23 = GT[10]*GT[7];
+    const double y24 = y18 + y20;
+    const double y25 = y19 + y22;
+    const double y26 = y21 + y23;
+    K[81] += wA[0]*y15 + wA[10]*y16 + wA[20]*y17 + wA[1]*y24 + wA[2]*y25 + wA[11]*y26;
+    const double y27 = wA[3]*y15 + wA[13]*y16 + wA[23]*y17;
+    K[82] += y27 + wA[4]*y18 + wA[5]*y19 + wA[12]*y20 + wA[14]*y21 + wA[21]*y22 + wA[22]*y23;
+    const double y28 = wA[6]*y15 + wA[16]*y16 + wA[26]*y17;
+    K[83] += y28 + wA[7]*y18 + wA[8]*y19 + wA[15]*y20 + wA[17]*y21 + wA[24]*y22 + wA[25]*y23;
+    K[93] += y27 + wA[12]*y18 + wA[21]*y19 + wA[4]*y20 + wA[22]*y21 + wA[5]*y22 + wA[14]*y23;
+    K[94] += wA[30]*y15 + wA[40]*y16 + wA[50]*y17 + wA[31]*y24 + wA[32]*y25 + wA[41]*y26;
+    const double y29 = wA[33]*y15 + wA[43]*y16 + wA[53]*y17;
+    K[95] += y29 + wA[34]*y18 + wA[35]*y19 + wA[42]*y20 + wA[44]*y21 + wA[51]*y22 + wA[52]*y23;
+    K[105] += y28 + wA[15]*y18 + wA[24]*y19 + wA[7]*y20 + wA[25]*y21 + wA[8]*y22 + wA[17]*y23;
+    K[106] += y29 + wA[42]*y18 + wA[51]*y19 + wA[34]*y20 + wA[52]*y21 + wA[35]*y22 + wA[44]*y23;
+    K[107] += wA[60]*y15 + wA[70]*y16 + wA[80]*y17 + wA[61]*y24 + wA[62]*y25 + wA[71]*y26;
+    const double y30 = GT[3]*GT[3];
+    const double y31 = GT[3]*GT[7];
+    const double y32 = GT[3]*GT[11];
+    const double y33 = GT[7]*GT[7];
+    const double y34 = GT[7]*GT[11];
+    const double y35 = GT[11]*GT[11];
+    K[117] += wA[0]*y30 + 2.0*wA[1]*y31 + 2.0*wA[2]*y32 + wA[10]*y33 + 2.0*wA[11]*y34 + wA[20]*y35;
+    K[118] += wA[3]*y30 + y6*y31 + y7*y32 + wA[13]*y33 + y8*y34 + wA[23]*y35;
+    K[119] += wA[6]*y30 + y9*y31 + y10*y32 + wA[16]*y33 + y11*y34 + wA[26]*y35;
+    K[130] += wA[30]*y30 + 2.0*wA[31]*y31 + 2.0*wA[32]*y32 + wA[40]*y33 + 2.0*wA[41]*y34 + wA[50]*y35;
+    K[131] += wA[33]*y30 + y12*y31 + y13*y32 + wA[43]*y33 + y14*y34 + wA[53]*y35;
+    K[143] += wA[60]*y30 + 2.0*wA[61]*y31 + 2.0*wA[62]*y32 + wA[70]*y33 + 2.0*wA[71]*y34 + wA[80]*y35;
   }
 }
 

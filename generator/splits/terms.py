@@ -2,35 +2,51 @@
 explicit sums (the origin report's long equations), cut by node rows into
 parts, one function and one translation unit per part.
 
-Input: `Triple`. Output: `SplitLowering` with `TermsIR` (the CSE'd parts and
-the H block), the flops of the parts and the C names of G, wP and wA."""
+Built directly as sums of products of C names (no SymPy): per node pair
+(j, k) the products G_jc G_ke once, then each Hessian entry
+K[ja][kb] = sum_ce wA[ac][be] G_jc G_ke over the non-zero tangent entries;
+for j = k the symmetric terms (c, e) and (e, c) are merged (their tangent
+entries summed once per part), for j != k the
+sum over c = e, shared by K[ja][kb] and K[jb][ka], is one temporary, and
+terms sharing one tangent entry (laws whose tangent repeats entries, such
+as Hooke's constant one) are factored: wA[i] (G.. + G..), the inner sums
+shared across the part.
+
+Input: `Triple`. Output: `SplitLowering` with `TermsIR` (the parts and the
+H block), the flops of the parts and the C names of G, wP and wA."""
 from __future__ import annotations
 
 import math
 
-import sympy
-
-from ..ir import Flops, TermsIR, TermsPart
-from ..model import Block, ElementSpec, LawKernelIR
-from ..optimize import eliminate
+from ..ir import Flops, ProductBlock, SumOfProducts, TermsIR, TermsPart
+from ..model import ElementSpec, LawKernelIR
 from .common import SplitLowering, Triple
 from .whole import displacement_gradient_flops, quadrature_flops
 
 ENTRIES_PER_PART = 400
 
 
-def shape_gradient_symbols(element: ElementSpec) -> list[list[sympy.Symbol]]:
-    """G{c}_{j} = dN_j/dX_c at one point, indexed [j][c]."""
-    return [[sympy.Symbol(f"G{c}_{j}", real=True) for c in range(element.dim)] for j in range(element.node_count)]
+def _flops(assignment: SumOfProducts) -> int:
+    """One multiplication per factor after the first and per coefficient other than 1, one addition between terms."""
+    return sum(len(factors) - 1 + (coefficient != 1) for coefficient, factors in assignment.terms) + \
+        len(assignment.terms) - 1
 
 
-def h_block(element: ElementSpec) -> Block:
-    """H[a*d+C] = sum_j u[j*d+a] GT[C*n+j], CSE'd."""
+def product_block(assignments: list[SumOfProducts]) -> ProductBlock:
+    return ProductBlock(assignments=tuple(assignments), flops=sum(_flops(a) for a in assignments))
+
+
+def _gt(element: ElementSpec, c: int, j: int) -> str:
+    """G_jc = dN_j/dX_c at GT[c*n+j]."""
+    return f"GT[{c * element.node_count + j}]"
+
+
+def h_block(element: ElementSpec) -> ProductBlock:
+    """H[a*d+C] = sum_j GT[C*n+j] u[j*d+a]."""
     n, d = element.node_count, element.dim
-    u = [sympy.Symbol(f"u{i}", real=True) for i in range(n * d)]
-    G = shape_gradient_symbols(element)
-    return eliminate([(f"H[{a * d + c}]", sum(u[j * d + a] * G[j][c] for j in range(n)))
-                      for a in range(d) for c in range(d)], "h")
+    return product_block([SumOfProducts(f"H[{a * d + c}]", tuple((1, (_gt(element, c, j), f"u[{j * d + a}]"))
+                                                                  for j in range(n)))
+                          for a in range(d) for c in range(d)])
 
 
 def _node_groups(element: ElementSpec) -> list[tuple[int, ...]]:
@@ -52,30 +68,94 @@ def _node_groups(element: ElementSpec) -> list[tuple[int, ...]]:
     return groups
 
 
-def _part(group: tuple[int, ...], element: ElementSpec, law_ir: LawKernelIR) -> TermsPart:
+def _gradient(group: tuple[int, ...], element: ElementSpec) -> ProductBlock:
+    d = element.dim
+    return product_block([SumOfProducts(f"g[{j * d + a}]", tuple((1, (_gt(element, c, j), f"wP[{a * d + c}]"))
+                                                                  for c in range(d)))
+                          for j in group for a in range(d)])
+
+
+def _hessian(group: tuple[int, ...], element: ElementSpec, law_ir: LawKernelIR) -> ProductBlock:
     n, d = element.node_count, element.dim
     dofs = n * d
-    G = shape_gradient_symbols(element)
-    A = [[sympy.Symbol(name.replace("[", "").replace("]", ""), real=True) if name else sympy.S.Zero
-          for name in row] for row in law_ir.tangent_map]
-    wP = [sympy.Symbol(f"wP{i}", real=True) for i in range(d * d)]
-    g_out, k_out = [], []
+    A = law_ir.tangent_map
+    out: list[SumOfProducts] = []
+    count = [0]
+
+    def temporary(terms: tuple) -> str:
+        name = f"y{count[0]}"
+        count[0] += 1
+        out.append(SumOfProducts(name, terms, declare=True))
+        return name
+
+    inner_sums: dict[tuple, str] = {}
+    tangent_sums: dict[tuple[str, str], str] = {}
+
+    def factored(terms: list) -> tuple:
+        """Terms wA[i] * p grouped by wA[i]: one wA[i] * (sum of their p) per repeated entry."""
+        groups: dict[str, list] = {}
+        for coefficient, factors in terms:
+            groups.setdefault(factors[0] if len(factors) == 2 else "", []).append((coefficient, factors))
+        result = []
+        for name, members in groups.items():
+            if not name or len(members) == 1:
+                result += members
+                continue
+            key = tuple(sorted((c, f[1]) for c, f in members))
+            if key not in inner_sums:
+                inner_sums[key] = temporary(tuple((c, (p,)) for c, p in key))
+            result.append((1, (name, inner_sums[key])))
+        return tuple(result)
+
     for j in group:
-        for a in range(d):
-            row = j * d + a
-            g_out.append((f"g[{row}]", sum(wP[a * d + c] * G[j][c] for c in range(d))))
-            for k in range(n):
-                for b in range(d):
-                    col = k * d + b
-                    if col < row:
-                        continue
-                    entry = sum(G[j][c] * A[a * d + c][b * d + e] * G[k][e] for c in range(d) for e in range(d))
-                    k_out.append((f"K[{row * dofs + col}]", entry))
-    return TermsPart(nodes=group, gradient=eliminate(g_out, "x"), hessian=eliminate(k_out, "y"))
+        for k in range(j, n):
+            products: dict[tuple[int, int], str] = {}
+            diagonal_sums: dict[tuple[int, int], str] = {}
+
+            def product(c: int, e: int) -> str:
+                key = (min(c, e), max(c, e)) if j == k else (c, e)
+                if key not in products:
+                    products[key] = temporary(((1, (_gt(element, key[0], j), _gt(element, key[1], k))),))
+                return products[key]
+
+            for a in range(d):
+                for b in range(a if j == k else 0, d):
+                    terms: list[tuple[int, tuple[str, ...]]] = []
+                    if j == k:
+                        for c in range(d):
+                            for e in range(c, d):
+                                first, second = A[a * d + c][b * d + e], A[a * d + e][b * d + c]
+                                if c == e or (first and first == second):
+                                    if first:
+                                        terms.append((1 if c == e else 2, (first, product(c, e))))
+                                    continue
+                                if first and second:  # wA[ac][ae] + wA[ae][ac], once per part
+                                    key = (first, second)
+                                    if key not in tangent_sums:
+                                        tangent_sums[key] = temporary(((1, (first,)), (1, (second,))))
+                                    terms.append((1, (tangent_sums[key], product(c, e))))
+                                    continue
+                                terms += [(1, (name, product(c, e))) for name in (first, second) if name]
+                    else:
+                        diagonal = tuple((1, (A[a * d + c][b * d + c], product(c, c)))
+                                         for c in range(d) if A[a * d + c][b * d + c])
+                        if len(diagonal) > 1 and a != b:
+                            key = (min(a, b), max(a, b))
+                            if key not in diagonal_sums:
+                                diagonal_sums[key] = temporary(factored(list(diagonal)))
+                            terms.append((1, (diagonal_sums[key],)))
+                        else:
+                            terms += diagonal
+                        terms += [(1, (A[a * d + c][b * d + e], product(c, e)))
+                                  for c in range(d) for e in range(d) if c != e and A[a * d + c][b * d + e]]
+                    if terms:
+                        out.append(SumOfProducts(f"K[{(j * d + a) * dofs + k * d + b}]", factored(terms)))
+    return product_block(out)
 
 
 def terms_parts(element: ElementSpec, law_ir: LawKernelIR) -> tuple[TermsPart, ...]:
-    return tuple(_part(group, element, law_ir) for group in _node_groups(element))
+    return tuple(TermsPart(nodes=group, gradient=_gradient(group, element), hessian=_hessian(group, element, law_ir))
+                 for group in _node_groups(element))
 
 
 def symbol_names(element: ElementSpec, law_ir: LawKernelIR) -> tuple[tuple[str, str], ...]:
@@ -90,7 +170,7 @@ def symbol_names(element: ElementSpec, law_ir: LawKernelIR) -> tuple[tuple[str, 
     return tuple(names.items())
 
 
-def _flops(triple: Triple, parts: tuple[TermsPart, ...]) -> Flops:
+def _kernel_flops(triple: Triple, parts: tuple[TermsPart, ...]) -> Flops:
     element, law_ir = triple.element, triple.law_ir
     q = len(triple.tables.weights)
     h = displacement_gradient_flops(element)
@@ -106,5 +186,5 @@ def _flops(triple: Triple, parts: tuple[TermsPart, ...]) -> Flops:
 def lower(triple: Triple) -> SplitLowering:
     parts = terms_parts(triple.element, triple.law_ir)
     return SplitLowering(split_ir=TermsIR(parts=parts, h_block=h_block(triple.element)),
-                         flops=_flops(triple, parts), extra_consts=0,
+                         flops=_kernel_flops(triple, parts), extra_consts=0,
                          symbol_names=symbol_names(triple.element, triple.law_ir))
