@@ -4,6 +4,147 @@
 #include "tensormass/kernels/kernel_support.hpp"
 
 extern "C" {
+int tm_arruda_boyce_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex20_whole_energy(const double*, const double*);
+void tm_arruda_boyce_hex20_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex20_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex20_whole_stress(const double*, const double*, double*);
+int tm_arruda_boyce_hex20_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex20_terms_energy(const double*, const double*);
+void tm_arruda_boyce_hex20_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex20_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex20_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex8_whole_energy(const double*, const double*);
+void tm_arruda_boyce_hex8_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex8_whole_stress(const double*, const double*, double*);
+int tm_arruda_boyce_hex8_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex8_terms_energy(const double*, const double*);
+void tm_arruda_boyce_hex8_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex8_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism6_whole_energy(const double*, const double*);
+void tm_arruda_boyce_prism6_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_prism6_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism6_terms_energy(const double*, const double*);
+void tm_arruda_boyce_prism6_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism6_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_pyramid5_whole_energy(const double*, const double*);
+void tm_arruda_boyce_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_pyramid5_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_pyramid5_terms_energy(const double*, const double*);
+void tm_arruda_boyce_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad4_whole_energy(const double*, const double*);
+void tm_arruda_boyce_quad4_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad4_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_quad4_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad4_terms_energy(const double*, const double*);
+void tm_arruda_boyce_quad4_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad4_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad8_whole_energy(const double*, const double*);
+void tm_arruda_boyce_quad8_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad8_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_quad8_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad8_terms_energy(const double*, const double*);
+void tm_arruda_boyce_quad8_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad8_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tet10_whole_energy(const double*, const double*);
+void tm_arruda_boyce_tet10_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tet10_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet10_whole_stress(const double*, const double*, double*);
+int tm_arruda_boyce_tet10_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tet10_terms_energy(const double*, const double*);
+void tm_arruda_boyce_tet10_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tet10_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet10_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tet4_whole_energy(const double*, const double*);
+void tm_arruda_boyce_tet4_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet4_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_tet4_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tet4_terms_energy(const double*, const double*);
+void tm_arruda_boyce_tet4_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet4_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tri3_whole_energy(const double*, const double*);
+void tm_arruda_boyce_tri3_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri3_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_tri3_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tri3_terms_energy(const double*, const double*);
+void tm_arruda_boyce_tri3_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri3_terms_stress(const double*, const double*, double*);
+int tm_arruda_boyce_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tri6_whole_energy(const double*, const double*);
+void tm_arruda_boyce_tri6_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri6_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_tri6_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tri6_terms_energy(const double*, const double*);
+void tm_arruda_boyce_tri6_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri6_terms_stress(const double*, const double*, double*);
 int tm_corotational_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_whole_energy(const double*, const double*);
 void tm_corotational_hex20_whole_gradient(const double*, const double*, double*);
@@ -145,6 +286,147 @@ void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tri6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri6_terms_stress(const double*, const double*, double*);
+int tm_gent_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_hex20_whole_energy(const double*, const double*);
+void tm_gent_hex20_whole_gradient(const double*, const double*, double*);
+void tm_gent_hex20_whole_hessian(const double*, const double*, double*);
+void tm_gent_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex20_whole_stress(const double*, const double*, double*);
+int tm_gent_hex20_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_hex20_terms_energy(const double*, const double*);
+void tm_gent_hex20_terms_gradient(const double*, const double*, double*);
+void tm_gent_hex20_terms_hessian(const double*, const double*, double*);
+void tm_gent_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex20_terms_stress(const double*, const double*, double*);
+int tm_gent_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_hex8_whole_energy(const double*, const double*);
+void tm_gent_hex8_whole_gradient(const double*, const double*, double*);
+void tm_gent_hex8_whole_hessian(const double*, const double*, double*);
+void tm_gent_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex8_whole_stress(const double*, const double*, double*);
+int tm_gent_hex8_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_hex8_terms_energy(const double*, const double*);
+void tm_gent_hex8_terms_gradient(const double*, const double*, double*);
+void tm_gent_hex8_terms_hessian(const double*, const double*, double*);
+void tm_gent_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex8_terms_stress(const double*, const double*, double*);
+int tm_gent_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_prism6_whole_energy(const double*, const double*);
+void tm_gent_prism6_whole_gradient(const double*, const double*, double*);
+void tm_gent_prism6_whole_hessian(const double*, const double*, double*);
+void tm_gent_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism6_whole_stress(const double*, const double*, double*);
+void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_prism6_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_prism6_terms_energy(const double*, const double*);
+void tm_gent_prism6_terms_gradient(const double*, const double*, double*);
+void tm_gent_prism6_terms_hessian(const double*, const double*, double*);
+void tm_gent_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism6_terms_stress(const double*, const double*, double*);
+int tm_gent_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_pyramid5_whole_energy(const double*, const double*);
+void tm_gent_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_gent_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_gent_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_gent_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_pyramid5_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_pyramid5_terms_energy(const double*, const double*);
+void tm_gent_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_gent_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_gent_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_gent_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_quad4_whole_energy(const double*, const double*);
+void tm_gent_quad4_whole_gradient(const double*, const double*, double*);
+void tm_gent_quad4_whole_hessian(const double*, const double*, double*);
+void tm_gent_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad4_whole_stress(const double*, const double*, double*);
+void tm_gent_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_quad4_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_quad4_terms_energy(const double*, const double*);
+void tm_gent_quad4_terms_gradient(const double*, const double*, double*);
+void tm_gent_quad4_terms_hessian(const double*, const double*, double*);
+void tm_gent_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad4_terms_stress(const double*, const double*, double*);
+int tm_gent_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_quad8_whole_energy(const double*, const double*);
+void tm_gent_quad8_whole_gradient(const double*, const double*, double*);
+void tm_gent_quad8_whole_hessian(const double*, const double*, double*);
+void tm_gent_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad8_whole_stress(const double*, const double*, double*);
+void tm_gent_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_quad8_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_quad8_terms_energy(const double*, const double*);
+void tm_gent_quad8_terms_gradient(const double*, const double*, double*);
+void tm_gent_quad8_terms_hessian(const double*, const double*, double*);
+void tm_gent_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad8_terms_stress(const double*, const double*, double*);
+int tm_gent_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_tet10_whole_energy(const double*, const double*);
+void tm_gent_tet10_whole_gradient(const double*, const double*, double*);
+void tm_gent_tet10_whole_hessian(const double*, const double*, double*);
+void tm_gent_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tet10_whole_stress(const double*, const double*, double*);
+int tm_gent_tet10_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_tet10_terms_energy(const double*, const double*);
+void tm_gent_tet10_terms_gradient(const double*, const double*, double*);
+void tm_gent_tet10_terms_hessian(const double*, const double*, double*);
+void tm_gent_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tet10_terms_stress(const double*, const double*, double*);
+int tm_gent_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_tet4_whole_energy(const double*, const double*);
+void tm_gent_tet4_whole_gradient(const double*, const double*, double*);
+void tm_gent_tet4_whole_hessian(const double*, const double*, double*);
+void tm_gent_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tet4_whole_stress(const double*, const double*, double*);
+void tm_gent_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_tet4_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_tet4_terms_energy(const double*, const double*);
+void tm_gent_tet4_terms_gradient(const double*, const double*, double*);
+void tm_gent_tet4_terms_hessian(const double*, const double*, double*);
+void tm_gent_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tet4_terms_stress(const double*, const double*, double*);
+int tm_gent_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_tri3_whole_energy(const double*, const double*);
+void tm_gent_tri3_whole_gradient(const double*, const double*, double*);
+void tm_gent_tri3_whole_hessian(const double*, const double*, double*);
+void tm_gent_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tri3_whole_stress(const double*, const double*, double*);
+void tm_gent_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_tri3_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_tri3_terms_energy(const double*, const double*);
+void tm_gent_tri3_terms_gradient(const double*, const double*, double*);
+void tm_gent_tri3_terms_hessian(const double*, const double*, double*);
+void tm_gent_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tri3_terms_stress(const double*, const double*, double*);
+int tm_gent_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_tri6_whole_energy(const double*, const double*);
+void tm_gent_tri6_whole_gradient(const double*, const double*, double*);
+void tm_gent_tri6_whole_hessian(const double*, const double*, double*);
+void tm_gent_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tri6_whole_stress(const double*, const double*, double*);
+void tm_gent_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_tri6_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_tri6_terms_energy(const double*, const double*);
+void tm_gent_tri6_terms_gradient(const double*, const double*, double*);
+void tm_gent_tri6_terms_hessian(const double*, const double*, double*);
+void tm_gent_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tri6_terms_stress(const double*, const double*, double*);
 int tm_hooke_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
@@ -922,11 +1204,297 @@ void tm_stvk_tri6_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tri6_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tri6_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex20_whole_energy(const double*, const double*);
+void tm_veronda_westmann_hex20_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex20_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex20_whole_stress(const double*, const double*, double*);
+int tm_veronda_westmann_hex20_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex20_terms_energy(const double*, const double*);
+void tm_veronda_westmann_hex20_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex20_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex20_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex8_whole_energy(const double*, const double*);
+void tm_veronda_westmann_hex8_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex8_whole_stress(const double*, const double*, double*);
+int tm_veronda_westmann_hex8_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex8_terms_energy(const double*, const double*);
+void tm_veronda_westmann_hex8_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex8_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism6_whole_energy(const double*, const double*);
+void tm_veronda_westmann_prism6_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_prism6_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism6_terms_energy(const double*, const double*);
+void tm_veronda_westmann_prism6_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism6_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_pyramid5_whole_energy(const double*, const double*);
+void tm_veronda_westmann_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_pyramid5_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_pyramid5_terms_energy(const double*, const double*);
+void tm_veronda_westmann_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad4_whole_energy(const double*, const double*);
+void tm_veronda_westmann_quad4_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad4_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_quad4_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad4_terms_energy(const double*, const double*);
+void tm_veronda_westmann_quad4_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad4_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad8_whole_energy(const double*, const double*);
+void tm_veronda_westmann_quad8_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad8_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_quad8_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad8_terms_energy(const double*, const double*);
+void tm_veronda_westmann_quad8_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad8_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tet10_whole_energy(const double*, const double*);
+void tm_veronda_westmann_tet10_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tet10_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet10_whole_stress(const double*, const double*, double*);
+int tm_veronda_westmann_tet10_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tet10_terms_energy(const double*, const double*);
+void tm_veronda_westmann_tet10_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tet10_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet10_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tet4_whole_energy(const double*, const double*);
+void tm_veronda_westmann_tet4_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet4_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_tet4_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tet4_terms_energy(const double*, const double*);
+void tm_veronda_westmann_tet4_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet4_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tri3_whole_energy(const double*, const double*);
+void tm_veronda_westmann_tri3_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri3_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_tri3_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tri3_terms_energy(const double*, const double*);
+void tm_veronda_westmann_tri3_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri3_terms_stress(const double*, const double*, double*);
+int tm_veronda_westmann_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tri6_whole_energy(const double*, const double*);
+void tm_veronda_westmann_tri6_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri6_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_tri6_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tri6_terms_energy(const double*, const double*);
+void tm_veronda_westmann_tri6_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri6_terms_stress(const double*, const double*, double*);
+int tm_yeoh_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex20_whole_energy(const double*, const double*);
+void tm_yeoh_hex20_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_hex20_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex20_whole_stress(const double*, const double*, double*);
+int tm_yeoh_hex20_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex20_terms_energy(const double*, const double*);
+void tm_yeoh_hex20_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_hex20_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex20_terms_stress(const double*, const double*, double*);
+int tm_yeoh_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex8_whole_energy(const double*, const double*);
+void tm_yeoh_hex8_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_hex8_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex8_whole_stress(const double*, const double*, double*);
+int tm_yeoh_hex8_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex8_terms_energy(const double*, const double*);
+void tm_yeoh_hex8_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_hex8_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex8_terms_stress(const double*, const double*, double*);
+int tm_yeoh_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism6_whole_energy(const double*, const double*);
+void tm_yeoh_prism6_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_prism6_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
+void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_prism6_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism6_terms_energy(const double*, const double*);
+void tm_yeoh_prism6_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_prism6_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism6_terms_stress(const double*, const double*, double*);
+int tm_yeoh_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_pyramid5_whole_energy(const double*, const double*);
+void tm_yeoh_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_yeoh_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_pyramid5_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_pyramid5_terms_energy(const double*, const double*);
+void tm_yeoh_pyramid5_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_pyramid5_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid5_terms_stress(const double*, const double*, double*);
+int tm_yeoh_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad4_whole_energy(const double*, const double*);
+void tm_yeoh_quad4_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_quad4_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad4_whole_stress(const double*, const double*, double*);
+void tm_yeoh_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_quad4_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad4_terms_energy(const double*, const double*);
+void tm_yeoh_quad4_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_quad4_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad4_terms_stress(const double*, const double*, double*);
+int tm_yeoh_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad8_whole_energy(const double*, const double*);
+void tm_yeoh_quad8_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_quad8_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad8_whole_stress(const double*, const double*, double*);
+void tm_yeoh_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_quad8_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad8_terms_energy(const double*, const double*);
+void tm_yeoh_quad8_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_quad8_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad8_terms_stress(const double*, const double*, double*);
+int tm_yeoh_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tet10_whole_energy(const double*, const double*);
+void tm_yeoh_tet10_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_tet10_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tet10_whole_stress(const double*, const double*, double*);
+int tm_yeoh_tet10_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tet10_terms_energy(const double*, const double*);
+void tm_yeoh_tet10_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_tet10_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tet10_terms_stress(const double*, const double*, double*);
+int tm_yeoh_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tet4_whole_energy(const double*, const double*);
+void tm_yeoh_tet4_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_tet4_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tet4_whole_stress(const double*, const double*, double*);
+void tm_yeoh_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_tet4_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tet4_terms_energy(const double*, const double*);
+void tm_yeoh_tet4_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_tet4_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tet4_terms_stress(const double*, const double*, double*);
+int tm_yeoh_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tri3_whole_energy(const double*, const double*);
+void tm_yeoh_tri3_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_tri3_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tri3_whole_stress(const double*, const double*, double*);
+void tm_yeoh_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_tri3_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tri3_terms_energy(const double*, const double*);
+void tm_yeoh_tri3_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_tri3_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tri3_terms_stress(const double*, const double*, double*);
+int tm_yeoh_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tri6_whole_energy(const double*, const double*);
+void tm_yeoh_tri6_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_tri6_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tri6_whole_stress(const double*, const double*, double*);
+void tm_yeoh_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_tri6_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tri6_terms_energy(const double*, const double*);
+void tm_yeoh_tri6_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_tri6_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tri6_terms_stress(const double*, const double*, double*);
 }
 
 namespace {
+const char* const kArruda_boyceParameters[] = { "mu", "lambda_m", "kappa" };
+const tm_param_limit kArruda_boyceLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 1.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 const char* const kCorotationalParameters[] = { "young", "poisson" };
 const tm_param_limit kCorotationalLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
+const char* const kGentParameters[] = { "mu", "Jm", "kappa" };
+const tm_param_limit kGentLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 const char* const kHookeParameters[] = { "young", "poisson" };
 const tm_param_limit kHookeLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kMooney_rivlinParameters[] = { "c10", "c01", "kappa" };
@@ -937,8 +1505,139 @@ const char* const kStable_neohookeanParameters[] = { "young", "poisson" };
 const tm_param_limit kStable_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kStvkParameters[] = { "young", "poisson" };
 const tm_param_limit kStvkLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
+const char* const kVeronda_westmannParameters[] = { "c1", "c2", "kappa" };
+const tm_param_limit kVeronda_westmannLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
+const char* const kYeohParameters[] = { "c10", "c20", "c30", "kappa" };
+const tm_param_limit kYeohLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 
 const tm_kernel kKernels[] = {
+  {"arruda_boyce", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_whole_precompute, tm_arruda_boyce_hex20_whole_energy, tm_arruda_boyce_hex20_whole_gradient,
+   tm_arruda_boyce_hex20_whole_hessian, tm_arruda_boyce_hex20_whole_gradient_hessian, tm_arruda_boyce_hex20_whole_stress, 12798, 29889, 486135,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_terms_precompute, tm_arruda_boyce_hex20_terms_energy, tm_arruda_boyce_hex20_terms_gradient,
+   tm_arruda_boyce_hex20_terms_hessian, tm_arruda_boyce_hex20_terms_gradient_hessian, tm_arruda_boyce_hex20_terms_stress, 12798, 110565, 996300,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
+   tm_arruda_boyce_hex8_whole_hessian, tm_arruda_boyce_hex8_whole_gradient_hessian, tm_arruda_boyce_hex8_whole_stress, 2064, 5400, 36904,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_terms_precompute, tm_arruda_boyce_hex8_terms_energy, tm_arruda_boyce_hex8_terms_gradient,
+   tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60480,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
+   tm_arruda_boyce_prism6_whole_hessian, tm_arruda_boyce_prism6_whole_gradient_hessian, tm_arruda_boyce_prism6_whole_stress, 1332, 3618, 20334,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
+   tm_arruda_boyce_prism6_whole_stress_batch},
+
+  {"arruda_boyce", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_terms_precompute, tm_arruda_boyce_prism6_terms_energy, tm_arruda_boyce_prism6_terms_gradient,
+   tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32886,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
+   tm_arruda_boyce_pyramid5_whole_hessian, tm_arruda_boyce_pyramid5_whole_gradient_hessian, tm_arruda_boyce_pyramid5_whole_stress, 1632, 4536, 23080,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
+   tm_arruda_boyce_pyramid5_whole_stress_batch},
+
+  {"arruda_boyce", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_terms_precompute, tm_arruda_boyce_pyramid5_terms_energy, tm_arruda_boyce_pyramid5_terms_gradient,
+   tm_arruda_boyce_pyramid5_terms_hessian, tm_arruda_boyce_pyramid5_terms_gradient_hessian, tm_arruda_boyce_pyramid5_terms_stress, 1632, 8352, 37224,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
+   tm_arruda_boyce_quad4_whole_hessian, tm_arruda_boyce_quad4_whole_gradient_hessian, tm_arruda_boyce_quad4_whole_stress, 460, 1000, 3228,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
+   tm_arruda_boyce_quad4_whole_stress_batch},
+
+  {"arruda_boyce", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_terms_precompute, tm_arruda_boyce_quad4_terms_energy, tm_arruda_boyce_quad4_terms_gradient,
+   tm_arruda_boyce_quad4_terms_hessian, tm_arruda_boyce_quad4_terms_gradient_hessian, tm_arruda_boyce_quad4_terms_stress, 460, 1872, 4856,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
+   tm_arruda_boyce_quad8_whole_hessian, tm_arruda_boyce_quad8_whole_gradient_hessian, tm_arruda_boyce_quad8_whole_stress, 1323, 2826, 13383,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
+   tm_arruda_boyce_quad8_whole_stress_batch},
+
+  {"arruda_boyce", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_terms_precompute, tm_arruda_boyce_quad8_terms_energy, tm_arruda_boyce_quad8_terms_gradient,
+   tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18270,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
+   tm_arruda_boyce_tet10_whole_hessian, tm_arruda_boyce_tet10_whole_gradient_hessian, tm_arruda_boyce_tet10_whole_stress, 1176, 2988, 24500,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_terms_precompute, tm_arruda_boyce_tet10_terms_energy, tm_arruda_boyce_tet10_terms_gradient,
+   tm_arruda_boyce_tet10_terms_hessian, tm_arruda_boyce_tet10_terms_gradient_hessian, tm_arruda_boyce_tet10_terms_stress, 1176, 5256, 40812,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
+   tm_arruda_boyce_tet4_whole_hessian, tm_arruda_boyce_tet4_whole_gradient_hessian, tm_arruda_boyce_tet4_whole_stress, 186, 531, 2453,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
+   tm_arruda_boyce_tet4_whole_stress_batch},
+
+  {"arruda_boyce", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_terms_precompute, tm_arruda_boyce_tet4_terms_energy, tm_arruda_boyce_tet4_terms_gradient,
+   tm_arruda_boyce_tet4_terms_hessian, tm_arruda_boyce_tet4_terms_gradient_hessian, tm_arruda_boyce_tet4_terms_stress, 186, 990, 3966,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
+   tm_arruda_boyce_tri3_whole_hessian, tm_arruda_boyce_tri3_whole_gradient_hessian, tm_arruda_boyce_tri3_whole_stress, 107, 234, 697,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
+   tm_arruda_boyce_tri3_whole_stress_batch},
+
+  {"arruda_boyce", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_terms_precompute, tm_arruda_boyce_tri3_terms_energy, tm_arruda_boyce_tri3_terms_gradient,
+   tm_arruda_boyce_tri3_terms_hessian, tm_arruda_boyce_tri3_terms_gradient_hessian, tm_arruda_boyce_tri3_terms_stress, 107, 444, 1085,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
+   tm_arruda_boyce_tri6_whole_hessian, tm_arruda_boyce_tri6_whole_gradient_hessian, tm_arruda_boyce_tri6_whole_stress, 393, 846, 3297,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
+   tm_arruda_boyce_tri6_whole_stress_batch},
+
+  {"arruda_boyce", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_terms_precompute, tm_arruda_boyce_tri6_terms_energy, tm_arruda_boyce_tri6_terms_gradient,
+   tm_arruda_boyce_tri6_terms_hessian, tm_arruda_boyce_tri6_terms_gradient_hessian, tm_arruda_boyce_tri6_terms_stress, 393, 1548, 4686,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
    tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
@@ -1063,6 +1762,133 @@ const tm_kernel kKernels[] = {
   {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
    tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3144,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
+   kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
+   tm_gent_hex20_whole_hessian, tm_gent_hex20_whole_gradient_hessian, tm_gent_hex20_whole_stress, 11394, 25110, 478467,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
+   kGentParameters, kGentLimits, tm_gent_hex20_terms_precompute, tm_gent_hex20_terms_energy, tm_gent_hex20_terms_gradient,
+   tm_gent_hex20_terms_hessian, tm_gent_hex20_terms_gradient_hessian, tm_gent_hex20_terms_stress, 11394, 86670, 969570,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
+   kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
+   tm_gent_hex8_whole_hessian, tm_gent_hex8_whole_gradient_hessian, tm_gent_hex8_whole_stress, 1648, 3984, 34632,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
+   kGentParameters, kGentLimits, tm_gent_hex8_terms_precompute, tm_gent_hex8_terms_energy, tm_gent_hex8_terms_gradient,
+   tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57312,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
+   kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
+   tm_gent_prism6_whole_hessian, tm_gent_prism6_whole_gradient_hessian, tm_gent_prism6_whole_stress, 1020, 2556, 18630,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
+   tm_gent_prism6_whole_stress_batch},
+
+  {"gent", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
+   kGentParameters, kGentLimits, tm_gent_prism6_terms_precompute, tm_gent_prism6_terms_energy, tm_gent_prism6_terms_gradient,
+   tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30510,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
+   kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
+   tm_gent_pyramid5_whole_hessian, tm_gent_pyramid5_whole_gradient_hessian, tm_gent_pyramid5_whole_stress, 1216, 3120, 20808,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
+   tm_gent_pyramid5_whole_stress_batch},
+
+  {"gent", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
+   kGentParameters, kGentLimits, tm_gent_pyramid5_terms_precompute, tm_gent_pyramid5_terms_energy, tm_gent_pyramid5_terms_gradient,
+   tm_gent_pyramid5_terms_hessian, tm_gent_pyramid5_terms_gradient_hessian, tm_gent_pyramid5_terms_stress, 1216, 5520, 34056,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
+   kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
+   tm_gent_quad4_whole_hessian, tm_gent_quad4_whole_gradient_hessian, tm_gent_quad4_whole_stress, 252, 504, 2292,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
+   tm_gent_quad4_whole_stress_batch},
+
+  {"gent", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
+   kGentParameters, kGentLimits, tm_gent_quad4_terms_precompute, tm_gent_quad4_terms_energy, tm_gent_quad4_terms_gradient,
+   tm_gent_quad4_terms_hessian, tm_gent_quad4_terms_gradient_hessian, tm_gent_quad4_terms_stress, 252, 880, 3360,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
+   kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
+   tm_gent_quad8_whole_hessian, tm_gent_quad8_whole_gradient_hessian, tm_gent_quad8_whole_stress, 855, 1710, 11277,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
+   tm_gent_quad8_whole_stress_batch},
+
+  {"gent", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
+   kGentParameters, kGentLimits, tm_gent_quad8_terms_precompute, tm_gent_quad8_terms_energy, tm_gent_quad8_terms_gradient,
+   tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14904,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
+   kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
+   tm_gent_tet10_whole_hessian, tm_gent_tet10_whole_gradient_hessian, tm_gent_tet10_whole_stress, 968, 2280, 23364,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
+   kGentParameters, kGentLimits, tm_gent_tet10_terms_precompute, tm_gent_tet10_terms_energy, tm_gent_tet10_terms_gradient,
+   tm_gent_tet10_terms_hessian, tm_gent_tet10_terms_gradient_hessian, tm_gent_tet10_terms_stress, 968, 3840, 39228,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
+   kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
+   tm_gent_tet4_whole_hessian, tm_gent_tet4_whole_gradient_hessian, tm_gent_tet4_whole_stress, 134, 354, 2169,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
+   tm_gent_tet4_whole_stress_batch},
+
+  {"gent", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
+   kGentParameters, kGentLimits, tm_gent_tet4_terms_precompute, tm_gent_tet4_terms_energy, tm_gent_tet4_terms_gradient,
+   tm_gent_tet4_terms_hessian, tm_gent_tet4_terms_gradient_hessian, tm_gent_tet4_terms_stress, 134, 636, 3570,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
+   kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
+   tm_gent_tri3_whole_hessian, tm_gent_tri3_whole_gradient_hessian, tm_gent_tri3_whole_stress, 55, 110, 463,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
+   tm_gent_tri3_whole_stress_batch},
+
+  {"gent", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
+   kGentParameters, kGentLimits, tm_gent_tri3_terms_precompute, tm_gent_tri3_terms_energy, tm_gent_tri3_terms_gradient,
+   tm_gent_tri3_terms_hessian, tm_gent_tri3_terms_gradient_hessian, tm_gent_tri3_terms_stress, 55, 196, 711,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
+   kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
+   tm_gent_tri6_whole_hessian, tm_gent_tri6_whole_gradient_hessian, tm_gent_tri6_whole_stress, 237, 474, 2595,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
+   tm_gent_tri6_whole_stress_batch},
+
+  {"gent", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
+   kGentParameters, kGentLimits, tm_gent_tri6_terms_precompute, tm_gent_tri6_terms_energy, tm_gent_tri6_terms_gradient,
+   tm_gent_tri6_terms_hessian, tm_gent_tri6_terms_gradient_hessian, tm_gent_tri6_terms_stress, 237, 804, 3564,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1773,11 +2599,265 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
+   tm_veronda_westmann_hex20_whole_hessian, tm_veronda_westmann_hex20_whole_gradient_hessian, tm_veronda_westmann_hex20_whole_stress, 12501, 29106, 490347,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_terms_precompute, tm_veronda_westmann_hex20_terms_energy, tm_veronda_westmann_hex20_terms_gradient,
+   tm_veronda_westmann_hex20_terms_hessian, tm_veronda_westmann_hex20_terms_gradient_hessian, tm_veronda_westmann_hex20_terms_stress, 12501, 106650, 1026000,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
+   tm_veronda_westmann_hex8_whole_hessian, tm_veronda_westmann_hex8_whole_gradient_hessian, tm_veronda_westmann_hex8_whole_stress, 1976, 5168, 38152,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_terms_precompute, tm_veronda_westmann_hex8_terms_energy, tm_veronda_westmann_hex8_terms_gradient,
+   tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64000,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
+   tm_veronda_westmann_prism6_whole_hessian, tm_veronda_westmann_prism6_whole_gradient_hessian, tm_veronda_westmann_prism6_whole_stress, 1266, 3444, 21270,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
+   tm_veronda_westmann_prism6_whole_stress_batch},
+
+  {"veronda_westmann", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_terms_precompute, tm_veronda_westmann_prism6_terms_energy, tm_veronda_westmann_prism6_terms_gradient,
+   tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35526,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
+   tm_veronda_westmann_pyramid5_whole_hessian, tm_veronda_westmann_pyramid5_whole_gradient_hessian, tm_veronda_westmann_pyramid5_whole_stress, 1544, 4304, 24328,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
+   tm_veronda_westmann_pyramid5_whole_stress_batch},
+
+  {"veronda_westmann", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_terms_precompute, tm_veronda_westmann_pyramid5_terms_energy, tm_veronda_westmann_pyramid5_terms_gradient,
+   tm_veronda_westmann_pyramid5_terms_hessian, tm_veronda_westmann_pyramid5_terms_gradient_hessian, tm_veronda_westmann_pyramid5_terms_stress, 1544, 7888, 40744,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
+   tm_veronda_westmann_quad4_whole_hessian, tm_veronda_westmann_quad4_whole_gradient_hessian, tm_veronda_westmann_quad4_whole_stress, 336, 772, 2776,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
+   tm_veronda_westmann_quad4_whole_stress_batch},
+
+  {"veronda_westmann", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_terms_precompute, tm_veronda_westmann_quad4_terms_energy, tm_veronda_westmann_quad4_terms_gradient,
+   tm_veronda_westmann_quad4_terms_hessian, tm_veronda_westmann_quad4_terms_gradient_hessian, tm_veronda_westmann_quad4_terms_stress, 336, 1416, 4192,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
+   tm_veronda_westmann_quad8_whole_hessian, tm_veronda_westmann_quad8_whole_gradient_hessian, tm_veronda_westmann_quad8_whole_stress, 1044, 2313, 12366,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
+   tm_veronda_westmann_quad8_whole_stress_batch},
+
+  {"veronda_westmann", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_terms_precompute, tm_veronda_westmann_quad8_terms_energy, tm_veronda_westmann_quad8_terms_gradient,
+   tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16776,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
+   tm_veronda_westmann_tet10_whole_hessian, tm_veronda_westmann_tet10_whole_gradient_hessian, tm_veronda_westmann_tet10_whole_stress, 1132, 2872, 25124,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_terms_precompute, tm_veronda_westmann_tet10_terms_energy, tm_veronda_westmann_tet10_terms_gradient,
+   tm_veronda_westmann_tet10_terms_hessian, tm_veronda_westmann_tet10_terms_gradient_hessian, tm_veronda_westmann_tet10_terms_stress, 1132, 5024, 42572,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
+   tm_veronda_westmann_tet4_whole_hessian, tm_veronda_westmann_tet4_whole_gradient_hessian, tm_veronda_westmann_tet4_whole_stress, 175, 502, 2609,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
+   tm_veronda_westmann_tet4_whole_stress_batch},
+
+  {"veronda_westmann", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_terms_precompute, tm_veronda_westmann_tet4_terms_energy, tm_veronda_westmann_tet4_terms_gradient,
+   tm_veronda_westmann_tet4_terms_hessian, tm_veronda_westmann_tet4_terms_gradient_hessian, tm_veronda_westmann_tet4_terms_stress, 175, 932, 4406,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
+   tm_veronda_westmann_tri3_whole_hessian, tm_veronda_westmann_tri3_whole_gradient_hessian, tm_veronda_westmann_tri3_whole_stress, 76, 177, 584,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
+   tm_veronda_westmann_tri3_whole_stress_batch},
+
+  {"veronda_westmann", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_terms_precompute, tm_veronda_westmann_tri3_terms_energy, tm_veronda_westmann_tri3_terms_gradient,
+   tm_veronda_westmann_tri3_terms_hessian, tm_veronda_westmann_tri3_terms_gradient_hessian, tm_veronda_westmann_tri3_terms_stress, 76, 330, 919,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
+   tm_veronda_westmann_tri6_whole_hessian, tm_veronda_westmann_tri6_whole_gradient_hessian, tm_veronda_westmann_tri6_whole_stress, 300, 675, 2958,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
+   tm_veronda_westmann_tri6_whole_stress_batch},
+
+  {"veronda_westmann", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_terms_precompute, tm_veronda_westmann_tri6_terms_energy, tm_veronda_westmann_tri6_terms_gradient,
+   tm_veronda_westmann_tri6_terms_hessian, tm_veronda_westmann_tri6_terms_gradient_hessian, tm_veronda_westmann_tri6_terms_stress, 300, 1206, 4188,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
+   tm_yeoh_hex20_whole_hessian, tm_yeoh_hex20_whole_gradient_hessian, tm_yeoh_hex20_whole_stress, 11421, 26649, 474579,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "hex20", "terms", 3, 20, 60, 27, 4, 4, 1651,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex20_terms_precompute, tm_yeoh_hex20_terms_energy, tm_yeoh_hex20_terms_gradient,
+   tm_yeoh_hex20_terms_hessian, tm_yeoh_hex20_terms_gradient_hessian, tm_yeoh_hex20_terms_stress, 11421, 94365, 943380,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
+   tm_yeoh_hex8_whole_hessian, tm_yeoh_hex8_whole_gradient_hessian, tm_yeoh_hex8_whole_stress, 1656, 4440, 33480,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "hex8", "terms", 3, 8, 24, 8, 4, 4, 204,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex8_terms_precompute, tm_yeoh_hex8_terms_energy, tm_yeoh_hex8_terms_gradient,
+   tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54208,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
+   tm_yeoh_prism6_whole_hessian, tm_yeoh_prism6_whole_gradient_hessian, tm_yeoh_prism6_whole_stress, 1026, 2898, 17766,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
+   tm_yeoh_prism6_whole_stress_batch},
+
+  {"yeoh", "prism6", "terms", 3, 6, 18, 6, 4, 4, 118,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism6_terms_precompute, tm_yeoh_prism6_terms_energy, tm_yeoh_prism6_terms_gradient,
+   tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28182,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
+   kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
+   tm_yeoh_pyramid5_whole_hessian, tm_yeoh_pyramid5_whole_gradient_hessian, tm_yeoh_pyramid5_whole_stress, 1224, 3576, 19656,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
+   tm_yeoh_pyramid5_whole_stress_batch},
+
+  {"yeoh", "pyramid5", "terms", 3, 5, 15, 8, 4, 4, 132,
+   kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_terms_precompute, tm_yeoh_pyramid5_terms_energy, tm_yeoh_pyramid5_terms_gradient,
+   tm_yeoh_pyramid5_terms_hessian, tm_yeoh_pyramid5_terms_gradient_hessian, tm_yeoh_pyramid5_terms_stress, 1224, 6432, 30952,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
+   tm_yeoh_quad4_whole_hessian, tm_yeoh_quad4_whole_gradient_hessian, tm_yeoh_quad4_whole_stress, 256, 612, 2452,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
+   tm_yeoh_quad4_whole_stress_batch},
+
+  {"yeoh", "quad4", "terms", 2, 4, 8, 4, 4, 4, 40,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad4_terms_precompute, tm_yeoh_quad4_terms_energy, tm_yeoh_quad4_terms_gradient,
+   tm_yeoh_quad4_terms_hessian, tm_yeoh_quad4_terms_gradient_hessian, tm_yeoh_quad4_terms_stress, 256, 1096, 3512,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
+   tm_yeoh_quad8_whole_hessian, tm_yeoh_quad8_whole_gradient_hessian, tm_yeoh_quad8_whole_stress, 864, 1953, 11637,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
+   tm_yeoh_quad8_whole_stress_batch},
+
+  {"yeoh", "quad8", "terms", 2, 8, 16, 9, 4, 4, 157,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad8_terms_precompute, tm_yeoh_quad8_terms_energy, tm_yeoh_quad8_terms_gradient,
+   tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15246,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
+   kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
+   tm_yeoh_tet10_whole_hessian, tm_yeoh_tet10_whole_gradient_hessian, tm_yeoh_tet10_whole_stress, 972, 2508, 22788,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "tet10", "terms", 3, 10, 30, 4, 4, 4, 128,
+   kYeohParameters, kYeohLimits, tm_yeoh_tet10_terms_precompute, tm_yeoh_tet10_terms_energy, tm_yeoh_tet10_terms_gradient,
+   tm_yeoh_tet10_terms_hessian, tm_yeoh_tet10_terms_gradient_hessian, tm_yeoh_tet10_terms_stress, 972, 4296, 37676,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
+   kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
+   tm_yeoh_tet4_whole_hessian, tm_yeoh_tet4_whole_gradient_hessian, tm_yeoh_tet4_whole_stress, 135, 411, 2025,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
+   tm_yeoh_tet4_whole_stress_batch},
+
+  {"yeoh", "tet4", "terms", 3, 4, 12, 1, 4, 4, 17,
+   kYeohParameters, kYeohLimits, tm_yeoh_tet4_terms_precompute, tm_yeoh_tet4_terms_energy, tm_yeoh_tet4_terms_gradient,
+   tm_yeoh_tet4_terms_hessian, tm_yeoh_tet4_terms_gradient_hessian, tm_yeoh_tet4_terms_stress, 135, 750, 3182,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
+   kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
+   tm_yeoh_tri3_whole_hessian, tm_yeoh_tri3_whole_gradient_hessian, tm_yeoh_tri3_whole_stress, 56, 137, 503,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
+   tm_yeoh_tri3_whole_stress_batch},
+
+  {"yeoh", "tri3", "terms", 2, 3, 6, 1, 4, 4, 11,
+   kYeohParameters, kYeohLimits, tm_yeoh_tri3_terms_precompute, tm_yeoh_tri3_terms_energy, tm_yeoh_tri3_terms_gradient,
+   tm_yeoh_tri3_terms_hessian, tm_yeoh_tri3_terms_gradient_hessian, tm_yeoh_tri3_terms_stress, 56, 250, 749,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
+   kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
+   tm_yeoh_tri6_whole_hessian, tm_yeoh_tri6_whole_gradient_hessian, tm_yeoh_tri6_whole_stress, 240, 555, 2715,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
+   tm_yeoh_tri6_whole_stress_batch},
+
+  {"yeoh", "tri6", "terms", 2, 6, 12, 3, 4, 4, 43,
+   kYeohParameters, kYeohLimits, tm_yeoh_tri6_terms_precompute, tm_yeoh_tri6_terms_energy, tm_yeoh_tri6_terms_gradient,
+   tm_yeoh_tri6_terms_hessian, tm_yeoh_tri6_terms_gradient_hessian, tm_yeoh_tri6_terms_stress, 240, 966, 3678,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
 };
 }  // namespace
 
-extern "C" int tm_kernel_count(void) { return 132; }
+extern "C" int tm_kernel_count(void) { return 212; }
 
 extern "C" const tm_kernel* tm_kernel_at(int index) {
-  return index >= 0 && index < 132 ? &kKernels[index] : nullptr;
+  return index >= 0 && index < 212 ? &kKernels[index] : nullptr;
 }

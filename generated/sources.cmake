@@ -2,6 +2,49 @@
 # The translation units of generated/, relative to it.
 set(TENSORMASS_GENERATED_SOURCES
   elements.cpp
+  kernels/arruda_boyce_hex20_terms.cpp
+  kernels/arruda_boyce_hex20_terms_part0.cpp
+  kernels/arruda_boyce_hex20_terms_part1.cpp
+  kernels/arruda_boyce_hex20_terms_part2.cpp
+  kernels/arruda_boyce_hex20_terms_part3.cpp
+  kernels/arruda_boyce_hex20_terms_part4.cpp
+  kernels/arruda_boyce_hex20_whole.cpp
+  kernels/arruda_boyce_hex8_terms.cpp
+  kernels/arruda_boyce_hex8_terms_part0.cpp
+  kernels/arruda_boyce_hex8_terms_part1.cpp
+  kernels/arruda_boyce_hex8_whole.cpp
+  kernels/arruda_boyce_prism6_terms.cpp
+  kernels/arruda_boyce_prism6_terms_part0.cpp
+  kernels/arruda_boyce_prism6_terms_part1.cpp
+  kernels/arruda_boyce_prism6_whole.cpp
+  kernels/arruda_boyce_pyramid5_terms.cpp
+  kernels/arruda_boyce_pyramid5_terms_part0.cpp
+  kernels/arruda_boyce_pyramid5_terms_part1.cpp
+  kernels/arruda_boyce_pyramid5_whole.cpp
+  kernels/arruda_boyce_quad4_terms.cpp
+  kernels/arruda_boyce_quad4_terms_part0.cpp
+  kernels/arruda_boyce_quad4_terms_part1.cpp
+  kernels/arruda_boyce_quad4_whole.cpp
+  kernels/arruda_boyce_quad8_terms.cpp
+  kernels/arruda_boyce_quad8_terms_part0.cpp
+  kernels/arruda_boyce_quad8_terms_part1.cpp
+  kernels/arruda_boyce_quad8_whole.cpp
+  kernels/arruda_boyce_tet10_terms.cpp
+  kernels/arruda_boyce_tet10_terms_part0.cpp
+  kernels/arruda_boyce_tet10_terms_part1.cpp
+  kernels/arruda_boyce_tet10_whole.cpp
+  kernels/arruda_boyce_tet4_terms.cpp
+  kernels/arruda_boyce_tet4_terms_part0.cpp
+  kernels/arruda_boyce_tet4_terms_part1.cpp
+  kernels/arruda_boyce_tet4_whole.cpp
+  kernels/arruda_boyce_tri3_terms.cpp
+  kernels/arruda_boyce_tri3_terms_part0.cpp
+  kernels/arruda_boyce_tri3_terms_part1.cpp
+  kernels/arruda_boyce_tri3_whole.cpp
+  kernels/arruda_boyce_tri6_terms.cpp
+  kernels/arruda_boyce_tri6_terms_part0.cpp
+  kernels/arruda_boyce_tri6_terms_part1.cpp
+  kernels/arruda_boyce_tri6_whole.cpp
   kernels/corotational_hex20_terms.cpp
   kernels/corotational_hex20_terms_part0.cpp
   kernels/corotational_hex20_terms_part1.cpp
@@ -45,6 +88,49 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/corotational_tri6_terms_part0.cpp
   kernels/corotational_tri6_terms_part1.cpp
   kernels/corotational_tri6_whole.cpp
+  kernels/gent_hex20_terms.cpp
+  kernels/gent_hex20_terms_part0.cpp
+  kernels/gent_hex20_terms_part1.cpp
+  kernels/gent_hex20_terms_part2.cpp
+  kernels/gent_hex20_terms_part3.cpp
+  kernels/gent_hex20_terms_part4.cpp
+  kernels/gent_hex20_whole.cpp
+  kernels/gent_hex8_terms.cpp
+  kernels/gent_hex8_terms_part0.cpp
+  kernels/gent_hex8_terms_part1.cpp
+  kernels/gent_hex8_whole.cpp
+  kernels/gent_prism6_terms.cpp
+  kernels/gent_prism6_terms_part0.cpp
+  kernels/gent_prism6_terms_part1.cpp
+  kernels/gent_prism6_whole.cpp
+  kernels/gent_pyramid5_terms.cpp
+  kernels/gent_pyramid5_terms_part0.cpp
+  kernels/gent_pyramid5_terms_part1.cpp
+  kernels/gent_pyramid5_whole.cpp
+  kernels/gent_quad4_terms.cpp
+  kernels/gent_quad4_terms_part0.cpp
+  kernels/gent_quad4_terms_part1.cpp
+  kernels/gent_quad4_whole.cpp
+  kernels/gent_quad8_terms.cpp
+  kernels/gent_quad8_terms_part0.cpp
+  kernels/gent_quad8_terms_part1.cpp
+  kernels/gent_quad8_whole.cpp
+  kernels/gent_tet10_terms.cpp
+  kernels/gent_tet10_terms_part0.cpp
+  kernels/gent_tet10_terms_part1.cpp
+  kernels/gent_tet10_whole.cpp
+  kernels/gent_tet4_terms.cpp
+  kernels/gent_tet4_terms_part0.cpp
+  kernels/gent_tet4_terms_part1.cpp
+  kernels/gent_tet4_whole.cpp
+  kernels/gent_tri3_terms.cpp
+  kernels/gent_tri3_terms_part0.cpp
+  kernels/gent_tri3_terms_part1.cpp
+  kernels/gent_tri3_whole.cpp
+  kernels/gent_tri6_terms.cpp
+  kernels/gent_tri6_terms_part0.cpp
+  kernels/gent_tri6_terms_part1.cpp
+  kernels/gent_tri6_whole.cpp
   kernels/hooke_hex20_terms.cpp
   kernels/hooke_hex20_terms_part0.cpp
   kernels/hooke_hex20_terms_part1.cpp
@@ -272,5 +358,91 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stvk_tri6_terms_part0.cpp
   kernels/stvk_tri6_terms_part1.cpp
   kernels/stvk_tri6_whole.cpp
+  kernels/veronda_westmann_hex20_terms.cpp
+  kernels/veronda_westmann_hex20_terms_part0.cpp
+  kernels/veronda_westmann_hex20_terms_part1.cpp
+  kernels/veronda_westmann_hex20_terms_part2.cpp
+  kernels/veronda_westmann_hex20_terms_part3.cpp
+  kernels/veronda_westmann_hex20_terms_part4.cpp
+  kernels/veronda_westmann_hex20_whole.cpp
+  kernels/veronda_westmann_hex8_terms.cpp
+  kernels/veronda_westmann_hex8_terms_part0.cpp
+  kernels/veronda_westmann_hex8_terms_part1.cpp
+  kernels/veronda_westmann_hex8_whole.cpp
+  kernels/veronda_westmann_prism6_terms.cpp
+  kernels/veronda_westmann_prism6_terms_part0.cpp
+  kernels/veronda_westmann_prism6_terms_part1.cpp
+  kernels/veronda_westmann_prism6_whole.cpp
+  kernels/veronda_westmann_pyramid5_terms.cpp
+  kernels/veronda_westmann_pyramid5_terms_part0.cpp
+  kernels/veronda_westmann_pyramid5_terms_part1.cpp
+  kernels/veronda_westmann_pyramid5_whole.cpp
+  kernels/veronda_westmann_quad4_terms.cpp
+  kernels/veronda_westmann_quad4_terms_part0.cpp
+  kernels/veronda_westmann_quad4_terms_part1.cpp
+  kernels/veronda_westmann_quad4_whole.cpp
+  kernels/veronda_westmann_quad8_terms.cpp
+  kernels/veronda_westmann_quad8_terms_part0.cpp
+  kernels/veronda_westmann_quad8_terms_part1.cpp
+  kernels/veronda_westmann_quad8_whole.cpp
+  kernels/veronda_westmann_tet10_terms.cpp
+  kernels/veronda_westmann_tet10_terms_part0.cpp
+  kernels/veronda_westmann_tet10_terms_part1.cpp
+  kernels/veronda_westmann_tet10_whole.cpp
+  kernels/veronda_westmann_tet4_terms.cpp
+  kernels/veronda_westmann_tet4_terms_part0.cpp
+  kernels/veronda_westmann_tet4_terms_part1.cpp
+  kernels/veronda_westmann_tet4_whole.cpp
+  kernels/veronda_westmann_tri3_terms.cpp
+  kernels/veronda_westmann_tri3_terms_part0.cpp
+  kernels/veronda_westmann_tri3_terms_part1.cpp
+  kernels/veronda_westmann_tri3_whole.cpp
+  kernels/veronda_westmann_tri6_terms.cpp
+  kernels/veronda_westmann_tri6_terms_part0.cpp
+  kernels/veronda_westmann_tri6_terms_part1.cpp
+  kernels/veronda_westmann_tri6_whole.cpp
+  kernels/yeoh_hex20_terms.cpp
+  kernels/yeoh_hex20_terms_part0.cpp
+  kernels/yeoh_hex20_terms_part1.cpp
+  kernels/yeoh_hex20_terms_part2.cpp
+  kernels/yeoh_hex20_terms_part3.cpp
+  kernels/yeoh_hex20_terms_part4.cpp
+  kernels/yeoh_hex20_whole.cpp
+  kernels/yeoh_hex8_terms.cpp
+  kernels/yeoh_hex8_terms_part0.cpp
+  kernels/yeoh_hex8_terms_part1.cpp
+  kernels/yeoh_hex8_whole.cpp
+  kernels/yeoh_prism6_terms.cpp
+  kernels/yeoh_prism6_terms_part0.cpp
+  kernels/yeoh_prism6_terms_part1.cpp
+  kernels/yeoh_prism6_whole.cpp
+  kernels/yeoh_pyramid5_terms.cpp
+  kernels/yeoh_pyramid5_terms_part0.cpp
+  kernels/yeoh_pyramid5_terms_part1.cpp
+  kernels/yeoh_pyramid5_whole.cpp
+  kernels/yeoh_quad4_terms.cpp
+  kernels/yeoh_quad4_terms_part0.cpp
+  kernels/yeoh_quad4_terms_part1.cpp
+  kernels/yeoh_quad4_whole.cpp
+  kernels/yeoh_quad8_terms.cpp
+  kernels/yeoh_quad8_terms_part0.cpp
+  kernels/yeoh_quad8_terms_part1.cpp
+  kernels/yeoh_quad8_whole.cpp
+  kernels/yeoh_tet10_terms.cpp
+  kernels/yeoh_tet10_terms_part0.cpp
+  kernels/yeoh_tet10_terms_part1.cpp
+  kernels/yeoh_tet10_whole.cpp
+  kernels/yeoh_tet4_terms.cpp
+  kernels/yeoh_tet4_terms_part0.cpp
+  kernels/yeoh_tet4_terms_part1.cpp
+  kernels/yeoh_tet4_whole.cpp
+  kernels/yeoh_tri3_terms.cpp
+  kernels/yeoh_tri3_terms_part0.cpp
+  kernels/yeoh_tri3_terms_part1.cpp
+  kernels/yeoh_tri3_whole.cpp
+  kernels/yeoh_tri6_terms.cpp
+  kernels/yeoh_tri6_terms_part0.cpp
+  kernels/yeoh_tri6_terms_part1.cpp
+  kernels/yeoh_tri6_whole.cpp
   registry.cpp
 )

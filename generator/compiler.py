@@ -88,7 +88,8 @@ class _TaskResult:
 # The generator modules a cached first-phase result depends on (the stages
 # that compute it and the types it is made of); a change elsewhere (a split,
 # the emitter, the templates) keeps the cache.
-_CACHE_SOURCES = ("load.py", "model.py", "symbolic.py", "optimize.py", "lower_element.py", "ir.py")
+_CACHE_SOURCES = ("load.py", "model.py", "symbolic.py", "optimize.py", "lower_element.py", "ir.py", "printer.py",
+                  "emit.py")
 
 
 def _cache_path(cache: Path, kind: str, path: Path, name: str) -> Path:
@@ -137,46 +138,58 @@ def _timed(name_of):
 @_timed(lambda law_path, dim, cache: f"derive {law_path.stem} {dim}D")
 def _law_phase(law_path: Path, dim: int, cache: Optional[Path]) -> _TaskResult:
     """Stages 1-3 of one law in one dimension: (LawDerivatives, LawKernelIR)."""
+    from .emit import printed_law_blocks
     from .load import load_law
     from .optimize import build_law_ir
     from .symbolic import derive_law
 
     result = _TaskResult()
-    with _Timer(result.timings, "load"):
-        law = load_law(law_path)
 
     def compute():
+        with _Timer(result.timings, "load"):
+            law = load_law(law_path)
         with _Timer(result.timings, "symbolic"):
             derivatives = derive_law(law, dim)
             derivatives.linear  # noqa: B018 (computed once, kept with the results)
         with _Timer(result.timings, "optimise"):
-            return derivatives, build_law_ir(derivatives)
+            law_ir = build_law_ir(derivatives)
+        with _Timer(result.timings, "emit"):
+            return derivatives, law_ir, printed_law_blocks(law_ir)
 
-    derivatives, law_ir = _cached(cache, f"law{dim}", law_path, law.name, compute, result, "symbolic")
-    # The cached law carries the file path it was read from first; this run's path names errors.
-    result.value = (dataclasses.replace(derivatives, law=law), law_ir)
+    derivatives, law_ir, printed = _cached(cache, f"law{dim}", law_path, law_path.stem, compute, result, "symbolic")
+    # A cached law names the file it was first read from; this run's path names errors.
+    law = dataclasses.replace(derivatives.law, source=str(law_path))
+    result.value = (dataclasses.replace(derivatives, law=law), law_ir, printed)
     return result
 
 
-@_timed(lambda element_path, cache: f"element {element_path.stem}")
-def _element_phase(element_path: Path, cache: Optional[Path]) -> _TaskResult:
-    """Stages 1-2 and the element lowering of one element: (ElementSpec, ElementTables, ElementIR)."""
+@_timed(lambda element_path, cache, full: f"element {element_path.stem}")
+def _element_phase(element_path: Path, cache: Optional[Path], full: bool = True) -> _TaskResult:
+    """Stages 1-2 and the element lowering of one element: (ElementSpec, ElementTables, ElementIR),
+    or (None, None, ElementIR) when not full (elements.cpp needs nothing else; it reads faster)."""
     from .load import load_element
     from .lower_element import lower_element
     from .symbolic import element_tables
 
     result = _TaskResult()
-    with _Timer(result.timings, "load"):
-        element = load_element(element_path)
 
     def compute():
+        with _Timer(result.timings, "load"):
+            element = load_element(element_path)
         with _Timer(result.timings, "symbolic"):
             tables = element_tables(element)
         with _Timer(result.timings, "lower"):
-            return tables, lower_element(element, tables)
+            return element, tables, lower_element(element, tables)
 
-    tables, element_ir = _cached(cache, "element", element_path, element.name, compute, result, "symbolic")
-    result.value = (element, tables, element_ir)
+    if not full:
+        element_ir = _cached(cache, "elementir", element_path, element_path.stem, lambda: compute()[2], result,
+                             "symbolic")
+        result.value = (None, None, element_ir)
+        return result
+    element, tables, element_ir = _cached(cache, "element", element_path, element_path.stem, compute, result,
+                                          "symbolic")
+    _cached(cache, "elementir", element_path, element_path.stem, lambda: element_ir, _TaskResult(), "symbolic")
+    result.value = (dataclasses.replace(element, source=str(element_path)), tables, element_ir)
     return result
 
 
@@ -184,13 +197,14 @@ def _element_phase(element_path: Path, cache: Optional[Path]) -> _TaskResult:
         f"({len(elements)} elements)")
 def _kernels_phase(root: Path, law_results: tuple, elements: list[tuple], tensor_limit: int) -> _TaskResult:
     """Stages 4-6 of one law in one dimension on its elements: every split's files, rows and refusals."""
-    from .emit import emit_kernel, environment, refusal_row
+    from .emit import emit_kernel, environment, refusal_row, reuse_printed_law_blocks
     from .ir import Refusal
     from .lower import SPLITS, SplitRefused, build_kernel_ir
     from .model import Inputs, OptimisedIR, SymbolicIR
 
     result = _TaskResult()
-    derivatives, law_ir = law_results
+    derivatives, law_ir, printed = law_results
+    reuse_printed_law_blocks(law_ir, printed)
     law = derivatives.law
     specs = tuple(spec for spec, _, _ in elements)
     symbolic = SymbolicIR(inputs=Inputs(elements=specs, laws=(law,)), tables=tuple(t for _, t, _ in elements),
@@ -291,7 +305,8 @@ def _run(root: Path, pairs: list[tuple[str, str]], with_elements: bool, tensor_l
                                                           mp_context=multiprocessing.get_context("fork"))
     with executor as pool:
         first = {pool.submit(_law_phase, laws[law], dim, cache): ("law", (law, dim)) for law, dim in order}
-        first.update({pool.submit(_element_phase, elements[name], cache): ("element", name)
+        needed = {e for _, e in pairs}
+        first.update({pool.submit(_element_phase, elements[name], cache, name in needed): ("element", name)
                       for name in element_names})
         ready_laws, ready_elements, second = {}, {}, []
         started: set = set()

@@ -15,7 +15,7 @@ from pathlib import Path
 import jinja2
 
 from .ir import ElementIR, KernelIR, LoweredIR, ProductBlock, SumOfProducts, TensorIR, TermsIR, WholeIR
-from .model import Block, LawSpec, ParamLimit
+from .model import Block, LawKernelIR, LawSpec, ParamLimit
 from .printer import double_literal, print_expr
 
 
@@ -46,6 +46,24 @@ def _printed_law_block(block: Block, names: dict[str, str], dim: int) -> dict:
     if key not in _PRINTED:
         _PRINTED[key] = (block, _printed(block, names, dim))
     return _PRINTED[key][1]
+
+
+LAW_BLOCKS = ("energy", "stress", "weighted_stress", "tangent", "tangent_only")
+
+
+def printed_law_blocks(law_ir: LawKernelIR) -> dict[str, dict]:
+    """The law's blocks printed (they read no element-specific names), to keep with the law IR."""
+    d = law_ir.dim
+    names = {f"{prefix}{i}": f"{prefix}[{i}]" for prefix, count in (("H", d * d), ("R", d * d), ("Y", 9 if d == 3 else 1))
+             for i in range(count)}  # lower._base_symbol_names without the element's u
+    return {name: _printed_law_block(getattr(law_ir, name), names, d) for name in LAW_BLOCKS}
+
+
+def reuse_printed_law_blocks(law_ir: LawKernelIR, printed: dict[str, dict]) -> None:
+    """Lets the kernels of law_ir print its blocks as `printed_law_blocks` gave them."""
+    for name in LAW_BLOCKS:
+        block = getattr(law_ir, name)
+        _PRINTED[(id(block), law_ir.dim)] = (block, printed[name])
 
 
 def _printed(block: Block, names: dict[str, str], dim: int = 0) -> dict:

@@ -137,8 +137,17 @@ def test_laws_of_young_and_poisson_linearise_to_hooke(path, dim):
 # The Cauchy stress of such a law is (Holzapfel, Nonlinear Solid Mechanics, 6.6)
 #   sigma = 2/J [(W1 + I1bar W2) Bbar - W2 Bbar^2 - (W1 I1bar + 2 W2 I2bar)/3 I] + U'(J) I
 # with Bbar = J^(-2/3) F F^T, and P = J sigma F^-T.
+_ARRUDA_BOYCE = (1 / 2, 1 / 20, 11 / 1050, 19 / 7000, 519 / 673750)
 CLOSED_FORMS = {
     "mooney_rivlin": lambda p, I1, I2, J: (p["c10"], p["c01"], p["kappa"] * (J - 1)),
+    "yeoh": lambda p, I1, I2, J: (p["c10"] + 2 * p["c20"] * (I1 - 3) + 3 * p["c30"] * (I1 - 3) ** 2, 0.0,
+                                  p["kappa"] * (J - 1)),
+    "gent": lambda p, I1, I2, J: (p["mu"] / 2 / (1 - (I1 - 3) / p["Jm"]), 0.0, p["kappa"] * (J - 1)),
+    "veronda_westmann": lambda p, I1, I2, J: (p["c1"] * p["c2"] * numpy.exp(p["c2"] * (I1 - 3)),
+                                              -p["c1"] * p["c2"] / 2, p["kappa"] * (J - 1)),
+    "arruda_boyce": lambda p, I1, I2, J: (p["mu"] * sum(i * c * I1 ** (i - 1) / p["lambda_m"] ** (2 * i - 2)
+                                                        for i, c in enumerate(_ARRUDA_BOYCE, start=1)),
+                                          0.0, p["kappa"] * (J - 1)),
 }
 
 
