@@ -1519,7 +1519,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_terms_precompute, tm_arruda_boyce_hex20_terms_energy, tm_arruda_boyce_hex20_terms_gradient,
-   tm_arruda_boyce_hex20_terms_hessian, tm_arruda_boyce_hex20_terms_gradient_hessian, tm_arruda_boyce_hex20_terms_stress, 12798, 110565, 996300,
+   tm_arruda_boyce_hex20_terms_hessian, tm_arruda_boyce_hex20_terms_gradient_hessian, tm_arruda_boyce_hex20_terms_stress, 12798, 110565, 995760,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1531,7 +1531,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_terms_precompute, tm_arruda_boyce_hex8_terms_energy, tm_arruda_boyce_hex8_terms_gradient,
-   tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60480,
+   tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60416,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1544,7 +1544,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_terms_precompute, tm_arruda_boyce_prism6_terms_energy, tm_arruda_boyce_prism6_terms_gradient,
-   tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32886,
+   tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32838,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1557,7 +1557,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_terms_precompute, tm_arruda_boyce_pyramid5_terms_energy, tm_arruda_boyce_pyramid5_terms_gradient,
-   tm_arruda_boyce_pyramid5_terms_hessian, tm_arruda_boyce_pyramid5_terms_gradient_hessian, tm_arruda_boyce_pyramid5_terms_stress, 1632, 8352, 37224,
+   tm_arruda_boyce_pyramid5_terms_hessian, tm_arruda_boyce_pyramid5_terms_gradient_hessian, tm_arruda_boyce_pyramid5_terms_stress, 1632, 8352, 37160,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1570,7 +1570,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_terms_precompute, tm_arruda_boyce_quad4_terms_energy, tm_arruda_boyce_quad4_terms_gradient,
-   tm_arruda_boyce_quad4_terms_hessian, tm_arruda_boyce_quad4_terms_gradient_hessian, tm_arruda_boyce_quad4_terms_stress, 460, 1872, 4856,
+   tm_arruda_boyce_quad4_terms_hessian, tm_arruda_boyce_quad4_terms_gradient_hessian, tm_arruda_boyce_quad4_terms_stress, 460, 1872, 4912,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1583,7 +1583,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_terms_precompute, tm_arruda_boyce_quad8_terms_energy, tm_arruda_boyce_quad8_terms_gradient,
-   tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18270,
+   tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18396,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1595,7 +1595,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_terms_precompute, tm_arruda_boyce_tet10_terms_energy, tm_arruda_boyce_tet10_terms_gradient,
-   tm_arruda_boyce_tet10_terms_hessian, tm_arruda_boyce_tet10_terms_gradient_hessian, tm_arruda_boyce_tet10_terms_stress, 1176, 5256, 40812,
+   tm_arruda_boyce_tet10_terms_hessian, tm_arruda_boyce_tet10_terms_gradient_hessian, tm_arruda_boyce_tet10_terms_stress, 1176, 5256, 40780,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1608,7 +1608,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_terms_precompute, tm_arruda_boyce_tet4_terms_energy, tm_arruda_boyce_tet4_terms_gradient,
-   tm_arruda_boyce_tet4_terms_hessian, tm_arruda_boyce_tet4_terms_gradient_hessian, tm_arruda_boyce_tet4_terms_stress, 186, 990, 3966,
+   tm_arruda_boyce_tet4_terms_hessian, tm_arruda_boyce_tet4_terms_gradient_hessian, tm_arruda_boyce_tet4_terms_stress, 186, 990, 3958,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1621,7 +1621,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_terms_precompute, tm_arruda_boyce_tri3_terms_energy, tm_arruda_boyce_tri3_terms_gradient,
-   tm_arruda_boyce_tri3_terms_hessian, tm_arruda_boyce_tri3_terms_gradient_hessian, tm_arruda_boyce_tri3_terms_stress, 107, 444, 1085,
+   tm_arruda_boyce_tri3_terms_hessian, tm_arruda_boyce_tri3_terms_gradient_hessian, tm_arruda_boyce_tri3_terms_stress, 107, 444, 1099,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1634,7 +1634,7 @@ const tm_kernel kKernels[] = {
 
   {"arruda_boyce", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_terms_precompute, tm_arruda_boyce_tri6_terms_energy, tm_arruda_boyce_tri6_terms_gradient,
-   tm_arruda_boyce_tri6_terms_hessian, tm_arruda_boyce_tri6_terms_gradient_hessian, tm_arruda_boyce_tri6_terms_stress, 393, 1548, 4686,
+   tm_arruda_boyce_tri6_terms_hessian, tm_arruda_boyce_tri6_terms_gradient_hessian, tm_arruda_boyce_tri6_terms_stress, 393, 1548, 4728,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1773,7 +1773,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_terms_precompute, tm_gent_hex20_terms_energy, tm_gent_hex20_terms_gradient,
-   tm_gent_hex20_terms_hessian, tm_gent_hex20_terms_gradient_hessian, tm_gent_hex20_terms_stress, 11394, 86670, 969570,
+   tm_gent_hex20_terms_hessian, tm_gent_hex20_terms_gradient_hessian, tm_gent_hex20_terms_stress, 11394, 86670, 969300,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1785,7 +1785,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_terms_precompute, tm_gent_hex8_terms_energy, tm_gent_hex8_terms_gradient,
-   tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57312,
+   tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57280,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1798,7 +1798,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_terms_precompute, tm_gent_prism6_terms_energy, tm_gent_prism6_terms_gradient,
-   tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30510,
+   tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30486,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1811,7 +1811,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_terms_precompute, tm_gent_pyramid5_terms_energy, tm_gent_pyramid5_terms_gradient,
-   tm_gent_pyramid5_terms_hessian, tm_gent_pyramid5_terms_gradient_hessian, tm_gent_pyramid5_terms_stress, 1216, 5520, 34056,
+   tm_gent_pyramid5_terms_hessian, tm_gent_pyramid5_terms_gradient_hessian, tm_gent_pyramid5_terms_stress, 1216, 5520, 34024,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1824,7 +1824,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_terms_precompute, tm_gent_quad4_terms_energy, tm_gent_quad4_terms_gradient,
-   tm_gent_quad4_terms_hessian, tm_gent_quad4_terms_gradient_hessian, tm_gent_quad4_terms_stress, 252, 880, 3360,
+   tm_gent_quad4_terms_hessian, tm_gent_quad4_terms_gradient_hessian, tm_gent_quad4_terms_stress, 252, 880, 3368,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1837,7 +1837,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_terms_precompute, tm_gent_quad8_terms_energy, tm_gent_quad8_terms_gradient,
-   tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14904,
+   tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14922,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1849,7 +1849,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_terms_precompute, tm_gent_tet10_terms_energy, tm_gent_tet10_terms_gradient,
-   tm_gent_tet10_terms_hessian, tm_gent_tet10_terms_gradient_hessian, tm_gent_tet10_terms_stress, 968, 3840, 39228,
+   tm_gent_tet10_terms_hessian, tm_gent_tet10_terms_gradient_hessian, tm_gent_tet10_terms_stress, 968, 3840, 39212,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1862,7 +1862,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_terms_precompute, tm_gent_tet4_terms_energy, tm_gent_tet4_terms_gradient,
-   tm_gent_tet4_terms_hessian, tm_gent_tet4_terms_gradient_hessian, tm_gent_tet4_terms_stress, 134, 636, 3570,
+   tm_gent_tet4_terms_hessian, tm_gent_tet4_terms_gradient_hessian, tm_gent_tet4_terms_stress, 134, 636, 3566,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1875,7 +1875,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_terms_precompute, tm_gent_tri3_terms_energy, tm_gent_tri3_terms_gradient,
-   tm_gent_tri3_terms_hessian, tm_gent_tri3_terms_gradient_hessian, tm_gent_tri3_terms_stress, 55, 196, 711,
+   tm_gent_tri3_terms_hessian, tm_gent_tri3_terms_gradient_hessian, tm_gent_tri3_terms_stress, 55, 196, 713,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1888,7 +1888,7 @@ const tm_kernel kKernels[] = {
 
   {"gent", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_terms_precompute, tm_gent_tri6_terms_energy, tm_gent_tri6_terms_gradient,
-   tm_gent_tri6_terms_hessian, tm_gent_tri6_terms_gradient_hessian, tm_gent_tri6_terms_stress, 237, 804, 3564,
+   tm_gent_tri6_terms_hessian, tm_gent_tri6_terms_gradient_hessian, tm_gent_tri6_terms_stress, 237, 804, 3570,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2063,7 +2063,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_terms_precompute, tm_mooney_rivlin_hex20_terms_energy, tm_mooney_rivlin_hex20_terms_gradient,
-   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 105435, 955125,
+   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 105435, 955395,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2075,7 +2075,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
-   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55600,
+   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55632,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2088,7 +2088,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
-   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29226,
+   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29250,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2101,7 +2101,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_terms_precompute, tm_mooney_rivlin_pyramid5_terms_energy, tm_mooney_rivlin_pyramid5_terms_gradient,
-   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 7744, 32344,
+   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 7744, 32376,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2114,7 +2114,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_terms_precompute, tm_mooney_rivlin_quad4_terms_energy, tm_mooney_rivlin_quad4_terms_gradient,
-   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1312, 3480,
+   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1312, 3488,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2127,7 +2127,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
-   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15174,
+   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15192,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2139,7 +2139,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_terms_precompute, tm_mooney_rivlin_tet10_terms_energy, tm_mooney_rivlin_tet10_terms_gradient,
-   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 4952, 38372,
+   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 4952, 38388,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2152,7 +2152,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_terms_precompute, tm_mooney_rivlin_tet4_terms_energy, tm_mooney_rivlin_tet4_terms_gradient,
-   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 914, 3356,
+   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 914, 3360,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2165,7 +2165,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_terms_precompute, tm_mooney_rivlin_tri3_terms_energy, tm_mooney_rivlin_tri3_terms_gradient,
-   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 304, 741,
+   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 304, 743,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2178,7 +2178,7 @@ const tm_kernel kKernels[] = {
 
   {"mooney_rivlin", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_terms_precompute, tm_mooney_rivlin_tri6_terms_energy, tm_mooney_rivlin_tri6_terms_gradient,
-   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1128, 3654,
+   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1128, 3660,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2190,7 +2190,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
-   tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 882225,
+   tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 883035,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2202,7 +2202,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
-   tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 46960,
+   tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 47056,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2215,7 +2215,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
-   tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22746,
+   tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22818,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2228,7 +2228,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
-   tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 23704,
+   tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 23800,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2241,7 +2241,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
-   tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2200,
+   tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2224,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2254,7 +2254,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
-   tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12294,
+   tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12348,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2266,7 +2266,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
-   tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 34052,
+   tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 34100,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2279,7 +2279,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
-   tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2276,
+   tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2288,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2292,7 +2292,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
-   tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 421,
+   tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 427,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2305,7 +2305,7 @@ const tm_kernel kKernels[] = {
 
   {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
-   tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2694,
+   tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2712,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2317,7 +2317,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
-   tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 880605,
+   tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 880335,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2329,7 +2329,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
-   tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46768,
+   tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46736,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2342,7 +2342,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
-   tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22602,
+   tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22578,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2355,7 +2355,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
-   tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 23512,
+   tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 23480,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2368,7 +2368,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
-   tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2224,
+   tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2240,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2381,7 +2381,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
-   tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12348,
+   tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12384,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2393,7 +2393,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
-   tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 33956,
+   tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 33940,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2406,7 +2406,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
-   tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2252,
+   tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2248,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2419,7 +2419,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
-   tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 427,
+   tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 431,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2432,7 +2432,7 @@ const tm_kernel kKernels[] = {
 
   {"stable_neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
-   tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2712,
+   tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2724,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
@@ -2444,7 +2444,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
-   tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 869940,
+   tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 870075,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2456,7 +2456,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
-   tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 45504,
+   tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 45520,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2475,7 +2475,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
-   tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 21654,
+   tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 21666,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2494,7 +2494,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
-   tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 22248,
+   tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 22264,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2544,7 +2544,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
-   tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 33324,
+   tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 33332,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2557,7 +2557,7 @@ const tm_kernel kKernels[] = {
 
   {"stvk", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
-   tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2094,
+   tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2096,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2607,7 +2607,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_terms_precompute, tm_veronda_westmann_hex20_terms_energy, tm_veronda_westmann_hex20_terms_gradient,
-   tm_veronda_westmann_hex20_terms_hessian, tm_veronda_westmann_hex20_terms_gradient_hessian, tm_veronda_westmann_hex20_terms_stress, 12501, 106650, 1026000,
+   tm_veronda_westmann_hex20_terms_hessian, tm_veronda_westmann_hex20_terms_gradient_hessian, tm_veronda_westmann_hex20_terms_stress, 12501, 106650, 1026405,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2619,7 +2619,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_terms_precompute, tm_veronda_westmann_hex8_terms_energy, tm_veronda_westmann_hex8_terms_gradient,
-   tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64000,
+   tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64048,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2632,7 +2632,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_terms_precompute, tm_veronda_westmann_prism6_terms_energy, tm_veronda_westmann_prism6_terms_gradient,
-   tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35526,
+   tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35562,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2645,7 +2645,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_terms_precompute, tm_veronda_westmann_pyramid5_terms_energy, tm_veronda_westmann_pyramid5_terms_gradient,
-   tm_veronda_westmann_pyramid5_terms_hessian, tm_veronda_westmann_pyramid5_terms_gradient_hessian, tm_veronda_westmann_pyramid5_terms_stress, 1544, 7888, 40744,
+   tm_veronda_westmann_pyramid5_terms_hessian, tm_veronda_westmann_pyramid5_terms_gradient_hessian, tm_veronda_westmann_pyramid5_terms_stress, 1544, 7888, 40792,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2658,7 +2658,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_terms_precompute, tm_veronda_westmann_quad4_terms_energy, tm_veronda_westmann_quad4_terms_gradient,
-   tm_veronda_westmann_quad4_terms_hessian, tm_veronda_westmann_quad4_terms_gradient_hessian, tm_veronda_westmann_quad4_terms_stress, 336, 1416, 4192,
+   tm_veronda_westmann_quad4_terms_hessian, tm_veronda_westmann_quad4_terms_gradient_hessian, tm_veronda_westmann_quad4_terms_stress, 336, 1416, 4224,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2671,7 +2671,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_terms_precompute, tm_veronda_westmann_quad8_terms_energy, tm_veronda_westmann_quad8_terms_gradient,
-   tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16776,
+   tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16848,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2683,7 +2683,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_terms_precompute, tm_veronda_westmann_tet10_terms_energy, tm_veronda_westmann_tet10_terms_gradient,
-   tm_veronda_westmann_tet10_terms_hessian, tm_veronda_westmann_tet10_terms_gradient_hessian, tm_veronda_westmann_tet10_terms_stress, 1132, 5024, 42572,
+   tm_veronda_westmann_tet10_terms_hessian, tm_veronda_westmann_tet10_terms_gradient_hessian, tm_veronda_westmann_tet10_terms_stress, 1132, 5024, 42596,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2696,7 +2696,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_terms_precompute, tm_veronda_westmann_tet4_terms_energy, tm_veronda_westmann_tet4_terms_gradient,
-   tm_veronda_westmann_tet4_terms_hessian, tm_veronda_westmann_tet4_terms_gradient_hessian, tm_veronda_westmann_tet4_terms_stress, 175, 932, 4406,
+   tm_veronda_westmann_tet4_terms_hessian, tm_veronda_westmann_tet4_terms_gradient_hessian, tm_veronda_westmann_tet4_terms_stress, 175, 932, 4412,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2709,7 +2709,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_terms_precompute, tm_veronda_westmann_tri3_terms_energy, tm_veronda_westmann_tri3_terms_gradient,
-   tm_veronda_westmann_tri3_terms_hessian, tm_veronda_westmann_tri3_terms_gradient_hessian, tm_veronda_westmann_tri3_terms_stress, 76, 330, 919,
+   tm_veronda_westmann_tri3_terms_hessian, tm_veronda_westmann_tri3_terms_gradient_hessian, tm_veronda_westmann_tri3_terms_stress, 76, 330, 927,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2722,7 +2722,7 @@ const tm_kernel kKernels[] = {
 
   {"veronda_westmann", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_terms_precompute, tm_veronda_westmann_tri6_terms_energy, tm_veronda_westmann_tri6_terms_gradient,
-   tm_veronda_westmann_tri6_terms_hessian, tm_veronda_westmann_tri6_terms_gradient_hessian, tm_veronda_westmann_tri6_terms_stress, 300, 1206, 4188,
+   tm_veronda_westmann_tri6_terms_hessian, tm_veronda_westmann_tri6_terms_gradient_hessian, tm_veronda_westmann_tri6_terms_stress, 300, 1206, 4212,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2734,7 +2734,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "hex20", "terms", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_terms_precompute, tm_yeoh_hex20_terms_energy, tm_yeoh_hex20_terms_gradient,
-   tm_yeoh_hex20_terms_hessian, tm_yeoh_hex20_terms_gradient_hessian, tm_yeoh_hex20_terms_stress, 11421, 94365, 943380,
+   tm_yeoh_hex20_terms_hessian, tm_yeoh_hex20_terms_gradient_hessian, tm_yeoh_hex20_terms_stress, 11421, 94365, 944730,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2746,7 +2746,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "hex8", "terms", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_terms_precompute, tm_yeoh_hex8_terms_energy, tm_yeoh_hex8_terms_gradient,
-   tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54208,
+   tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54368,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2759,7 +2759,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "prism6", "terms", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_terms_precompute, tm_yeoh_prism6_terms_energy, tm_yeoh_prism6_terms_gradient,
-   tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28182,
+   tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28302,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2772,7 +2772,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "pyramid5", "terms", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_terms_precompute, tm_yeoh_pyramid5_terms_energy, tm_yeoh_pyramid5_terms_gradient,
-   tm_yeoh_pyramid5_terms_hessian, tm_yeoh_pyramid5_terms_gradient_hessian, tm_yeoh_pyramid5_terms_stress, 1224, 6432, 30952,
+   tm_yeoh_pyramid5_terms_hessian, tm_yeoh_pyramid5_terms_gradient_hessian, tm_yeoh_pyramid5_terms_stress, 1224, 6432, 31112,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2785,7 +2785,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "quad4", "terms", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_terms_precompute, tm_yeoh_quad4_terms_energy, tm_yeoh_quad4_terms_gradient,
-   tm_yeoh_quad4_terms_hessian, tm_yeoh_quad4_terms_gradient_hessian, tm_yeoh_quad4_terms_stress, 256, 1096, 3512,
+   tm_yeoh_quad4_terms_hessian, tm_yeoh_quad4_terms_gradient_hessian, tm_yeoh_quad4_terms_stress, 256, 1096, 3536,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2798,7 +2798,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "quad8", "terms", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_terms_precompute, tm_yeoh_quad8_terms_energy, tm_yeoh_quad8_terms_gradient,
-   tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15246,
+   tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15300,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2810,7 +2810,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "tet10", "terms", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_terms_precompute, tm_yeoh_tet10_terms_energy, tm_yeoh_tet10_terms_gradient,
-   tm_yeoh_tet10_terms_hessian, tm_yeoh_tet10_terms_gradient_hessian, tm_yeoh_tet10_terms_stress, 972, 4296, 37676,
+   tm_yeoh_tet10_terms_hessian, tm_yeoh_tet10_terms_gradient_hessian, tm_yeoh_tet10_terms_stress, 972, 4296, 37756,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2823,7 +2823,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "tet4", "terms", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_terms_precompute, tm_yeoh_tet4_terms_energy, tm_yeoh_tet4_terms_gradient,
-   tm_yeoh_tet4_terms_hessian, tm_yeoh_tet4_terms_gradient_hessian, tm_yeoh_tet4_terms_stress, 135, 750, 3182,
+   tm_yeoh_tet4_terms_hessian, tm_yeoh_tet4_terms_gradient_hessian, tm_yeoh_tet4_terms_stress, 135, 750, 3202,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2836,7 +2836,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "tri3", "terms", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_terms_precompute, tm_yeoh_tri3_terms_energy, tm_yeoh_tri3_terms_gradient,
-   tm_yeoh_tri3_terms_hessian, tm_yeoh_tri3_terms_gradient_hessian, tm_yeoh_tri3_terms_stress, 56, 250, 749,
+   tm_yeoh_tri3_terms_hessian, tm_yeoh_tri3_terms_gradient_hessian, tm_yeoh_tri3_terms_stress, 56, 250, 755,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2849,7 +2849,7 @@ const tm_kernel kKernels[] = {
 
   {"yeoh", "tri6", "terms", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_terms_precompute, tm_yeoh_tri6_terms_energy, tm_yeoh_tri6_terms_gradient,
-   tm_yeoh_tri6_terms_hessian, tm_yeoh_tri6_terms_gradient_hessian, tm_yeoh_tri6_terms_stress, 240, 966, 3678,
+   tm_yeoh_tri6_terms_hessian, tm_yeoh_tri6_terms_gradient_hessian, tm_yeoh_tri6_terms_stress, 240, 966, 3696,
    0, 0,
    0, nullptr, nullptr, nullptr},
 

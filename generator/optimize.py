@@ -152,6 +152,19 @@ def _equal(a: sympy.Expr, b: sympy.Expr, fa, fb, polynomial: bool) -> bool:
     return sympy.expand(a - b) == 0
 
 
+def _pruned(block: Block, keep, dim: int) -> Block:
+    """The block's outputs whose target keep() accepts, with only the temporaries they read."""
+    needed: set[str] = set()
+    kept = []
+    for a in reversed(block.assignments):
+        if (a.declare and a.target in needed) or (not a.declare and keep(a.target)):
+            kept.append(a)
+            needed.update(s.name for s in a.expr.free_symbols)
+    kept.reverse()
+    auxiliaries, auxiliary_flops = _auxiliaries([a.expr for a in kept], dim)
+    return Block(tuple(kept), sum(count_flops(a.expr) for a in kept) + auxiliary_flops, auxiliaries)
+
+
 def build_law_ir(derivatives: LawDerivatives) -> LawKernelIR:
     """The law's blocks at one point; symmetric or repeated tangent entries are computed once."""
     psi, P, A = derivatives.energy, derivatives.stress, derivatives.tangent
@@ -177,7 +190,7 @@ def build_law_ir(derivatives: LawDerivatives) -> LawKernelIR:
                 outputs.append((name, entry))
             tangent_map[i][j] = tangent_map[j][i] = name
     tangent = eliminate(outputs, "a", dim)
-    tangent_only = eliminate(outputs[len(weighted):], "a", dim)
+    tangent_only = _pruned(tangent, lambda target: target.startswith("wA["), dim)
     tangent_map = tuple(tuple(row) for row in tangent_map)
     return LawKernelIR(law=derivatives.law.name, dim=derivatives.dim, energy=energy, stress=stress,
                        weighted_stress=weighted_stress, tangent=tangent, tangent_only=tangent_only,

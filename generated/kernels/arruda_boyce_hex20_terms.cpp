@@ -3,7 +3,7 @@
 // Law: arruda_boyce   Element: hex20   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 5 parts, one translation unit each (tm_arruda_boyce_hex20_terms_part_N.cpp).
-// Flops per element: energy 12798, gradient 110565, hessian 996300.
+// Flops per element: energy 12798, gradient 110565, hessian 995760.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

@@ -3,7 +3,7 @@
 // Law: arruda_boyce   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_arruda_boyce_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1632, gradient 8352, hessian 37224.
+// Flops per element: energy 1632, gradient 8352, hessian 37160.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

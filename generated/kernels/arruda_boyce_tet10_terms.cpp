@@ -3,7 +3,7 @@
 // Law: arruda_boyce   Element: tet10   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_arruda_boyce_tet10_terms_part_N.cpp).
-// Flops per element: energy 1176, gradient 5256, hessian 40812.
+// Flops per element: energy 1176, gradient 5256, hessian 40780.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

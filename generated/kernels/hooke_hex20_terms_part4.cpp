@@ -92,9 +92,10 @@ void tm_hooke_hex20_terms_hessian_part4(const double* u, const double* consts, d
     H[6] = GT[0]*u[2] + GT[1]*u[5] + GT[2]*u[8] + GT[3]*u[11] + GT[4]*u[14] + GT[5]*u[17] + GT[6]*u[20] + GT[7]*u[23] + GT[8]*u[26] + GT[9]*u[29] + GT[10]*u[32] + GT[11]*u[35] + GT[12]*u[38] + GT[13]*u[41] + GT[14]*u[44] + GT[15]*u[47] + GT[16]*u[50] + GT[17]*u[53] + GT[18]*u[56] + GT[19]*u[59];
     H[7] = GT[20]*u[2] + GT[21]*u[5] + GT[22]*u[8] + GT[23]*u[11] + GT[24]*u[14] + GT[25]*u[17] + GT[26]*u[20] + GT[27]*u[23] + GT[28]*u[26] + GT[29]*u[29] + GT[30]*u[32] + GT[31]*u[35] + GT[32]*u[38] + GT[33]*u[41] + GT[34]*u[44] + GT[35]*u[47] + GT[36]*u[50] + GT[37]*u[53] + GT[38]*u[56] + GT[39]*u[59];
     H[8] = GT[40]*u[2] + GT[41]*u[5] + GT[42]*u[8] + GT[43]*u[11] + GT[44]*u[14] + GT[45]*u[17] + GT[46]*u[20] + GT[47]*u[23] + GT[48]*u[26] + GT[49]*u[29] + GT[50]*u[32] + GT[51]*u[35] + GT[52]*u[38] + GT[53]*u[41] + GT[54]*u[44] + GT[55]*u[47] + GT[56]*u[50] + GT[57]*u[53] + GT[58]*u[56] + GT[59]*u[59];
+    const double a4 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[4] = lam*w;
-    wA[10] = mu*w;
+    wA[10] = a4;
     const double y0 = GT[12]*GT[12];
     const double y1 = GT[32]*GT[32];
     const double y2 = GT[52]*GT[52];

@@ -83,9 +83,10 @@ void tm_hooke_hex8_terms_hessian_part1(const double* u, const double* consts, do
     H[6] = GT[0]*u[2] + GT[1]*u[5] + GT[2]*u[8] + GT[3]*u[11] + GT[4]*u[14] + GT[5]*u[17] + GT[6]*u[20] + GT[7]*u[23];
     H[7] = GT[8]*u[2] + GT[9]*u[5] + GT[10]*u[8] + GT[11]*u[11] + GT[12]*u[14] + GT[13]*u[17] + GT[14]*u[20] + GT[15]*u[23];
     H[8] = GT[16]*u[2] + GT[17]*u[5] + GT[18]*u[8] + GT[19]*u[11] + GT[20]*u[14] + GT[21]*u[17] + GT[22]*u[20] + GT[23]*u[23];
+    const double a4 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[4] = lam*w;
-    wA[10] = mu*w;
+    wA[10] = a4;
     const double y0 = GT[3]*GT[3];
     const double y1 = GT[11]*GT[11];
     const double y2 = GT[19]*GT[19];

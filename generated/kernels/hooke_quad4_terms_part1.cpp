@@ -53,9 +53,10 @@ void tm_hooke_quad4_terms_hessian_part1(const double* u, const double* consts, d
     H[1] = GT[4]*u[0] + GT[5]*u[2] + GT[6]*u[4] + GT[7]*u[6];
     H[2] = GT[0]*u[1] + GT[1]*u[3] + GT[2]*u[5] + GT[3]*u[7];
     H[3] = GT[4]*u[1] + GT[5]*u[3] + GT[6]*u[5] + GT[7]*u[7];
+    const double a3 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[3] = lam*w;
-    wA[5] = mu*w;
+    wA[5] = a3;
     const double y0 = GT[2]*GT[2];
     const double y1 = GT[6]*GT[6];
     K[36] += wA[0]*y0 + wA[5]*y1;

@@ -59,9 +59,10 @@ void tm_hooke_quad8_terms_hessian_part1(const double* u, const double* consts, d
     H[1] = GT[8]*u[0] + GT[9]*u[2] + GT[10]*u[4] + GT[11]*u[6] + GT[12]*u[8] + GT[13]*u[10] + GT[14]*u[12] + GT[15]*u[14];
     H[2] = GT[0]*u[1] + GT[1]*u[3] + GT[2]*u[5] + GT[3]*u[7] + GT[4]*u[9] + GT[5]*u[11] + GT[6]*u[13] + GT[7]*u[15];
     H[3] = GT[8]*u[1] + GT[9]*u[3] + GT[10]*u[5] + GT[11]*u[7] + GT[12]*u[9] + GT[13]*u[11] + GT[14]*u[13] + GT[15]*u[15];
+    const double a3 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[3] = lam*w;
-    wA[5] = mu*w;
+    wA[5] = a3;
     const double y0 = GT[3]*GT[3];
     const double y1 = GT[11]*GT[11];
     K[102] += wA[0]*y0 + wA[5]*y1;

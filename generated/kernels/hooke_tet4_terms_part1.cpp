@@ -74,9 +74,10 @@ void tm_hooke_tet4_terms_hessian_part1(const double* u, const double* consts, do
     H[6] = GT[0]*u[2] + GT[1]*u[5] + GT[2]*u[8] + GT[3]*u[11];
     H[7] = GT[4]*u[2] + GT[5]*u[5] + GT[6]*u[8] + GT[7]*u[11];
     H[8] = GT[8]*u[2] + GT[9]*u[5] + GT[10]*u[8] + GT[11]*u[11];
+    const double a4 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[4] = lam*w;
-    wA[10] = mu*w;
+    wA[10] = a4;
     const double y0 = GT[2]*GT[2];
     const double y1 = GT[6]*GT[6];
     const double y2 = GT[10]*GT[10];

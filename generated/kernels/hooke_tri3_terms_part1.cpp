@@ -53,9 +53,10 @@ void tm_hooke_tri3_terms_hessian_part1(const double* u, const double* consts, do
     H[1] = GT[3]*u[0] + GT[4]*u[2] + GT[5]*u[4];
     H[2] = GT[0]*u[1] + GT[1]*u[3] + GT[2]*u[5];
     H[3] = GT[3]*u[1] + GT[4]*u[3] + GT[5]*u[5];
+    const double a3 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[3] = lam*w;
-    wA[5] = mu*w;
+    wA[5] = a3;
     const double y0 = GT[1]*GT[1];
     const double y1 = GT[4]*GT[4];
     K[14] += wA[0]*y0 + wA[5]*y1;

@@ -53,9 +53,10 @@ void tm_hooke_tri6_terms_hessian_part0(const double* u, const double* consts, do
     H[1] = GT[6]*u[0] + GT[7]*u[2] + GT[8]*u[4] + GT[9]*u[6] + GT[10]*u[8] + GT[11]*u[10];
     H[2] = GT[0]*u[1] + GT[1]*u[3] + GT[2]*u[5] + GT[3]*u[7] + GT[4]*u[9] + GT[5]*u[11];
     H[3] = GT[6]*u[1] + GT[7]*u[3] + GT[8]*u[5] + GT[9]*u[7] + GT[10]*u[9] + GT[11]*u[11];
+    const double a3 = mu*w;
     wA[0] = w*(lam + 2.0*mu);
     wA[3] = lam*w;
-    wA[5] = mu*w;
+    wA[5] = a3;
     const double y0 = GT[0]*GT[0];
     const double y1 = GT[6]*GT[6];
     K[0] += wA[0]*y0 + wA[5]*y1;

@@ -3,7 +3,7 @@
 // Law: mooney_rivlin   Element: hex20   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 5 parts, one translation unit each (tm_mooney_rivlin_hex20_terms_part_N.cpp).
-// Flops per element: energy 12366, gradient 105435, hessian 955125.
+// Flops per element: energy 12366, gradient 105435, hessian 955395.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

@@ -3,7 +3,7 @@
 // Law: mooney_rivlin   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_mooney_rivlin_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1504, gradient 7744, hessian 32344.
+// Flops per element: energy 1504, gradient 7744, hessian 32376.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

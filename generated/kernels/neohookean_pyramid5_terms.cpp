@@ -3,7 +3,7 @@
 // Law: neohookean   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_neohookean_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1152, gradient 4128, hessian 23704.
+// Flops per element: energy 1152, gradient 4128, hessian 23800.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

@@ -3,7 +3,7 @@
 // Law: stvk   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_stvk_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1248, gradient 4448, hessian 22248.
+// Flops per element: energy 1248, gradient 4448, hessian 22264.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

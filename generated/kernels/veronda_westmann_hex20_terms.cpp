@@ -3,7 +3,7 @@
 // Law: veronda_westmann   Element: hex20   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 5 parts, one translation unit each (tm_veronda_westmann_hex20_terms_part_N.cpp).
-// Flops per element: energy 12501, gradient 106650, hessian 1026000.
+// Flops per element: energy 12501, gradient 106650, hessian 1026405.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

@@ -3,7 +3,7 @@
 // Law: veronda_westmann   Element: prism6   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_veronda_westmann_prism6_terms_part_N.cpp).
-// Flops per element: energy 1266, gradient 6240, hessian 35526.
+// Flops per element: energy 1266, gradient 6240, hessian 35562.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

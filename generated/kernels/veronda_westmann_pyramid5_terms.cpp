@@ -3,7 +3,7 @@
 // Law: veronda_westmann   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_veronda_westmann_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1544, gradient 7888, hessian 40744.
+// Flops per element: energy 1544, gradient 7888, hessian 40792.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

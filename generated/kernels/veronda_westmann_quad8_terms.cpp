@@ -3,7 +3,7 @@
 // Law: veronda_westmann   Element: quad8   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_veronda_westmann_quad8_terms_part_N.cpp).
-// Flops per element: energy 1044, gradient 4050, hessian 16776.
+// Flops per element: energy 1044, gradient 4050, hessian 16848.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

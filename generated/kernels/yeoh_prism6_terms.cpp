@@ -3,7 +3,7 @@
 // Law: yeoh   Element: prism6   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_yeoh_prism6_terms_part_N.cpp).
-// Flops per element: energy 1026, gradient 5148, hessian 28182.
+// Flops per element: energy 1026, gradient 5148, hessian 28302.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

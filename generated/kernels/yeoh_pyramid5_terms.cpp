@@ -3,7 +3,7 @@
 // Law: yeoh   Element: pyramid5   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_yeoh_pyramid5_terms_part_N.cpp).
-// Flops per element: energy 1224, gradient 6432, hessian 30952.
+// Flops per element: energy 1224, gradient 6432, hessian 31112.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 

@@ -3,7 +3,7 @@
 // Law: yeoh   Element: quad4   Split: terms
 // The gradient and Hessian are written out entry by entry and cut by node rows
 // into 2 parts, one translation unit each (tm_yeoh_quad4_terms_part_N.cpp).
-// Flops per element: energy 256, gradient 1096, hessian 3512.
+// Flops per element: energy 256, gradient 1096, hessian 3536.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
 
