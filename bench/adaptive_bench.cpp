@@ -110,8 +110,7 @@ double median(std::vector<double> values) {
 MaterialSpec material(const std::string& law, double young, double poisson, double density) {
   MaterialSpec m;
   m.law = law;
-  m.young = young;
-  m.poisson = poisson;
+  m.constants = elastic_constants(young, poisson);
   m.density = density;
   return m;
 }

@@ -176,8 +176,12 @@ std::string calculix_deck(const Mesh& mesh, const Scene& scene, const CalculixOp
     bool used = false;
     for (const int c : material) used = used || c == static_cast<int>(m);
     if (!used) continue;
+    const auto young = spec.constants.find("young"), poisson = spec.constants.find("poisson");
+    if (young == spec.constants.end() || poisson == spec.constants.end())
+      throw std::invalid_argument("calculix_runner: material " + std::to_string(m) +
+                                  " has no young and poisson (CalculiX's *ELASTIC needs both)");
     out << "*MATERIAL, NAME=MAT" << m + 1 << "\n*ELASTIC\n"
-        << number(spec.young) << ", " << number(spec.poisson) << "\n*DENSITY\n"
+        << number(young->second) << ", " << number(poisson->second) << "\n*DENSITY\n"
         << number(spec.density) << "\n";
     out << "*SOLID SECTION, ELSET=E" << m + 1 << ", MATERIAL=MAT" << m + 1 << "\n";
     if (dim == 2) out << "1.\n";  // plane strain, unit thickness (as tensormass)

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "tensormass/kernels/kernel_abi.h"
+
 namespace tensormass::bench::handwritten {
 
 namespace {
@@ -151,7 +153,8 @@ constexpr double kHex8Signs[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1,
 
 }  // namespace
 
-int stvk_tet4_precompute(const double* rest_positions, const double* params, double* consts) {
+int stvk_tet4_precompute(const double* rest_positions, const double* params, int param_count, double* consts) {
+  if (param_count != 2) return TM_PRECOMPUTE_PARAM_COUNT;
   lame(params, consts);
   return precompute_point<4>(rest_positions, kTet4Gradients, 1.0 / 6.0, consts + 2);
 }
@@ -164,7 +167,8 @@ void stvk_tet4_gradient_hessian(const double* u, const double* consts, double* g
   stvk_element<4, 1>(u, consts, gradient, hessian);
 }
 
-int stvk_hex8_precompute(const double* rest_positions, const double* params, double* consts) {
+int stvk_hex8_precompute(const double* rest_positions, const double* params, int param_count, double* consts) {
+  if (param_count != 2) return TM_PRECOMPUTE_PARAM_COUNT;
   lame(params, consts);
   const double g = 1.0 / std::sqrt(3.0);
   int q = 0;

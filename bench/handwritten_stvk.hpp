@@ -21,11 +21,11 @@ constexpr int kHex8Consts = 2 + kHex8Points * (1 + 3 * kHex8Nodes);
 
 /// rest_positions: N by 3, node-major, in the registry's node order (VTK);
 /// params: young, poisson. Returns 0, or q+1 for a point with det(J) <= 0.
-int stvk_tet4_precompute(const double* rest_positions, const double* params, double* consts);
+int stvk_tet4_precompute(const double* rest_positions, const double* params, int param_count, double* consts);
 void stvk_tet4_gradient(const double* u, const double* consts, double* gradient);
 void stvk_tet4_gradient_hessian(const double* u, const double* consts, double* gradient, double* hessian);
 
-int stvk_hex8_precompute(const double* rest_positions, const double* params, double* consts);
+int stvk_hex8_precompute(const double* rest_positions, const double* params, int param_count, double* consts);
 void stvk_hex8_gradient(const double* u, const double* consts, double* gradient);
 void stvk_hex8_gradient_hessian(const double* u, const double* consts, double* gradient, double* hessian);
 

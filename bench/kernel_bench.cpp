@@ -28,6 +28,7 @@
 #include "handwritten_stvk.hpp"
 #include "machine_info.hpp"
 #include "polar_bench.hpp"
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
@@ -69,6 +70,7 @@ struct Row {
   int dim = 0, nodes = 0, dofs = 0, consts = 0, elements = 0;
   long flops_gradient = 0, flops_hessian = 0, flops_gradient_hessian = 0;
   tm_precompute_fn precompute = nullptr;
+  std::vector<double> params;  ///< the law's parameters (bench_parameters)
   tm_gradient_fn gradient = nullptr;
   tm_gradient_hessian_fn gradient_hessian = nullptr;
   /// Batched rows (split "batched"): elements per call and the batched entry
@@ -117,6 +119,13 @@ std::vector<double> random_rotation(int dim, std::mt19937_64& rng) {
           2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
 }
 
+/// Soft tissue (kYoung, kPoisson) for laws with Young's modulus and
+/// Poisson's ratio, else values within the law's limits.
+std::vector<double> bench_parameters(const tm_kernel& k) {
+  if (tensormass::parameter_names(k) == std::vector<std::string>{"young", "poisson"}) return {kYoung, kPoisson};
+  return tensormass::admissible_parameters(k);
+}
+
 /// `count` random valid elements of type `info`; `check` (any kernel of that
 /// element) must accept the rest shape, else the element is drawn again.
 Geometry make_geometry(const tm_element_info& info, const tm_kernel& check, int count, unsigned seed) {
@@ -141,7 +150,7 @@ Geometry make_geometry(const tm_element_info& info, const tm_kernel& check, int 
   const double scale = 0.01 / size;
 
   std::vector<double> consts(check.consts);
-  const double params[2] = {kYoung, kPoisson};
+  const std::vector<double> params = bench_parameters(check);
   for (int e = 0; e < count; ++e) {
     double* X = &geometry.rest[static_cast<std::size_t>(e) * n * d];
     double* u = &geometry.u[static_cast<std::size_t>(e) * n * d];
@@ -162,7 +171,7 @@ Geometry make_geometry(const tm_element_info& info, const tm_kernel& check, int 
           X[j * d + a] = sum;
         }
       }
-      if (check.precompute(X, params, consts.data()) == 0) break;
+      if (check.precompute(X, params.data(), check.params, consts.data()) == 0) break;
     }
     // Displacement gradient: diagonal strains of 1-5 % (random sign), shears
     // up to 2 %, plus a translation and nodal noise of 0.1 % of the size.
@@ -208,9 +217,9 @@ void load(Row& row, const Geometry& geometry, const Settings& settings) {
                                              static_cast<double>(std::min(settings.max_elements, geometry.count))));
   row.constants.assign(static_cast<std::size_t>(row.elements) * row.consts, 0.0);
   row.u.assign(geometry.u.begin(), geometry.u.begin() + static_cast<std::ptrdiff_t>(row.elements) * row.dofs);
-  const double params[2] = {kYoung, kPoisson};
   for (int e = 0; e < row.elements; ++e)
-    if (const int bad = row.precompute(&geometry.rest[static_cast<std::size_t>(e) * row.dofs], params,
+    if (const int bad = row.precompute(&geometry.rest[static_cast<std::size_t>(e) * row.dofs], row.params.data(),
+                                       static_cast<int>(row.params.size()),
                                        &row.constants[static_cast<std::size_t>(e) * row.consts]))
       throw std::runtime_error("bench: " + row.law + "/" + row.element + "/" + row.split +
                                " precompute refused element " + std::to_string(e) + " (point " +
@@ -305,9 +314,9 @@ struct Outputs {
 };
 
 Outputs evaluate(const Row& row, const double* rest, const double* u) {
-  const double params[2] = {kYoung, kPoisson};
   std::vector<double> consts(row.consts);
-  if (row.precompute(rest, params, consts.data()) != 0) throw std::runtime_error("bench: precompute refused");
+  if (row.precompute(rest, row.params.data(), static_cast<int>(row.params.size()), consts.data()) != 0)
+    throw std::runtime_error("bench: precompute refused");
   Outputs out{std::vector<double>(row.dofs), std::vector<double>(row.dofs),
               std::vector<double>(static_cast<std::size_t>(row.dofs) * row.dofs)};
   row.gradient(u, consts.data(), out.gradient.data());
@@ -442,6 +451,7 @@ Row registry_row(const tm_kernel& k) {
   // other splits' gradient_hessian calls gradient, then hessian.
   row.flops_gradient_hessian = row.split == "whole" ? k.flops_hessian : k.flops_gradient + k.flops_hessian;
   row.precompute = k.precompute;
+  row.params = bench_parameters(k);
   row.gradient = k.gradient;
   row.gradient_hessian = k.gradient_hessian;
   return row;
@@ -465,6 +475,7 @@ Row baseline_row(const std::string& element) {
   row.split = "handwritten";
   row.dim = 3;
   row.baseline = true;
+  row.params = {kYoung, kPoisson};
   int points;
   if (element == "tet4") {
     row.nodes = hw::kTet4Nodes;

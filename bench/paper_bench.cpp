@@ -122,8 +122,7 @@ Scene make_scene(const BeamCase& beam, const Config& config, int steps) {
   scene.mesh = "bench-paper-beam";
   MaterialSpec material;
   material.law = config.mode == "stvk" ? "stvk" : "hooke";
-  material.young = beam.young;
-  material.poisson = kPoisson;
+  material.constants = elastic_constants(beam.young, kPoisson);
   material.density = kDensity;
   scene.model.materials = {material};
   scene.model.fixed = {"clamp"};

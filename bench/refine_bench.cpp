@@ -64,8 +64,7 @@ Scene plate_scene() {
   scene.path = "bench-refine-plate.yaml";
   MaterialSpec material;
   material.law = "hooke";
-  material.young = 5e3;
-  material.poisson = 0.45;
+  material.constants = elastic_constants(5e3, 0.45);
   material.density = 1000;
   scene.model.materials = {material};
   scene.model.fixed = {"bottom"};

@@ -100,8 +100,7 @@ Scene block_scene(const Setup& setup, const RunSpec& spec, const std::string& di
   scene.mesh = "indentation-hex8";
   MaterialSpec material;
   material.law = spec.law;
-  material.young = 5e3;
-  material.poisson = 0.45;
+  material.constants = elastic_constants(5e3, 0.45);
   material.density = 1000;
   scene.model.materials = {material};
   scene.model.fixed = {"base"};

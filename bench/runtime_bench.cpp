@@ -222,8 +222,7 @@ Scene cantilever(const std::string& law, double young, double gravity, SolverTyp
   scene.mesh = "bench-runtime-beam";
   MaterialSpec material;
   material.law = law;
-  material.young = young;
-  material.poisson = kPoisson;
+  material.constants = elastic_constants(young, kPoisson);
   material.density = kDensity;
   scene.model.materials = {material};
   scene.model.fixed = {"clamp"};

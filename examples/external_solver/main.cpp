@@ -56,7 +56,8 @@ int main() {
     double* c = &consts[e * k.consts];
     for (int a = 0; a < k.nodes; ++a)
       for (int d = 0; d < 3; ++d) xe[3 * a + d] = X[3 * hexes[e][a] + d];
-    if (k.precompute(xe.data(), params.data(), c) != 0) return std::fprintf(stderr, "inverted hex %zu\n", e), 1;
+    if (k.precompute(xe.data(), params.data(), k.params, c) != 0)
+      return std::fprintf(stderr, "inverted hex %zu\n", e), 1;
     for (int q = 0; q < k.quadrature_points; ++q)
       for (int a = 0; a < k.nodes; ++a)
         mass[hexes[e][a]] += rho * c[k.derived_params + q * stride] * info.shape_values[q * k.nodes + a];

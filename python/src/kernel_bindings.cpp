@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace py = pybind11;
@@ -91,7 +92,8 @@ class BatchKernel {
     batch.per_element = k.consts;
     batch.constants.resize(static_cast<std::size_t>(batch.count) * k.consts);
     for (py::ssize_t e = 0; e < batch.count; ++e) {
-      const int status = k.precompute(rest.data() + e * k.dofs, values.data(), batch.constants.data() + e * k.consts);
+      const int status = k.precompute(rest.data() + e * k.dofs, values.data(), static_cast<int>(values.size()),
+                                      batch.constants.data() + e * k.consts);
       if (status != 0)
         throw py::value_error("element " + std::to_string(e) + ": non-positive rest Jacobian at quadrature point " +
                               std::to_string(status - 1));
@@ -114,6 +116,9 @@ class BatchKernel {
       const char* name = k.param_names[p];
       if (!given.contains(name)) throw py::value_error(std::string("missing parameter '") + name + "'");
       values[p] = given[name].cast<double>();
+      if (!within_limit(values[p], k.param_limits[p]))
+        throw py::value_error(std::string(name) + " must be " + describe_limit(k.param_limits[p]) + " for law " +
+                              k.law + ", got " + py::str(given[name]).cast<std::string>());
       ++used;
     }
     if (used != given.size()) {
@@ -137,6 +142,9 @@ py::dict describe(const tm_kernel& k) {
   d["quadrature_points"] = k.quadrature_points;
   std::vector<std::string> names(k.param_names, k.param_names + k.params);
   d["parameters"] = names;
+  py::list limits;
+  for (int p = 0; p < k.params; ++p) limits.append(describe_limit(k.param_limits[p]));
+  d["limits"] = limits;
   d["flops_energy"] = k.flops_energy, d["flops_gradient"] = k.flops_gradient, d["flops_hessian"] = k.flops_hessian;
   d["linear"] = k.linear != 0, d["invertible"] = k.invertible != 0;
   return d;

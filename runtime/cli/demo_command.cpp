@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace tensormass::cli {
@@ -26,9 +28,12 @@ int demo_command(const Arguments& args) {
   const double scale = 0.1;  // metres
   std::vector<double> rest(info.reference_nodes, info.reference_nodes + kernel.dofs);
   for (double& x : rest) x *= scale;
-  const double params[2] = {3.0e3, 0.45};  // soft tissue: Young 3 kPa, Poisson 0.45
+  // Soft tissue (Young 3 kPa, Poisson 0.45) for laws with those constants, else values within the law's limits.
+  const std::vector<std::string> names = parameter_names(kernel);
+  const bool elastic = names == std::vector<std::string>{"young", "poisson"};
+  const std::vector<double> params = elastic ? std::vector<double>{3.0e3, 0.45} : admissible_parameters(kernel);
   std::vector<double> consts(kernel.consts);
-  if (const int bad = kernel.precompute(rest.data(), params, consts.data())) {
+  if (const int bad = precompute_checked(kernel, rest.data(), params, consts.data(), "tensormass demo")) {
     std::fprintf(stderr, "tensormass demo: non-positive Jacobian at quadrature point %d\n", bad - 1);
     return 3;
   }
@@ -50,8 +55,14 @@ int demo_command(const Arguments& args) {
   }
   std::printf("tensormass demo: %s / %s / %s (%d nodes, %d quadrature points, %d constants)\n", kernel.law,
               kernel.element, kernel.split, kernel.nodes, kernel.quadrature_points, kernel.consts);
-  std::printf("  rest shape: the reference %s scaled to %.2f m; E = %.0f Pa, nu = %.2f; 10 %% stretch along x\n",
-              element.c_str(), scale, params[0], params[1]);
+  std::string constants;
+  for (std::size_t p = 0; p < names.size(); ++p) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", params[p]);
+    constants += (p ? ", " : "") + names[p] + " = " + value;
+  }
+  std::printf("  rest shape: the reference %s scaled to %.2f m; %s; 10 %% stretch along x\n", element.c_str(), scale,
+              constants.c_str());
   std::printf("  strain energy        %.6e J\n", energy);
   std::printf("  internal force       max |g_i| = %.6e N\n", force_norm);
   std::printf("  force vs finite diff max error %.2e N (relative %.1e)\n", worst, worst / force_norm);

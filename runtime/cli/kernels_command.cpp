@@ -3,6 +3,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace tensormass::cli {
@@ -18,6 +19,27 @@ void print_table() {
   std::printf("%zu kernels\n", Registry::instance().kernels().size());
 }
 
+/// Each law with its parameters and their limits: the keys a scene's material gives.
+void print_laws() {
+  const Registry& registry = Registry::instance();
+  std::printf("\nlaws and their parameters (a scene material's keys besides region, law, split, density):\n");
+  for (const std::string& law : registry.laws()) {
+    const tm_kernel& kernel = *registry.law_kernel(law);
+    std::string parameters;
+    for (int p = 0; p < kernel.params; ++p)
+      parameters +=
+          std::string(p ? ", " : "") + kernel.param_names[p] + " (" + describe_limit(kernel.param_limits[p]) + ")";
+    std::printf("  %-18s %s\n", law.c_str(), parameters.c_str());
+  }
+}
+
+/// ["young", "poisson"]: the kernel's parameter names as a JSON list.
+std::string json_parameters(const tm_kernel& k) {
+  std::string out = "[";
+  for (int p = 0; p < k.params; ++p) out += std::string(p ? ", " : "") + "\"" + k.param_names[p] + "\"";
+  return out + "]";
+}
+
 void print_json() {
   std::printf("[\n");
   const auto kernels = Registry::instance().kernels();
@@ -26,9 +48,9 @@ void print_json() {
     std::printf(
         "  {\"law\": \"%s\", \"element\": \"%s\", \"split\": \"%s\", \"nodes\": %d, \"dim\": %d, "
         "\"quadrature_points\": %d, \"consts\": %d, \"flops_energy\": %ld, \"flops_gradient\": %ld, "
-        "\"flops_hessian\": %ld}%s\n",
+        "\"flops_hessian\": %ld, \"parameters\": %s}%s\n",
         k->law, k->element, k->split, k->nodes, k->dim, k->quadrature_points, k->consts, k->flops_energy,
-        k->flops_gradient, k->flops_hessian, i + 1 < kernels.size() ? "," : "");
+        k->flops_gradient, k->flops_hessian, json_parameters(*k).c_str(), i + 1 < kernels.size() ? "," : "");
   }
   std::printf("]\n");
 }
@@ -45,7 +67,12 @@ int kernels_command(const Arguments& args) {
       return 2;
     }
   }
-  json ? print_json() : print_table();
+  if (json) {
+    print_json();
+  } else {
+    print_table();
+    print_laws();
+  }
   return 0;
 }
 

@@ -212,19 +212,54 @@ inline Matrix3 embed(const Matrix3& a, int dim) {
 struct Element {
   const tm_kernel* kernel = nullptr;
   Vector rest;    ///< nodes by dim
-  Vector params;  ///< young, poisson
+  Vector params;  ///< the law's parameters (material)
   Vector consts;
   double size = 0.0;  ///< the element's characteristic length (metres)
   int status = -1;    ///< precompute's return value
 };
 
-inline Vector material(std::mt19937_64& random) {
-  std::uniform_real_distribution<double> exponent(4.0, 6.0), poisson(0.3, 0.45);
-  const double young = std::pow(10.0, exponent(random));
-  return {young, poisson(random)};
+/// Whether the kernel's law takes Young's modulus and Poisson's ratio (and
+/// so linearises to Hooke's law with them).
+inline bool has_elastic_parameters(const tm_kernel& kernel) {
+  return kernel.params == 2 && std::string(kernel.param_names[0]) == "young" &&
+         std::string(kernel.param_names[1]) == "poisson";
 }
 
-/// lam and mu of the laws' [derived] tables.
+/// Random parameters of the kernel's law: soft tissue to rubber (young
+/// 10^4 to 10^6 Pa, poisson 0.3 to 0.45) for laws with those; else each
+/// parameter of order one (the laws' other parameters include dimensionless
+/// exponents and locking stretches, whose scale the checks' relative
+/// tolerances do not need): inside a two-sided limit, 0.5 to 5.5 times the
+/// bound's size (at least 1) past a one-sided one, 0.5 to 5.5 without one.
+inline Vector material(const tm_kernel& kernel, std::mt19937_64& random) {
+  std::uniform_real_distribution<double> exponent(4.0, 6.0), unit(0.0, 1.0);
+  if (has_elastic_parameters(kernel)) {
+    std::uniform_real_distribution<double> poisson(0.3, 0.45);
+    const double young = std::pow(10.0, exponent(random));
+    return {young, poisson(random)};
+  }
+  Vector params;
+  for (int p = 0; p < kernel.params; ++p) {
+    const tm_param_limit& limit = kernel.param_limits[p];
+    const bool low = std::isfinite(limit.lower), high = std::isfinite(limit.upper);
+    const double t = unit(random), step = 0.5 + 5.0 * t;
+    if (low && high) params.push_back(limit.lower + (0.05 + 0.9 * t) * (limit.upper - limit.lower));
+    else if (low) params.push_back(limit.lower + std::max(1.0, std::abs(limit.lower)) * step);
+    else if (high) params.push_back(limit.upper - std::max(1.0, std::abs(limit.upper)) * step);
+    else params.push_back(step);
+  }
+  return params;
+}
+
+/// A stress scale of the element (Pa): its largest rest stiffness entry
+/// over size^(dim - 2), as the modulus of a material of that stiffness.
+inline double stress_scale(const Vector& rest_hessian, double size, int dim) {
+  double largest = 0.0;
+  for (double k : rest_hessian) largest = std::max(largest, std::abs(k));
+  return largest * std::pow(size, 2 - dim);
+}
+
+/// lam and mu of young and poisson (laws with has_elastic_parameters).
 inline std::pair<double, double> lame(const Vector& params) {
   const double young = params[0], poisson = params[1];
   return {young * poisson / ((1 + poisson) * (1 - 2 * poisson)), young / (2 * (1 + poisson))};
@@ -291,9 +326,9 @@ inline Element make_element(const tm_kernel& kernel, std::uint64_t seed, bool af
   Element element;
   element.kernel = &kernel;
   element.rest = rest_shape(element_of(kernel), random, &element.size, affine);
-  element.params = material(random);
+  element.params = material(kernel, random);
   element.consts.assign(static_cast<std::size_t>(kernel.consts), 0.0);
-  element.status = kernel.precompute(element.rest.data(), element.params.data(), element.consts.data());
+  element.status = kernel.precompute(element.rest.data(), element.params.data(), kernel.params, element.consts.data());
   return element;
 }
 

@@ -277,7 +277,7 @@ TEST_P(MacNealHarderPatch, InnerNodesAndStressAreExact) {
     Vector rest;
     for (const int node : element)
       for (int c = 0; c < dim; ++c) rest.push_back(mesh.x(node, c));
-    ASSERT_EQ(kernel.precompute(rest.data(), params, consts[e].data()), 0) << "element " << e << " is inverted";
+    ASSERT_EQ(kernel.precompute(rest.data(), params, 2, consts[e].data()), 0) << "element " << e << " is inverted";
     kernel.hessian(zero.data(), consts[e].data(), Ke.data());
     for (int i = 0; i < element_dofs; ++i)
       for (int j = 0; j < element_dofs; ++j) {

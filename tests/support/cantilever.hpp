@@ -30,8 +30,7 @@ inline Scene cantilever(const std::string& law, SolverType type = SolverType::st
   scene.mesh = "test-beam.msh";
   MaterialSpec material;
   material.law = law;
-  material.young = 1e6;
-  material.poisson = 0.3;
+  material.constants = elastic_constants(1e6, 0.3);
   material.density = 1000;
   scene.model.materials = {material};
   scene.model.fixed = {"clamp"};

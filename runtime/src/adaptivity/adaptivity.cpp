@@ -24,13 +24,26 @@ constexpr int kParallelCells = 4096;  // below this a parallel region costs more
 constexpr double kScreenBusyShare = 0.25;
 constexpr int kScreenPause = 8;
 
-/// Every ladder law must have a kernel for every element type of the mesh.
-void check_ladder(const std::vector<std::string>& ladder, const Mesh& mesh) {
+/// Every ladder law must have a kernel for every element type of the mesh,
+/// and compute the same leading constants from each material that starts on
+/// the ladder: its cells switch laws keeping their constants, and the
+/// criteria evaluate the ladder's laws on them.
+void check_ladder(const std::vector<std::string>& ladder, const Model& model) {
   if (ladder.size() < 2) throw std::invalid_argument("an adaptivity ladder needs at least two laws");
   for (const std::string& law : ladder)
-    for (const ElementBlock& block : mesh.blocks)
+    for (const ElementBlock& block : model.mesh().blocks)
       if (!Registry::instance().find(law, block.element->name, "whole"))
         throw std::invalid_argument("adaptivity ladder: no kernel for law '" + law + "' on " + block.element->name);
+  std::vector<bool> on_ladder(model.material_count(), false);
+  for (int cell = 0; cell < model.cell_count(); ++cell)
+    if (std::find(ladder.begin(), ladder.end(), model.kernel(cell).law) != ladder.end())
+      on_ladder[model.material(cell)] = true;
+  for (int m = 0; m < model.material_count(); ++m)
+    for (std::size_t r = 1; on_ladder[m] && r < ladder.size(); ++r)
+      if (!model.material_laws(m).share_constants(ladder[0], ladder[r]))
+        throw InputError(model.material_laws(m).owner() + ": the ladder's laws " + ladder[0] + " and " + ladder[r] +
+                         " do not compute the same constants from this material (a ladder takes laws with the "
+                         "same parameters and derived constants, such as hooke, stvk and neohookean)");
 }
 
 /// The ladder index a criterion asks for: its rung, or the last law.
@@ -46,7 +59,7 @@ int target_rung(const CriterionSpec& criterion, const std::vector<std::string>& 
 
 Adaptivity::Adaptivity(const AdaptivitySettings& settings, Model& model, const Assembler& assembler)
     : settings_(settings), model_(&model), assembler_(&assembler) {
-  check_ladder(settings.ladder, model.mesh());
+  check_ladder(settings.ladder, model);
   for (const CriterionSpec& criterion : settings.criteria) {
     const int target = target_rung(criterion, settings.ladder);
     criteria_.push_back(make_criterion(criterion.name, {settings.ladder.front(), settings.ladder[target]}));
@@ -97,7 +110,7 @@ void Adaptivity::find_rungs() {
 }
 
 void Adaptivity::follow(Model& model, const Assembler& assembler, std::span<const int> origin) {
-  check_ladder(settings_.ladder, model.mesh());
+  check_ladder(settings_.ladder, model);
   if (origin.size() != static_cast<std::size_t>(model.cell_count()))
     throw std::invalid_argument("Adaptivity::follow: " + std::to_string(origin.size()) + " origins for " +
                                 std::to_string(model.cell_count()) + " cells");

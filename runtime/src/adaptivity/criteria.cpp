@@ -173,7 +173,7 @@ decltype(auto) with_shape(int dim, int nodes, Visit&& visit) {
   }
 }
 
-constexpr int kMaxDofs = 81;
+constexpr int kMaxDofs = kMaxCellDofs;
 
 /// to[j * D + a] = from[nodes[j] * stride + a] for the cell's N nodes.
 template <int D, int N>
@@ -201,7 +201,8 @@ void evaluate_cells(const Criterion& self, const BlockInput& in, std::span<doubl
     if (rest_needed) gather_nodes<D, N>(nodes, rest_positions, 3, rest);
     gather_nodes<D, N>(nodes, u_all, D, u);
     if (force_needed) gather_nodes<D, N>(nodes, forces, D, force);
-    const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, u, force, D};
+    const ElementView view{*block.element,          model.kernel(cell), model.consts(cell), rest, u, force, D,
+                           model.cell_modulus(cell)};
     values[cell] = Self::template value<D, N>(view);
   }
 }
@@ -368,7 +369,8 @@ bool evaluate_tet4_block(const BlockInput& in, std::span<double> values) {
     if (model.kernel(cell).quadrature_points != 1) {  // a law on another rule: alone
       double u[12];
       gather_nodes<3, 4>(model.cell_nodes(cell).data(), u_all, 3, u);
-      const ElementView view{*block.element, model.kernel(cell), model.consts(cell), nullptr, u, nullptr, 3};
+      const ElementView view{*block.element,          model.kernel(cell), model.consts(cell), nullptr, u, nullptr, 3,
+                             model.cell_modulus(cell)};
       values[cell] = Self::template value<3, 4>(view);
       continue;
     }
@@ -466,7 +468,8 @@ class GreenStrainCriterion final : public GradientCriterion<GreenStrainCriterion
   double change_slope(double h) const override { return 1.0 + h; }
 };
 
-/// R_P = max over points of |P_target(F_q) - P_base(F_q)|_F / E, both
+/// R_P = max over points of |P_target(F_q) - P_base(F_q)|_F / E (the
+/// material's small-strain Young's modulus, Model::cell_modulus), both
 /// stresses from the laws' generated `whole` kernels on the cell's constants
 /// (the adaptive model shares them between the ladder's laws). A cell whose
 /// kernel lays its constants out otherwise (another quadrature rule) reads 0:
@@ -478,8 +481,7 @@ class StressErrorCriterion final : public Criterion {
     for (const tm_element_info* element : registry.elements()) {
       const tm_kernel* base = registry.find(laws.base, element->name, "whole");
       const tm_kernel* target = registry.find(laws.target, element->name, "whole");
-      if (base && target && base->stress && target->stress && base->derived_params >= 2)
-        pairs_.push_back({element->name, base, target});
+      if (base && target && base->stress && target->stress) pairs_.push_back({element->name, base, target});
     }
     if (pairs_.empty())
       throw std::invalid_argument("criterion R_P: no element has stress kernels of both '" + laws.base + "' and '" +
@@ -491,7 +493,7 @@ class StressErrorCriterion final : public Criterion {
   double evaluate(const ElementView& view) const override {
     const LawPair* pair = pair_on(view.element.name);
     if (pair == nullptr || !fits(view.kernel, *pair)) return 0.0;
-    return value(*pair, view.kernel.quadrature_points, view.dim, view.u, view.consts);
+    return value(*pair, view.kernel.quadrature_points, view.dim, view.u, view.consts, view.modulus);
   }
 
   /// The block's laws looked up once, the nodes gathered inline (as
@@ -530,15 +532,15 @@ class StressErrorCriterion final : public Criterion {
     return same_layout(pair.base) && same_layout(pair.target);
   }
 
-  static double value(const LawPair& pair, int points, int dim, const double* u, const double* consts) {
+  static double value(const LawPair& pair, int points, int dim, const double* u, const double* consts, double modulus) {
     double base[kMaxStress], target[kMaxStress];
     pair.base->stress(u, consts, base);
     pair.target->stress(u, consts, target);
-    return from_stresses(points, dim, base, target, consts);
+    return from_stresses(points, dim, base, target, modulus);
   }
 
-  /// R_P from the two laws' stresses at the cell's points (points by dim by dim each).
-  static double from_stresses(int points, int dim, const double* base, const double* target, const double* consts) {
+  /// R_P from the two laws' stresses at the cell's points (points by dim by dim each) over the material's modulus.
+  static double from_stresses(int points, int dim, const double* base, const double* target, double modulus) {
     const int entries = dim * dim;
     double largest = 0.0;
     bool finite = true;
@@ -549,8 +551,7 @@ class StressErrorCriterion final : public Criterion {
       largest = std::max(largest, squared);
     }
     if (!finite) return kInfinity;
-    const double lam = consts[0], mu = consts[1];
-    return std::sqrt(largest) * (lam + mu) / (mu * (3.0 * lam + 2.0 * mu));  // over E
+    return std::sqrt(largest) / modulus;
   }
 
   /// visit(cell, kernel) for the block's cells this call evaluates (the
@@ -583,7 +584,7 @@ class StressErrorCriterion final : public Criterion {
     for_fitting_cells(pair, in, values, [&](int cell, const tm_kernel& kernel) {
       double u[D * N];
       gather_nodes<D, N>(in.model.cell_nodes(cell).data(), in.u.data(), D, u);
-      values[cell] = value(*pair, kernel.quadrature_points, D, u, in.model.consts(cell));
+      values[cell] = value(*pair, kernel.quadrature_points, D, u, in.model.consts(cell), in.model.cell_modulus(cell));
     });
   }
 
@@ -640,7 +641,7 @@ class StressErrorCriterion final : public Criterion {
       const int cell = b.pending[lane];
       const std::size_t offset = static_cast<std::size_t>(lane) * b.stresses;
       values[cell] = from_stresses(pair.base->quadrature_points, D, b.base.data() + offset, b.target.data() + offset,
-                                   model.consts(cell));
+                                   model.cell_modulus(cell));
     }
     b.used = 0;
   }
@@ -669,7 +670,8 @@ void Criterion::evaluate_block(const BlockInput& in, std::span<double> values) c
     }
     model.gather(cell, in.u, local_u);
     if (force_needed) model.gather(cell, in.forces, force);
-    const ElementView view{*block.element, model.kernel(cell), model.consts(cell), rest, local_u, force, d};
+    const ElementView view{*block.element,          model.kernel(cell), model.consts(cell), rest, local_u, force, d,
+                           model.cell_modulus(cell)};
     values[cell] = evaluate(view);
   }
 }

@@ -4,10 +4,12 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "tensormass/kernels/registry.hpp"
+
 namespace tensormass {
 
 namespace {
-constexpr int kMaxDofs = 81;
+constexpr int kMaxDofs = kMaxCellDofs;
 // Below this a parallel region costs more than the product saves: explicit
 // Hooke steps on 2 cores ran 0.83x one thread at 1,024 nodes and 1.03x at 490.
 constexpr int kParallelNodes = 1000;

@@ -1,10 +1,28 @@
 #include "tensormass/kernels/registry.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 #include <stdexcept>
 
 namespace tensormass {
+
+namespace {
+
+bool same_limit(const tm_param_limit& a, const tm_param_limit& b) {
+  return a.lower == b.lower && a.upper == b.upper && a.lower_inclusive == b.lower_inclusive &&
+         a.upper_inclusive == b.upper_inclusive;
+}
+
+bool same_parameters(const tm_kernel& a, const tm_kernel& b) {
+  if (a.params != b.params) return false;
+  for (int p = 0; p < a.params; ++p)
+    if (std::strcmp(a.param_names[p], b.param_names[p]) != 0 || !same_limit(a.param_limits[p], b.param_limits[p]))
+      return false;
+  return true;
+}
+
+}  // namespace
 
 const Registry& Registry::instance() {
   static const Registry registry;
@@ -16,9 +34,17 @@ Registry::Registry() {
     const tm_kernel* kernel = tm_kernel_at(i);
     kernels_.push_back(kernel);
     by_key_.emplace(key(kernel->law, kernel->element, kernel->split), kernel);
+    const tm_kernel* first = laws_by_name_.emplace(kernel->law, kernel).first->second;
+    if (!same_parameters(*first, *kernel))
+      throw std::logic_error(std::string("kernels of law ") + kernel->law + " differ in their parameters (" +
+                             first->element + " and " + kernel->element + "): regenerate the kernels");
   }
   for (int i = 0; i < tm_element_count(); ++i) {
     const tm_element_info* info = tm_element_at(i);
+    if (info->nodes > kMaxCellNodes)
+      throw std::logic_error(std::string("element ") + info->name + " has " + std::to_string(info->nodes) +
+                             " nodes, more than the runtime's per-cell buffers hold (kMaxCellNodes = " +
+                             std::to_string(kMaxCellNodes) + " in tensormass/kernels/registry.hpp)");
     elements_.push_back(info);
     elements_by_name_.emplace(info->name, info);
   }
@@ -46,6 +72,11 @@ const tm_kernel& Registry::get(std::string_view law, std::string_view element, s
   throw std::invalid_argument("no kernel for law '" + std::string(law) + "', element '" + std::string(element) +
                               "', split '" + std::string(split) + "'" +
                               (available.empty() ? std::string() : " (related: " + available + ")"));
+}
+
+const tm_kernel* Registry::law_kernel(std::string_view law) const {
+  const auto found = laws_by_name_.find(std::string(law));
+  return found == laws_by_name_.end() ? nullptr : found->second;
 }
 
 const tm_element_info* Registry::element(std::string_view name) const {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string_view>
 
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
@@ -113,11 +114,9 @@ double quadrature_volume(const tm_kernel* kernel, int dim, std::span<const doubl
   for (int n = 0; n < kernel->nodes; ++n)
     for (int c = 0; c < kernel->dim; ++c)
       rest[static_cast<std::size_t>(n * kernel->dim + c)] = xyz[static_cast<std::size_t>(3 * n + c)];
-  std::vector<double> params(static_cast<std::size_t>(kernel->params), 1.0);
-  for (int p = 0; p < kernel->params; ++p)
-    if (std::strcmp(kernel->param_names[p], "poisson") == 0) params[static_cast<std::size_t>(p)] = 0.25;
+  const std::vector<double> params = admissible_parameters(*kernel);  // any: only the rest Jacobians are read
   std::vector<double> consts(static_cast<std::size_t>(kernel->consts));
-  if (kernel->precompute(rest.data(), params.data(), consts.data()) != 0)
+  if (kernel->precompute(rest.data(), params.data(), kernel->params, consts.data()) != 0)
     return std::numeric_limits<double>::quiet_NaN();
   double volume = 0;
   const int stride = 1 + dim * kernel->nodes;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
@@ -57,7 +58,11 @@ void Model::bind_kernels(const ModelSpec& spec) {
   kernels_.resize(cells);
   cell_material_.resize(cells);
   consts_offsets_.resize(cells + 1);
-  for (const MaterialSpec& material : spec.materials) material_params_.push_back({material.young, material.poisson});
+  for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+    const int line = spec.materials[m].line;
+    materials_.emplace_back(spec.materials[m], spec.source + (line > 0 ? ":" + std::to_string(line) : "") +
+                                                   ": material " + std::to_string(m));
+  }
   std::size_t total = 0;
   for (const ElementBlock& block : mesh_->blocks) {
     for (int local = 0; local < block.count(); ++local) {
@@ -81,12 +86,13 @@ void Model::bind_kernels(const ModelSpec& spec) {
 
 void Model::precompute(int cell) {
   const tm_kernel& kernel = *kernels_[cell];
-  double rest[3 * 27];
+  double rest[kMaxCellDofs];
   const auto nodes = cell_nodes(cell);
   for (std::size_t j = 0; j < nodes.size(); ++j)
     for (int a = 0; a < dim_; ++a) rest[j * dim_ + a] = mesh_->rest_positions[3 * nodes[j] + a];
-  const auto& params = material_params_[cell_material_[cell]];
-  const int status = kernel.precompute(rest, params.data(), consts_.data() + consts_offsets_[cell]);
+  const MaterialLaws& material = materials_[cell_material_[cell]];
+  const int status = precompute_checked(kernel, rest, material.parameters(kernel),
+                                        consts_.data() + consts_offsets_[cell], material.owner());
   if (status != 0)
     throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) +
                      " has a non-positive Jacobian at rest (quadrature point " + std::to_string(status - 1) +
@@ -123,7 +129,8 @@ void Model::set_law(int cell, const std::string& law) {
     kernels_[cell] = next;
     return;
   }
-  const bool same_prefix = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
+  const bool same_layout = std::string(current.split) == "tensor" || std::string(current.split) == next->split;
+  const bool same_prefix = same_layout && materials_[cell_material_[cell]].share_constants(current.law, next->law);
   kernels_[cell] = next;
   if (!same_prefix) {
     precompute(cell);
@@ -160,7 +167,7 @@ void Model::gather(int cell, std::span<const double> u, double* local) const {
 
 double Model::strain_energy(std::span<const double> u) const {
   double total = 0.0;
-  double local[81];
+  double local[kMaxCellDofs];
   for (int cell = 0; cell < cell_count(); ++cell) {
     gather(cell, u, local);
     total += kernels_[cell]->energy(local, consts(cell));
@@ -171,16 +178,18 @@ double Model::strain_energy(std::span<const double> u) const {
 namespace {
 
 /// True when det(I + grad u) <= 0 (or NaN) at a quadrature point of the
-/// cell; D, N fixed so that the loops unroll (this runs every step).
+/// cell. D and N fixed so that the loops unroll (this runs every step) for
+/// the usual node counts; N = 0 reads the count from `nodes` (any element).
 template <int D, int N>
-bool inverted_at_a_point(const double* u, const double* consts, int derived, int points) {
+bool inverted_at_a_point(const double* u, const double* consts, int derived, int points, int nodes) {
+  const int n = N > 0 ? N : nodes;
   for (int q = 0; q < points; ++q) {
-    const double* GT = consts + derived + q * (1 + D * N) + 1;
+    const double* GT = consts + derived + q * (1 + D * n) + 1;
     double F[D][D];
     for (int a = 0; a < D; ++a)
       for (int c = 0; c < D; ++c) {
         double sum = a == c ? 1.0 : 0.0;
-        for (int j = 0; j < N; ++j) sum += u[j * D + a] * GT[c * N + j];
+        for (int j = 0; j < n; ++j) sum += u[j * D + a] * GT[c * n + j];
         F[a][c] = sum;
       }
     double det;
@@ -195,7 +204,7 @@ bool inverted_at_a_point(const double* u, const double* consts, int derived, int
   return false;
 }
 
-using InversionCheck = bool (*)(const double*, const double*, int, int);
+using InversionCheck = bool (*)(const double*, const double*, int, int, int);
 
 /// Below this many cells in a block the check stays on one thread.
 constexpr int kParallelInversionCells = 4096;
@@ -207,18 +216,18 @@ InversionCheck inversion_check(int dim, int nodes) {
       case 4: return inverted_at_a_point<2, 4>;
       case 6: return inverted_at_a_point<2, 6>;
       case 8: return inverted_at_a_point<2, 8>;
-    }
-  } else {
-    switch (nodes) {
-      case 4: return inverted_at_a_point<3, 4>;
-      case 5: return inverted_at_a_point<3, 5>;
-      case 6: return inverted_at_a_point<3, 6>;
-      case 8: return inverted_at_a_point<3, 8>;
-      case 10: return inverted_at_a_point<3, 10>;
-      case 20: return inverted_at_a_point<3, 20>;
+      default: return inverted_at_a_point<2, 0>;
     }
   }
-  throw std::logic_error("no inversion check for " + std::to_string(nodes) + "-node elements");
+  switch (nodes) {
+    case 4: return inverted_at_a_point<3, 4>;
+    case 5: return inverted_at_a_point<3, 5>;
+    case 6: return inverted_at_a_point<3, 6>;
+    case 8: return inverted_at_a_point<3, 8>;
+    case 10: return inverted_at_a_point<3, 10>;
+    case 20: return inverted_at_a_point<3, 20>;
+    default: return inverted_at_a_point<3, 0>;
+  }
 }
 
 }  // namespace
@@ -232,9 +241,10 @@ int Model::first_inverted_cell(std::span<const double> u) const {
     for (int cell = begin; cell < end; ++cell) {
       const tm_kernel& kernel = *kernels_[cell];
       if (kernel.invertible || cell >= first) continue;  // invertible: defined through inversion, not a failure
-      double local[81];
+      double local[kMaxCellDofs];
       gather(cell, u, local);
-      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) first = cell;
+      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points, block.element->nodes))
+        first = cell;
     }
     if (first < cell_count()) return first;
   }

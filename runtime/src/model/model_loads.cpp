@@ -16,7 +16,7 @@ double Model::cell_energy_scale(int cell) const {
   const int n = static_cast<int>(cell_nodes(cell).size());
   double volume = 0.0;
   for (int q = 0; q < kernel.quadrature_points; ++q) volume += consts(cell)[kernel.derived_params + q * (1 + dim_ * n)];
-  return material_params_[cell_material_[cell]][0] * volume;
+  return cell_modulus(cell) * volume;
 }
 
 void Model::complete_partial_sums(const std::function<void(std::span<double>)>& complete_dofs, double energy_scale) {
@@ -51,7 +51,7 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
         throw std::logic_error(std::string("kernel and element rules differ for ") + element.name);
       const double density = spec.materials[cell_material_[cell]].density;
       // integral of N_i and of N_i^2 over the element, with its own rule.
-      std::array<double, 27> integral_n{}, integral_n2{};
+      std::array<double, kMaxCellNodes> integral_n{}, integral_n2{};
       double volume = 0.0;
       for (int q = 0; q < kernel.quadrature_points; ++q) {
         const double w_det = consts(cell)[kernel.derived_params + q * (1 + dim_ * n)];
@@ -62,7 +62,7 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
           integral_n2[j] += w_det * N * N;
         }
       }
-      energy_scale_ += material_params_[cell_material_[cell]][0] * volume;
+      energy_scale_ += cell_modulus(cell) * volume;
       double diagonal_sum = 0.0;
       for (int j = 0; j < n; ++j) diagonal_sum += integral_n2[j];
       const auto nodes = cell_nodes(cell);

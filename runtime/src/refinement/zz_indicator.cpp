@@ -6,23 +6,23 @@
 #include <string>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 namespace {
 
-// Bounds of the stack buffers of one cell (the registry's largest: hex20
-// with 20 nodes and 27 points); checked per cell against its kernel.
-constexpr int kMaxNodes = 27;
+// Bounds of the stack buffers of one cell; checked per cell against its kernel.
+constexpr int kMaxNodes = kMaxCellNodes;
 constexpr int kMaxPoints = 27;
 
 /// Throws std::logic_error unless the cell's kernel fits its element and the buffers.
 void check_kernel(const tm_kernel& kernel, const tm_element_info& element, const Mesh& mesh, int cell, int dim) {
   if (kernel.quadrature_points == element.quadrature_points && kernel.nodes == element.nodes && kernel.dim == dim &&
-      kernel.derived_params >= 2 && kernel.nodes <= kMaxNodes && kernel.quadrature_points <= kMaxPoints)
+      kernel.nodes <= kMaxNodes && kernel.quadrature_points <= kMaxPoints)
     return;
   throw std::logic_error("R_ZZ: the kernel " + std::string(kernel.law) + "/" + kernel.element + "/" + kernel.split +
                          " of " + mesh.describe_cell(cell) + " does not fit element " + element.name +
-                         " (quadrature points, nodes, dimension or derived parameters lam, mu)");
+                         " (quadrature points, nodes or dimension)");
 }
 
 /// The compact symmetric part of P (D by D, row-major): 2D xx, yy, xy; 3D xx, yy, zz, yz, xz, xy.
@@ -120,7 +120,7 @@ void compute_dim(const Model& model, std::span<const double> u, std::span<double
       const tm_kernel& kernel = model.kernel(cell);
       cell_stress<D>(model, cell, u, local, P, P_old);
       const double* consts = model.consts(cell);
-      const double lam = consts[0], mu = consts[1];
+      const auto [lam, mu] = model.material_laws(model.material(cell)).lame();
       const int stride = 1 + D * kernel.nodes;
       const auto nodes = model.cell_nodes(cell);
       double sum = 0;

@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
+#include <set>
 
 #include "scene/yaml_reader.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/simulation/track.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -24,12 +26,24 @@ using scene_yaml::Value;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
+/// A material's keys besides its laws' constants.
+const std::vector<std::string> kMaterialKeys = {"region", "law", "split", "density"};
+
+/// kMaterialKeys and every parameter name of the registry's laws (which
+/// constants a material takes is checked against its laws in read_material).
+std::vector<std::string> material_keys() {
+  std::set<std::string> keys(kMaterialKeys.begin(), kMaterialKeys.end());
+  const Registry& registry = Registry::instance();
+  for (const std::string& law : registry.laws())
+    for (const std::string& name : parameter_names(*registry.law_kernel(law))) keys.insert(name);
+  return {keys.begin(), keys.end()};
+}
 
 /// Every map of the schema and its keys, by path pattern.
 const KeyTable& scene_keys() {
   static const KeyTable table = {
       {"", {"mesh", "materials", "fixed", "prescribed", "loads", "solver", "adaptivity", "output"}},
-      {"materials[]", {"region", "law", "young", "poisson", "density", "split"}},
+      {"materials[]", material_keys()},
       {"prescribed[]", {"region", "displacement", "rotation", "profile"}},
       {"prescribed[].rotation", {"axis", "centre", "angle"}},
       {"prescribed[].profile", kProfileKeys},
@@ -135,7 +149,40 @@ std::string resolve_path(const fs::path& directory, const std::string& path) {
 
 // --- Sections ------------------------------------------------------------------
 
-MaterialSpec read_material(const Value& item) {
+/// The laws whose constants a material needs: its own, and the ladder's
+/// when the adaptive model may move it (its law is on the ladder).
+std::vector<std::string> material_laws(const std::string& law, const AdaptivitySettings& adaptivity) {
+  const std::vector<std::string>& ladder = adaptivity.ladder;
+  if (!adaptivity.enabled || std::find(ladder.begin(), ladder.end(), law) == ladder.end()) return {law};
+  return ladder;
+}
+
+/// Every constant the material's laws need is given, within each law's
+/// limits, and every constant given is a parameter of one of them.
+void check_constants(const Value& item, const MaterialSpec& m, const std::vector<std::string>& laws) {
+  std::vector<std::string> used;  // the laws' parameters, in kernel order
+  for (const std::string& law : laws) {
+    const tm_kernel& kernel = *Registry::instance().law_kernel(law);
+    for (int p = 0; p < kernel.params; ++p) {
+      const std::string name = kernel.param_names[p];
+      if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
+      const auto given = m.constants.find(name);
+      if (given == m.constants.end())
+        item.fail("law " + law + " needs the constant '" + name +
+                  "' (its parameters: " + scene_yaml::join(parameter_names(kernel)) + ")");
+      if (!within_limit(given->second, kernel.param_limits[p]))
+        item.child(name).fail("must be " + describe_limit(kernel.param_limits[p]) + " for law " + law + ", got " +
+                              item.child(name).scalar());
+    }
+  }
+  for (const auto& [name, value] : m.constants)
+    if (std::find(used.begin(), used.end(), name) == used.end())
+      item.child(name).fail("is not a parameter of " + std::string(laws.size() > 1 ? "the laws " : "law ") +
+                            scene_yaml::join(laws) + " (parameters: " + scene_yaml::join(used) +
+                            "; other keys: " + scene_yaml::join(kMaterialKeys) + ")");
+}
+
+MaterialSpec read_material(const Value& item, const AdaptivitySettings& adaptivity) {
   item.expect_map();
   const Registry& registry = Registry::instance();
   MaterialSpec m;
@@ -144,19 +191,19 @@ MaterialSpec read_material(const Value& item) {
   m.law = one_of(item.required("law"), registry.laws(), "law");
   const Value split = item.child("split");
   if (split.present() && !split.scalar().empty()) m.split = one_of(split, registry.splits(), "split");
-  m.young = positive(item.required("young"));
-  const Value poisson = item.required("poisson");
-  m.poisson = poisson.number();
-  if (!(m.poisson > -1 && m.poisson < 0.5)) poisson.fail("must be > -1 and < 0.5, got " + poisson.scalar());
+  for (const auto& [key, value] : item.entries())
+    if (std::find(kMaterialKeys.begin(), kMaterialKeys.end(), key.scalar()) == kMaterialKeys.end())
+      m.constants[key.scalar()] = value.number();
+  check_constants(item, m, material_laws(m.law, adaptivity));
   m.density = positive(item.required("density"));
   return m;
 }
 
-std::vector<MaterialSpec> read_materials(const Value& list) {
+std::vector<MaterialSpec> read_materials(const Value& list, const AdaptivitySettings& adaptivity) {
   const std::vector<Value> items = list.items();
   if (items.empty()) list.fail("needs at least one material");
   std::vector<MaterialSpec> out;
-  for (const Value& item : items) out.push_back(read_material(item));
+  for (const Value& item : items) out.push_back(read_material(item, adaptivity));
   return out;
 }
 
@@ -496,12 +543,13 @@ Scene read_scene(const Value& root, const std::string& path) {
   scene.path = path;
   scene.mesh = resolve_path(directory, root.required("mesh").text());
   scene.model.source = path;
-  scene.model.materials = read_materials(root.required("materials"));
+  // The ladder first: a material on it takes the constants of every ladder law.
+  scene.adaptivity = read_adaptivity(root.child("adaptivity"));
+  scene.model.materials = read_materials(root.required("materials"), scene.adaptivity);
   read_fixed(root.child("fixed"), scene.model);
   scene.model.prescribed = read_prescribed(root.child("prescribed"));
   scene.model.loads = read_loads(root.child("loads"));
   scene.solver = read_solver(root.required("solver"));
-  scene.adaptivity = read_adaptivity(root.child("adaptivity"));
   if (root.child("adaptivity").is_map())
     scene.refinement = read_refinement(root.child("adaptivity").child("refine"), scene);
   scene.output = read_output(root.child("output"), directory);

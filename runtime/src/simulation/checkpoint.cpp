@@ -61,7 +61,8 @@ void add_profile(Fingerprint& f, const TimeProfile& p) {
 void add_model(Fingerprint& f, const ModelSpec& model) {
   for (const MaterialSpec& m : model.materials) {
     f.add(m.region), f.add(m.law), f.add(m.split);
-    f.add(m.young), f.add(m.poisson), f.add(m.density);
+    for (const auto& [name, value] : m.constants) f.add(name), f.add(value);
+    f.add(m.density);
   }
   f.add(model.fixed);
   for (const PrescribedSpec& p : model.prescribed) {

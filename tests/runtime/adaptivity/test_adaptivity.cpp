@@ -40,7 +40,7 @@ class AdaptiveBeam : public ::testing::Test {
     Scene s = test::cantilever(law);
     s.path = (directory_ / "scene.yaml").string();
     s.mesh = (directory_ / "beam.msh").string();
-    s.model.materials[0].young = 1e7;
+    s.model.materials[0].constants["young"] = 1e7;
     s.solver.load_steps = 4;
     s.output.directory = (directory_ / ("out-" + law + criterion + std::to_string(threshold))).string();
     if (!criterion.empty()) {
@@ -141,7 +141,7 @@ TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
   const Mesh mesh = make_beam(spec);
   Scene s;
   s.path = "blend.yaml";
-  MaterialSpec material{"all", "hooke", "", 1e6, 0.3, 1000, 0};
+  MaterialSpec material{"all", "hooke", "", elastic_constants(1e6, 0.3), 1000, 0};
   s.model.materials = {material};
   s.model.fixed = {"clamp"};
   Model model(mesh, s.model);
@@ -317,7 +317,7 @@ TEST(Adaptivity, DowngradeReturnsToTheInitialKernelExactly) {
   const Mesh mesh = make_beam(spec);
   Scene s;
   s.path = "downgrade.yaml";
-  s.model.materials = {{"all", "hooke", "", 1e6, 0.3, 1000, 0}};
+  s.model.materials = {{"all", "hooke", "", elastic_constants(1e6, 0.3), 1000, 0}};
   s.model.fixed = {"clamp"};
   Model model(mesh, s.model);
   const Assembler assembler(model);

@@ -22,8 +22,7 @@ ModelSpec material_spec(const std::string& law) {
   ModelSpec spec;
   MaterialSpec material;
   material.law = law;
-  material.young = 1e6;
-  material.poisson = 0.3;
+  material.constants = elastic_constants(1e6, 0.3);
   material.density = 1000;
   spec.materials = {material};
   return spec;

@@ -146,7 +146,7 @@ inline std::vector<double> cell_volumes(const tensormass::Mesh& mesh) {
       const std::span<const int> nodes = block.cell_nodes(local);
       for (int n = 0; n < kernel.nodes; ++n)
         for (int c = 0; c < kernel.dim; ++c) rest[n * kernel.dim + c] = mesh.rest_positions[3 * nodes[n] + c];
-      EXPECT_EQ(kernel.precompute(rest.data(), params, consts.data()), 0)
+      EXPECT_EQ(kernel.precompute(rest.data(), params, 2, consts.data()), 0)
           << mesh.describe_cell(block.first_cell + local) << " has a non-positive Jacobian";
       double volume = 0;
       for (int q = 0; q < kernel.quadrature_points; ++q)

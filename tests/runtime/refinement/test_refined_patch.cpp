@@ -95,7 +95,7 @@ void expect_patch_test_passes(const Mesh& mesh, int dim, bool (*boundary)(const 
         cell.nodes.push_back(node);
         rest.insert(rest.end(), position(mesh, node), position(mesh, node) + dim);
       }
-      ASSERT_EQ(kernel.precompute(rest.data(), params, cell.consts.data()), 0)
+      ASSERT_EQ(kernel.precompute(rest.data(), params, 2, cell.consts.data()), 0)
           << "inverted " << block.element->name << " " << local;
       const std::vector<double> zero(static_cast<std::size_t>(kernel.dofs), 0.0);
       std::vector<double> Ke(static_cast<std::size_t>(kernel.dofs * kernel.dofs));

@@ -59,8 +59,7 @@ ModelSpec material_spec(const std::string& law = "hooke") {
   ModelSpec spec;
   MaterialSpec material;
   material.law = law;
-  material.young = kYoung;
-  material.poisson = kPoisson;
+  material.constants = elastic_constants(kYoung, kPoisson);
   material.density = 1000;
   spec.materials = {material};
   return spec;

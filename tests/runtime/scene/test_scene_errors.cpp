@@ -150,7 +150,8 @@ std::vector<ErrorCase> missing_cases() {
       edit("MissingSolver", "solver:\n  type: static\n  load_steps: 10\n", "",
            {"scene.yaml:1:", "missing required key 'solver'"}),
       edit("MissingLaw", "law: stvk, ", "", {"scene.yaml:3:", "missing required key 'materials[0].law'"}),
-      edit("MissingYoung", "young: 1.0e6, ", "", {"scene.yaml:3:", "missing required key 'materials[0].young'"}),
+      edit("MissingYoung", "young: 1.0e6, ", "",
+           {"scene.yaml:3:", "materials[0]", "law stvk needs the constant 'young'", "its parameters: young, poisson"}),
       edit("MissingValue", "mesh: beam.msh", "mesh:", {"scene.yaml:1:", "mesh", "missing value"}),
       edit("EmptyMaterials", "materials:\n  - {region: all, law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}",
            "materials: []", {"scene.yaml:2:", "materials", "at least one"}),
@@ -183,10 +184,35 @@ std::vector<ErrorCase> file_cases() {
   };
 }
 
+/// A material's constants are its law's own (mooney_rivlin: c10, c01, kappa).
+std::vector<ErrorCase> constant_cases() {
+  const std::string mooney = "law: mooney_rivlin, c10: 2.0e5, c01: 5.0e4, kappa: 5.0e6";
+  const std::string elastic = "law: stvk, young: 1.0e6, poisson: 0.3";
+  return {
+      edit("ConstantOfAnotherLaw", "poisson: 0.3", "poisson: 0.3, c10: 1",
+           {"scene.yaml:3:", "materials[0].c10", "not a parameter of law stvk", "young, poisson"}),
+      edit("ElasticConstantsForMooneyRivlin", elastic, "law: mooney_rivlin, young: 1.0e6, poisson: 0.3",
+           {"scene.yaml:3:", "materials[0]", "law mooney_rivlin needs the constant 'c10'", "c10, c01, kappa"}),
+      edit("MissingKappa", elastic, "law: mooney_rivlin, c10: 2.0e5, c01: 5.0e4",
+           {"scene.yaml:3:", "law mooney_rivlin needs the constant 'kappa'"}),
+      edit("KappaZero", elastic, "law: mooney_rivlin, c10: 2.0e5, c01: 5.0e4, kappa: 0",
+           {"scene.yaml:3:", "materials[0].kappa", "must be > 0 for law mooney_rivlin", "got 0"}),
+      edit("C01Negative", elastic, "law: mooney_rivlin, c10: 2.0e5, c01: -1, kappa: 5.0e6",
+           {"scene.yaml:3:", "materials[0].c01", "must be >= 0"}),
+      edit("YoungBesideMooneyRivlin", elastic, mooney + ", young: 1",
+           {"scene.yaml:3:", "materials[0].young", "not a parameter of law mooney_rivlin"}),
+      // A material on the ladder takes every ladder law's constants.
+      {"LadderLawWithoutItsConstants",
+       replaced(kBaseScene, elastic, "law: hooke, young: 1.0e6, poisson: 0.3") +
+           "adaptivity:\n  criteria: [{name: R_EL, threshold: 0.01}]\n  ladder: [hooke, mooney_rivlin]\n",
+       {"scene.yaml:3:", "law mooney_rivlin needs the constant 'c10'"}},
+  };
+}
+
 std::vector<ErrorCase> all_cases() {
   std::vector<ErrorCase> all;
-  for (auto cases :
-       {unknown_key_cases(), type_cases(), range_cases(), name_cases(), vector_cases(), missing_cases(), file_cases()})
+  for (auto cases : {unknown_key_cases(), type_cases(), range_cases(), name_cases(), vector_cases(), missing_cases(),
+                     file_cases(), constant_cases()})
     all.insert(all.end(), cases.begin(), cases.end());
   return all;
 }

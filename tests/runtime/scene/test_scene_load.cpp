@@ -59,6 +59,25 @@ adaptivity:
 output: {directory: results, every: 10}
 )";
 
+/// A law's own constants by name; materials off the ladder need only their law's.
+TEST(SceneLoad, MaterialsTakeTheirLawsOwnConstants) {
+  TempDir dir;
+  const std::string path =
+      dir.write("scene.yaml",
+                "mesh: beam.msh\n"
+                "materials:\n"
+                "  - {region: tumor, law: mooney_rivlin, c10: 2.0e3, c01: 5.0e2, kappa: 1.0e5, "
+                "density: 1050}\n"
+                "  - {region: all, law: hooke, young: 5.0e3, poisson: 0.45, density: 1000}\n"
+                "solver: {type: static}\n"
+                "adaptivity: {criteria: [{name: R_EL, threshold: 0.01}], ladder: [hooke, stvk]}\n");
+  const Scene s = tensormass::load_scene(path);
+  ASSERT_EQ(s.model.materials.size(), 2u);
+  EXPECT_EQ(s.model.materials[0].constants,
+            (std::map<std::string, double>{{"c10", 2.0e3}, {"c01", 5.0e2}, {"kappa", 1.0e5}}));
+  EXPECT_EQ(s.model.materials[1].constants, tensormass::elastic_constants(5.0e3, 0.45));
+}
+
 TEST(SceneLoad, FullSceneMaterialsAndConstraints) {
   TempDir dir;
   const std::string path = dir.write("scene.yaml", kFullScene);
@@ -70,14 +89,14 @@ TEST(SceneLoad, FullSceneMaterialsAndConstraints) {
   EXPECT_EQ(s.model.materials[0].region, "tumor");
   EXPECT_EQ(s.model.materials[0].law, "stvk");
   EXPECT_EQ(s.model.materials[0].split, "whole");
-  EXPECT_DOUBLE_EQ(s.model.materials[0].young, 2.0e6);
-  EXPECT_DOUBLE_EQ(s.model.materials[0].poisson, 0.45);
+  EXPECT_DOUBLE_EQ(s.model.materials[0].constants.at("young"), 2.0e6);
+  EXPECT_DOUBLE_EQ(s.model.materials[0].constants.at("poisson"), 0.45);
   EXPECT_DOUBLE_EQ(s.model.materials[0].density, 1050);
   EXPECT_EQ(s.model.materials[0].line, 4);
   EXPECT_EQ(s.model.materials[1].region, "all");
   EXPECT_EQ(s.model.materials[1].law, "hooke");
   EXPECT_EQ(s.model.materials[1].split, "");
-  EXPECT_DOUBLE_EQ(s.model.materials[1].young, 1.0e6);
+  EXPECT_DOUBLE_EQ(s.model.materials[1].constants.at("young"), 1.0e6);
   EXPECT_EQ(s.model.materials[1].line, 5);
 
   EXPECT_EQ(s.model.fixed, (std::vector<std::string>{"clamp", "base"}));

@@ -35,7 +35,7 @@ TEST(SceneOverride, ListValueCreatesMissingSection) {
 TEST(SceneOverride, ListIndex) {
   TempDir dir;
   const Scene s = load_with(dir, {"materials.0.young=2e6", "fixed.0=base"});
-  EXPECT_DOUBLE_EQ(s.model.materials[0].young, 2e6);
+  EXPECT_DOUBLE_EQ(s.model.materials[0].constants.at("young"), 2e6);
   EXPECT_EQ(s.model.fixed, (std::vector<std::string>{"base"}));
   EXPECT_EQ(s.model.fixed_lines, (std::vector<int>{0}));  // from the command line: no line
 }

@@ -140,7 +140,7 @@ TEST(Checkpoint, SceneFingerprintFollowsWhatChangesTheRun) {
     change(other);
     return scene_fingerprint(other) != reference;
   };
-  EXPECT_TRUE(differs([](Scene& s) { s.model.materials[0].young *= 1.0000001; }));
+  EXPECT_TRUE(differs([](Scene& s) { s.model.materials[0].constants["young"] *= 1.0000001; }));
   EXPECT_TRUE(differs([](Scene& s) { s.model.loads.gravity[1] = -9.8; }));
   EXPECT_TRUE(differs([](Scene& s) { s.solver.dt = 0.02; }));
   EXPECT_TRUE(differs([](Scene& s) { s.solver.predictor = StepPredictor::none; }));

@@ -38,7 +38,7 @@ class SteppedBeam : public ::testing::Test {
     Scene s = test::cantilever(law, type);
     s.path = (dir_->path() / "scene.yaml").string();
     s.mesh = (dir_->path() / "beam.msh").string();
-    s.model.materials[0].young = 1e7;
+    s.model.materials[0].constants["young"] = 1e7;
     s.solver.load_steps = 4;
     if (type != SolverType::static_newton) {
       s.solver.steps = 12;

@@ -76,7 +76,7 @@ TEST(ExplicitSolver, StableStepMatchesTheAssembledTangentsLargestEigenvalue) {
 TEST(ExplicitSolver, ConservesEnergyWithoutDamping) {
   const Mesh mesh = test::beam(2, "quad4", {10, 2, 1});
   Scene scene = test::cantilever("stvk", SolverType::explicit_euler);
-  scene.model.materials[0].young = 1e9;  // 1 cm deflection: a clean oscillation
+  scene.model.materials[0].constants["young"] = 1e9;  // 1 cm deflection: a clean oscillation
   const Model model(mesh, scene.model);
   const double stable = estimate_stable_time_step(model, Assembler(model));
   scene.solver.dt = 0.2 * stable;

@@ -128,8 +128,7 @@ Indentation indentation(const std::string& law, double depth) {
     return y > 0.05 - eps && std::abs(x - 0.05) <= 0.01 + eps && std::abs(z - 0.05) <= 0.01 + eps;
   });
   Scene& s = c.scene;
-  s.model.materials[0].young = 5e3;
-  s.model.materials[0].poisson = 0.45;
+  s.model.materials[0].constants = elastic_constants(5e3, 0.45);
   s.model.fixed = {"base"};
   s.model.loads.gravity = {0, 0, 0};
   PrescribedSpec probe;

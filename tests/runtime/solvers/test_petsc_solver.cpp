@@ -193,7 +193,7 @@ TEST(PetscSolver, ImplicitAndStaticRunsAgreeWithCholmod) {
     SCOPED_TRACE(solver_type_name(type));
     const Mesh mesh = test::beam(3, "tet6", {8, 2, 2});
     Scene scene = test::cantilever("stvk", type);
-    scene.model.materials[0].young = 1e8;  // a positive definite static tangent: CG needs one
+    scene.model.materials[0].constants["young"] = 1e8;  // a positive definite static tangent: CG needs one
     scene.solver.load_steps = 3;
     scene.solver.steps = 10;
     scene.solver.dt = 0.01;

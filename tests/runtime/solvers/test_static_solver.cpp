@@ -21,7 +21,7 @@ TEST(StaticSolver, HookeCantileverMatchesBeamTheoryInOneSolve) {
   // strain E' = E / (1 - nu^2); quad8 elements bend without locking.
   const Mesh mesh = test::beam(2, "quad4", {40, 4, 1}, 2);
   Scene scene = test::cantilever("hooke");
-  scene.model.materials[0].young = 1e9;
+  scene.model.materials[0].constants["young"] = 1e9;
   SolveStatistics statistics;
   const State state = integrate(mesh, scene, statistics);
   const double length = 10, q = 1000 * 9.81 * 1.0, inertia = 1.0 / 12, young = 1e9 / (1 - 0.09);
@@ -34,7 +34,7 @@ TEST(StaticSolver, HookeCantileverMatchesBeamTheoryInOneSolve) {
 TEST(StaticSolver, StvkConvergesAtLargeDeflectionAndDiffersFromHooke) {
   const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
   Scene scene = test::cantilever("stvk");
-  scene.model.materials[0].young = 3e6;
+  scene.model.materials[0].constants["young"] = 3e6;
   scene.solver.load_steps = 4;
   SolveStatistics stvk_statistics, hooke_statistics;
   const State stvk = integrate(mesh, scene, stvk_statistics);
@@ -48,7 +48,7 @@ TEST(StaticSolver, StvkConvergesAtLargeDeflectionAndDiffersFromHooke) {
 TEST(StaticSolver, NewtonFailureIsANumericalError) {
   const Mesh mesh = test::beam(2, "quad4", {20, 4, 1});
   Scene scene = test::cantilever("stvk");
-  scene.model.materials[0].young = 1e5;
+  scene.model.materials[0].constants["young"] = 1e5;
   scene.solver.max_iterations = 2;
   SolveStatistics statistics;
   EXPECT_THROW(integrate(mesh, scene, statistics), NumericalError);

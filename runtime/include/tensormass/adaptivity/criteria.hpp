@@ -67,6 +67,7 @@ struct ElementView {
   const double* u;                 ///< nodes by dim displacements
   const double* force;  ///< nodes by dim assembled internal forces at the element's nodes (only when needs_force())
   int dim;
+  double modulus;  ///< small-strain Young's modulus of the cell's material (Model::cell_modulus): a stress scale
 };
 
 /// One block of cells to evaluate at once.

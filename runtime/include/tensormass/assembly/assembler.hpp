@@ -113,7 +113,7 @@ class Assembler {
   /// Per-thread scratch space for one cell.
   struct CellBuffers {
     explicit CellBuffers(bool with_stiffness) : k(with_stiffness ? kMaxDofs * kMaxDofs : 0) {}
-    static constexpr int kMaxDofs = 81;  ///< hex20 in 3D is 60
+    static constexpr int kMaxDofs = kMaxCellDofs;
     double u[kMaxDofs], g[kMaxDofs], blend_g[kMaxDofs];
     std::vector<double> k, blend_k;
   };

@@ -4,7 +4,8 @@
 ///
 /// Shapes (n = nodes, d = dim, dofs = n*d, Q = quadrature points):
 ///   rest_positions  n by d, node-major (x0 y0 z0 x1 ...)
-///   params          the law's parameters in `param_names` order (young, poisson)
+///   params          `params` doubles: the law's parameters in `param_names` order
+///                   (young, poisson for Hooke; c10, c01, kappa for Mooney-Rivlin)
 ///   consts          `consts` doubles per element, filled by `precompute`
 ///   u               dofs displacements, node-major
 ///   gradient        dofs: dW/du, the element's internal force
@@ -17,9 +18,17 @@
 extern "C" {
 #endif
 
-/// Returns 0, or q+1 when the rest Jacobian at quadrature point q has a
-/// non-positive (or non-finite) determinant; consts are then unusable.
-typedef int (*tm_precompute_fn)(const double* rest_positions, const double* params, double* consts);
+/// Codes `precompute` returns besides 0 (success) and q+1 (the rest Jacobian
+/// at quadrature point q has a non-positive or non-finite determinant):
+/// param_count differs from the kernel's `params`; or parameter p (0-based)
+/// is not finite or outside its `param_limits` (TM_PRECOMPUTE_BAD_PARAM - p).
+/// In every case but 0 the consts are unusable.
+#define TM_PRECOMPUTE_PARAM_COUNT (-1)
+#define TM_PRECOMPUTE_BAD_PARAM (-2)
+
+/// Fills the element's consts from its rest node positions and the law's
+/// `param_count` parameters; returns 0 or one of the codes above.
+typedef int (*tm_precompute_fn)(const double* rest_positions, const double* params, int param_count, double* consts);
 typedef double (*tm_energy_fn)(const double* u, const double* consts);
 typedef void (*tm_gradient_fn)(const double* u, const double* consts, double* gradient);
 typedef void (*tm_hessian_fn)(const double* u, const double* consts, double* hessian);
@@ -39,10 +48,21 @@ typedef void (*tm_gradient_batch_fn)(const double* u, const double* consts, doub
 typedef void (*tm_gradient_hessian_batch_fn)(const double* u, const double* consts, double* gradient, double* hessian);
 typedef void (*tm_stress_batch_fn)(const double* u, const double* consts, double* stress);
 
-/// Layout shared by every split: consts[0 .. derived_params) are the law's
-/// derived parameters (lam, mu, ...), then per quadrature point q the weight
+/// Layout shared by every split: consts[0 .. derived_params) are the
+/// parameters the law's energy reads (its derived ones, lam, mu, ..., or its
+/// own constants when it declares none), then per quadrature point q the weight
 /// w_q * det(J_q) followed by the shape gradients dN_j/dX_c stored as
 /// G^T (d by n, row c holds all nodes); split-specific data follow.
+/// The values a law accepts for one parameter, from the law file's `limits`:
+/// lower < p (or lower <= p when lower_inclusive), likewise for upper;
+/// -HUGE_VAL / HUGE_VAL where the law states no bound. NaN never passes.
+typedef struct tm_param_limit {
+  double lower;
+  double upper;
+  int lower_inclusive;
+  int upper_inclusive;
+} tm_param_limit;
+
 typedef struct tm_kernel {
   const char* law;
   const char* element;
@@ -51,10 +71,11 @@ typedef struct tm_kernel {
   int nodes;
   int dofs;
   int quadrature_points;
-  int params;          ///< user parameters (length of `params`)
-  int derived_params;  ///< leading doubles of consts
-  int consts;          ///< doubles per element
-  const char* const* param_names;
+  int params;                          ///< user parameters (length of `params`)
+  int derived_params;                  ///< leading doubles of consts
+  int consts;                          ///< doubles per element
+  const char* const* param_names;      ///< params
+  const tm_param_limit* param_limits;  ///< params
   tm_precompute_fn precompute;
   tm_energy_fn energy;
   tm_gradient_fn gradient;

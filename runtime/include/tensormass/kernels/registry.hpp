@@ -15,6 +15,12 @@
 
 namespace tensormass {
 
+/// The most nodes a cell may have: the runtime's per-cell stack buffers
+/// (assembly, criteria, inversion checks, refinement) hold this many. The
+/// registry refuses at start an element with more.
+inline constexpr int kMaxCellNodes = 27;
+inline constexpr int kMaxCellDofs = 3 * kMaxCellNodes;
+
 class Registry {
  public:
   /// The registry of the generated kernels linked into this program.
@@ -24,6 +30,9 @@ class Registry {
   const tm_kernel* find(std::string_view law, std::string_view element, std::string_view split) const;
   /// Like find, but throws std::invalid_argument naming what exists.
   const tm_kernel& get(std::string_view law, std::string_view element, std::string_view split) const;
+  /// A kernel of `law`, or nullptr: its `param_names` and `param_limits` are
+  /// the law's (every kernel of a law has the same, checked at start).
+  const tm_kernel* law_kernel(std::string_view law) const;
   /// The reference element named `name`, or nullptr.
   const tm_element_info* element(std::string_view name) const;
 
@@ -40,6 +49,7 @@ class Registry {
   std::vector<const tm_element_info*> elements_;
   std::unordered_map<std::string, const tm_kernel*> by_key_;
   std::unordered_map<std::string, const tm_element_info*> elements_by_name_;
+  std::unordered_map<std::string, const tm_kernel*> laws_by_name_;
 };
 
 }  // namespace tensormass

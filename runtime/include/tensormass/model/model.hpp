@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "tensormass/kernels/kernel_abi.h"
+#include "tensormass/kernels/registry.hpp"
 #include "tensormass/mesh/mesh.hpp"
+#include "tensormass/model/material_laws.hpp"
 #include "tensormass/model/model_spec.hpp"
 
 namespace tensormass {
@@ -143,12 +145,17 @@ class Model {
   void apply_constraints(double t, std::span<double> u, bool static_load_factor = false) const;
   /// The value apply_constraints gives the prescribed dof `p` at time t.
   double prescribed_value(const PrescribedDof& p, double t, bool static_load_factor = false) const;
-  /// Sum over the cells of Young's modulus times rest volume (J, or J/m in
-  /// 2D): the size of energies whose round-off decides whether a change of
-  /// the total energy is meaningful (line searches).
+  /// Sum over the cells of the small-strain Young's modulus times rest
+  /// volume (J, or J/m in 2D): the size of energies whose round-off decides
+  /// whether a change of the total energy is meaningful (line searches).
   double energy_scale() const { return energy_scale_; }
-  /// Young's modulus times rest volume of one cell (its term of energy_scale()).
+  /// The small-strain Young's modulus times rest volume of one cell (its term of energy_scale()).
   double cell_energy_scale(int cell) const;
+  /// The small-strain Young's modulus of the cell's material (MaterialLaws::modulus).
+  double cell_modulus(int cell) const { return materials_[cell_material_[cell]].modulus(); }
+  /// The constants of material `m` bound to the registry's laws.
+  const MaterialLaws& material_laws(int m) const { return materials_[m]; }
+  int material_count() const { return static_cast<int>(materials_.size()); }
   /// A model of one MPI rank's part of a mesh (Distribution::holds_part)
   /// sums only its cells into the lumped mass, the gravity load and the
   /// energy scale: `complete_dofs` completes the first two from every
@@ -179,7 +186,7 @@ class Model {
   std::vector<std::size_t> consts_offsets_;
   std::vector<double> consts_;
   std::vector<int> cell_material_;
-  std::vector<std::array<double, 2>> material_params_;  ///< young, poisson per material
+  std::vector<MaterialLaws> materials_;  ///< per material of the spec
   std::vector<std::string> law_names_;
   std::vector<double> lumped_mass_, gravity_load_, surface_load_;
   std::vector<int> free_index_, free_dofs_;

@@ -8,6 +8,7 @@
 #define TENSORMASS_MODEL_MODEL_SPEC_HPP
 
 #include <array>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,13 +18,19 @@ namespace tensormass {
 /// First match wins; region is a physical group name or "all".
 struct MaterialSpec {
   std::string region = "all";
-  std::string law;     ///< a law of the registry (hooke, stvk, neohookean)
-  std::string split;   ///< "" = the default split for the law and element
-  double young = 0;    ///< > 0
-  double poisson = 0;  ///< in (-1, 0.5)
+  std::string law;    ///< a law of the registry (hooke, stvk, mooney_rivlin, ...)
+  std::string split;  ///< "" = the default split for the law and element
+  /// The laws' own constants by parameter name (young, poisson; c10, c01,
+  /// kappa; ...): every parameter of `law` and of the adaptive ladder's laws
+  /// when `law` is on the ladder, within the laws' limits.
+  std::map<std::string, double> constants;
   double density = 0;  ///< > 0
   int line = 0;
 };
+
+/// The constants of a law with Young's modulus and Poisson's ratio (hooke,
+/// stvk, neohookean, corotational, stable_neohookean).
+std::map<std::string, double> elastic_constants(double young, double poisson);
 
 enum class ProfileKind { constant, ramp, sinusoid };
 

@@ -21,8 +21,8 @@
 ///
 /// Indicator of cell e, an energy norm:
 ///   R_ZZ(e) = sqrt( sum_q w_q det(J_q) (s* - s_h) : C^-1 : (s* - s_h) )
-/// with the isotropic compliance of the cell's Lame parameters lam, mu
-/// (consts[0], consts[1] of every law of the registry):
+/// with the isotropic compliance of the small-strain Lame parameters lam, mu
+/// of the cell's material (MaterialLaws::lame):
 ///   s : C^-1 : s = (1 / (2 mu)) ( s : s - lam / (d lam + 2 mu) tr(s)^2 )
 /// d = 3 in 3D. In 2D (plane strain, unit thickness) s is the in-plane 2x2
 /// stress and d = 2: the inverse of the plane-strain law s = lam tr(e) I +
