@@ -10,24 +10,28 @@ void tm_arruda_boyce_hex20_whole_gradient(const double*, const double*, double*)
 void tm_arruda_boyce_hex20_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex20_terms_energy(const double*, const double*);
 void tm_arruda_boyce_hex20_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex20_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_hex8_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex8_terms_energy(const double*, const double*);
 void tm_arruda_boyce_hex8_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism6_whole_energy(const double*, const double*);
 void tm_arruda_boyce_prism6_whole_gradient(const double*, const double*, double*);
@@ -37,12 +41,14 @@ void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism6_terms_energy(const double*, const double*);
 void tm_arruda_boyce_prism6_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid5_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -52,12 +58,14 @@ void tm_arruda_boyce_pyramid5_whole_stress(const double*, const double*, double*
 void tm_arruda_boyce_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid5_terms_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad4_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad4_whole_gradient(const double*, const double*, double*);
@@ -67,12 +75,14 @@ void tm_arruda_boyce_quad4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad4_terms_energy(const double*, const double*);
 void tm_arruda_boyce_quad4_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad8_whole_gradient(const double*, const double*, double*);
@@ -82,24 +92,28 @@ void tm_arruda_boyce_quad8_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad8_terms_energy(const double*, const double*);
 void tm_arruda_boyce_quad8_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet10_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tet10_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet10_terms_energy(const double*, const double*);
 void tm_arruda_boyce_tet10_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet4_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tet4_whole_gradient(const double*, const double*, double*);
@@ -109,12 +123,14 @@ void tm_arruda_boyce_tet4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet4_terms_energy(const double*, const double*);
 void tm_arruda_boyce_tet4_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri3_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri3_whole_gradient(const double*, const double*, double*);
@@ -124,12 +140,14 @@ void tm_arruda_boyce_tri3_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri3_terms_energy(const double*, const double*);
 void tm_arruda_boyce_tri3_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri6_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri6_whole_gradient(const double*, const double*, double*);
@@ -139,36 +157,42 @@ void tm_arruda_boyce_tri6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_arruda_boyce_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri6_terms_energy(const double*, const double*);
 void tm_arruda_boyce_tri6_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_whole_energy(const double*, const double*);
 void tm_corotational_hex20_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex20_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_terms_energy(const double*, const double*);
 void tm_corotational_hex20_terms_gradient(const double*, const double*, double*);
 void tm_corotational_hex20_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_whole_energy(const double*, const double*);
 void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_terms_energy(const double*, const double*);
 void tm_corotational_hex8_terms_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_whole_energy(const double*, const double*);
 void tm_corotational_prism6_whole_gradient(const double*, const double*, double*);
@@ -178,12 +202,14 @@ void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_terms_energy(const double*, const double*);
 void tm_corotational_prism6_terms_gradient(const double*, const double*, double*);
 void tm_corotational_prism6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_whole_energy(const double*, const double*);
 void tm_corotational_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -193,12 +219,14 @@ void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*
 void tm_corotational_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_terms_energy(const double*, const double*);
 void tm_corotational_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_corotational_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_corotational_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_whole_energy(const double*, const double*);
 void tm_corotational_quad4_whole_gradient(const double*, const double*, double*);
@@ -208,12 +236,14 @@ void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_terms_energy(const double*, const double*);
 void tm_corotational_quad4_terms_gradient(const double*, const double*, double*);
 void tm_corotational_quad4_terms_hessian(const double*, const double*, double*);
 void tm_corotational_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_whole_energy(const double*, const double*);
 void tm_corotational_quad8_whole_gradient(const double*, const double*, double*);
@@ -223,24 +253,28 @@ void tm_corotational_quad8_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_terms_energy(const double*, const double*);
 void tm_corotational_quad8_terms_gradient(const double*, const double*, double*);
 void tm_corotational_quad8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_whole_energy(const double*, const double*);
 void tm_corotational_tet10_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tet10_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_terms_energy(const double*, const double*);
 void tm_corotational_tet10_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tet10_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet4_whole_energy(const double*, const double*);
 void tm_corotational_tet4_whole_gradient(const double*, const double*, double*);
@@ -250,12 +284,14 @@ void tm_corotational_tet4_whole_stress(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet4_terms_energy(const double*, const double*);
 void tm_corotational_tet4_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tet4_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri3_whole_energy(const double*, const double*);
 void tm_corotational_tri3_whole_gradient(const double*, const double*, double*);
@@ -265,12 +301,14 @@ void tm_corotational_tri3_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri3_terms_energy(const double*, const double*);
 void tm_corotational_tri3_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tri3_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri6_whole_energy(const double*, const double*);
 void tm_corotational_tri6_whole_gradient(const double*, const double*, double*);
@@ -280,36 +318,42 @@ void tm_corotational_tri6_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_corotational_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri6_terms_energy(const double*, const double*);
 void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
 void tm_corotational_tri6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex20_whole_energy(const double*, const double*);
 void tm_gent_hex20_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex20_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_hex20_terms_energy(const double*, const double*);
 void tm_gent_hex20_terms_gradient(const double*, const double*, double*);
 void tm_gent_hex20_terms_hessian(const double*, const double*, double*);
 void tm_gent_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex8_whole_energy(const double*, const double*);
 void tm_gent_hex8_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex8_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_hex8_terms_energy(const double*, const double*);
 void tm_gent_hex8_terms_gradient(const double*, const double*, double*);
 void tm_gent_hex8_terms_hessian(const double*, const double*, double*);
 void tm_gent_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_prism6_whole_energy(const double*, const double*);
 void tm_gent_prism6_whole_gradient(const double*, const double*, double*);
@@ -319,12 +363,14 @@ void tm_gent_prism6_whole_stress(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_prism6_terms_energy(const double*, const double*);
 void tm_gent_prism6_terms_gradient(const double*, const double*, double*);
 void tm_gent_prism6_terms_hessian(const double*, const double*, double*);
 void tm_gent_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid5_whole_energy(const double*, const double*);
 void tm_gent_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -334,12 +380,14 @@ void tm_gent_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid5_terms_energy(const double*, const double*);
 void tm_gent_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_gent_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_gent_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad4_whole_energy(const double*, const double*);
 void tm_gent_quad4_whole_gradient(const double*, const double*, double*);
@@ -349,12 +397,14 @@ void tm_gent_quad4_whole_stress(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_quad4_terms_energy(const double*, const double*);
 void tm_gent_quad4_terms_gradient(const double*, const double*, double*);
 void tm_gent_quad4_terms_hessian(const double*, const double*, double*);
 void tm_gent_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad8_whole_energy(const double*, const double*);
 void tm_gent_quad8_whole_gradient(const double*, const double*, double*);
@@ -364,24 +414,28 @@ void tm_gent_quad8_whole_stress(const double*, const double*, double*);
 void tm_gent_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_quad8_terms_energy(const double*, const double*);
 void tm_gent_quad8_terms_gradient(const double*, const double*, double*);
 void tm_gent_quad8_terms_hessian(const double*, const double*, double*);
 void tm_gent_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tet10_whole_energy(const double*, const double*);
 void tm_gent_tet10_whole_gradient(const double*, const double*, double*);
 void tm_gent_tet10_whole_hessian(const double*, const double*, double*);
 void tm_gent_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_tet10_terms_energy(const double*, const double*);
 void tm_gent_tet10_terms_gradient(const double*, const double*, double*);
 void tm_gent_tet10_terms_hessian(const double*, const double*, double*);
 void tm_gent_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tet4_whole_energy(const double*, const double*);
 void tm_gent_tet4_whole_gradient(const double*, const double*, double*);
@@ -391,12 +445,14 @@ void tm_gent_tet4_whole_stress(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_tet4_terms_energy(const double*, const double*);
 void tm_gent_tet4_terms_gradient(const double*, const double*, double*);
 void tm_gent_tet4_terms_hessian(const double*, const double*, double*);
 void tm_gent_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri3_whole_energy(const double*, const double*);
 void tm_gent_tri3_whole_gradient(const double*, const double*, double*);
@@ -406,12 +462,14 @@ void tm_gent_tri3_whole_stress(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_tri3_terms_energy(const double*, const double*);
 void tm_gent_tri3_terms_gradient(const double*, const double*, double*);
 void tm_gent_tri3_terms_hessian(const double*, const double*, double*);
 void tm_gent_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri6_whole_energy(const double*, const double*);
 void tm_gent_tri6_whole_gradient(const double*, const double*, double*);
@@ -421,36 +479,42 @@ void tm_gent_tri6_whole_stress(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_gent_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_gent_tri6_terms_energy(const double*, const double*);
 void tm_gent_tri6_terms_gradient(const double*, const double*, double*);
 void tm_gent_tri6_terms_hessian(const double*, const double*, double*);
 void tm_gent_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex20_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_terms_energy(const double*, const double*);
 void tm_hooke_hex20_terms_gradient(const double*, const double*, double*);
 void tm_hooke_hex20_terms_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_whole_energy(const double*, const double*);
 void tm_hooke_hex8_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_terms_energy(const double*, const double*);
 void tm_hooke_hex8_terms_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_terms_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_tensor_energy(const double*, const double*);
 void tm_hooke_hex8_tensor_gradient(const double*, const double*, double*);
@@ -466,12 +530,14 @@ void tm_hooke_prism6_whole_stress(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_terms_energy(const double*, const double*);
 void tm_hooke_prism6_terms_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_terms_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_tensor_energy(const double*, const double*);
 void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
@@ -487,12 +553,14 @@ void tm_hooke_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_terms_energy(const double*, const double*);
 void tm_hooke_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_hooke_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_tensor_energy(const double*, const double*);
 void tm_hooke_pyramid5_tensor_gradient(const double*, const double*, double*);
@@ -508,12 +576,14 @@ void tm_hooke_quad4_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_terms_energy(const double*, const double*);
 void tm_hooke_quad4_terms_gradient(const double*, const double*, double*);
 void tm_hooke_quad4_terms_hessian(const double*, const double*, double*);
 void tm_hooke_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_tensor_energy(const double*, const double*);
 void tm_hooke_quad4_tensor_gradient(const double*, const double*, double*);
@@ -529,24 +599,28 @@ void tm_hooke_quad8_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad8_terms_energy(const double*, const double*);
 void tm_hooke_quad8_terms_gradient(const double*, const double*, double*);
 void tm_hooke_quad8_terms_hessian(const double*, const double*, double*);
 void tm_hooke_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_whole_energy(const double*, const double*);
 void tm_hooke_tet10_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tet10_whole_hessian(const double*, const double*, double*);
 void tm_hooke_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_terms_energy(const double*, const double*);
 void tm_hooke_tet10_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tet10_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_whole_energy(const double*, const double*);
 void tm_hooke_tet4_whole_gradient(const double*, const double*, double*);
@@ -556,12 +630,14 @@ void tm_hooke_tet4_whole_stress(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_terms_energy(const double*, const double*);
 void tm_hooke_tet4_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tet4_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_tensor_energy(const double*, const double*);
 void tm_hooke_tet4_tensor_gradient(const double*, const double*, double*);
@@ -577,12 +653,14 @@ void tm_hooke_tri3_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_terms_energy(const double*, const double*);
 void tm_hooke_tri3_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tri3_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_tensor_energy(const double*, const double*);
 void tm_hooke_tri3_tensor_gradient(const double*, const double*, double*);
@@ -598,36 +676,42 @@ void tm_hooke_tri6_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_hooke_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri6_terms_energy(const double*, const double*);
 void tm_hooke_tri6_terms_gradient(const double*, const double*, double*);
 void tm_hooke_tri6_terms_hessian(const double*, const double*, double*);
 void tm_hooke_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex20_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex20_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex20_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_hex20_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex8_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_hex8_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism6_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_prism6_whole_gradient(const double*, const double*, double*);
@@ -637,12 +721,14 @@ void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*)
 void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism6_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_prism6_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid5_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -652,12 +738,14 @@ void tm_mooney_rivlin_pyramid5_whole_stress(const double*, const double*, double
 void tm_mooney_rivlin_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid5_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad4_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad4_whole_gradient(const double*, const double*, double*);
@@ -667,12 +755,14 @@ void tm_mooney_rivlin_quad4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad4_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_quad4_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad8_whole_gradient(const double*, const double*, double*);
@@ -682,24 +772,28 @@ void tm_mooney_rivlin_quad8_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad8_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_quad8_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet10_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tet10_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet10_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_tet10_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet4_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tet4_whole_gradient(const double*, const double*, double*);
@@ -709,12 +803,14 @@ void tm_mooney_rivlin_tet4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet4_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_tet4_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri3_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri3_whole_gradient(const double*, const double*, double*);
@@ -724,12 +820,14 @@ void tm_mooney_rivlin_tri3_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri3_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_tri3_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri6_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri6_whole_gradient(const double*, const double*, double*);
@@ -739,36 +837,42 @@ void tm_mooney_rivlin_tri6_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_mooney_rivlin_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri6_terms_energy(const double*, const double*);
 void tm_mooney_rivlin_tri6_terms_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_terms_energy(const double*, const double*);
 void tm_neohookean_hex20_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_hex20_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_terms_energy(const double*, const double*);
 void tm_neohookean_hex8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_neohookean_prism6_whole_gradient(const double*, const double*, double*);
@@ -778,12 +882,14 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_terms_energy(const double*, const double*);
 void tm_neohookean_prism6_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -793,12 +899,14 @@ void tm_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_terms_energy(const double*, const double*);
 void tm_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -808,12 +916,14 @@ void tm_neohookean_quad4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_terms_energy(const double*, const double*);
 void tm_neohookean_quad4_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_quad4_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -823,24 +933,28 @@ void tm_neohookean_quad8_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_terms_energy(const double*, const double*);
 void tm_neohookean_quad8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_terms_energy(const double*, const double*);
 void tm_neohookean_tet10_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tet10_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_neohookean_tet4_whole_gradient(const double*, const double*, double*);
@@ -850,12 +964,14 @@ void tm_neohookean_tet4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet4_terms_energy(const double*, const double*);
 void tm_neohookean_tet4_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tet4_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -865,12 +981,14 @@ void tm_neohookean_tri3_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_terms_energy(const double*, const double*);
 void tm_neohookean_tri3_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tri3_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -880,36 +998,42 @@ void tm_neohookean_tri6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_terms_energy(const double*, const double*);
 void tm_neohookean_tri6_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_tri6_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex20_terms_energy(const double*, const double*);
 void tm_stable_neohookean_hex20_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_terms_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_prism6_whole_gradient(const double*, const double*, double*);
@@ -919,12 +1043,14 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_terms_energy(const double*, const double*);
 void tm_stable_neohookean_prism6_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -934,12 +1060,14 @@ void tm_stable_neohookean_pyramid5_whole_stress(const double*, const double*, do
 void tm_stable_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_terms_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -949,12 +1077,14 @@ void tm_stable_neohookean_quad4_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_terms_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -964,24 +1094,28 @@ void tm_stable_neohookean_quad8_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_terms_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tet10_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet4_whole_gradient(const double*, const double*, double*);
@@ -991,12 +1125,14 @@ void tm_stable_neohookean_tet4_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet4_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tet4_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -1006,12 +1142,14 @@ void tm_stable_neohookean_tri3_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -1021,36 +1159,42 @@ void tm_stable_neohookean_tri6_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stable_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_terms_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_terms_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex20_whole_energy(const double*, const double*);
 void tm_stvk_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex20_terms_energy(const double*, const double*);
 void tm_stvk_hex20_terms_gradient(const double*, const double*, double*);
 void tm_stvk_hex20_terms_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_whole_energy(const double*, const double*);
 void tm_stvk_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_terms_energy(const double*, const double*);
 void tm_stvk_hex8_terms_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_terms_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_tensor_energy(const double*, const double*);
 void tm_stvk_hex8_tensor_gradient(const double*, const double*, double*);
@@ -1066,12 +1210,14 @@ void tm_stvk_prism6_whole_stress(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_terms_energy(const double*, const double*);
 void tm_stvk_prism6_terms_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_terms_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_tensor_energy(const double*, const double*);
 void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
@@ -1087,12 +1233,14 @@ void tm_stvk_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_terms_energy(const double*, const double*);
 void tm_stvk_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_stvk_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_tensor_energy(const double*, const double*);
 void tm_stvk_pyramid5_tensor_gradient(const double*, const double*, double*);
@@ -1108,12 +1256,14 @@ void tm_stvk_quad4_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_terms_energy(const double*, const double*);
 void tm_stvk_quad4_terms_gradient(const double*, const double*, double*);
 void tm_stvk_quad4_terms_hessian(const double*, const double*, double*);
 void tm_stvk_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_tensor_energy(const double*, const double*);
 void tm_stvk_quad4_tensor_gradient(const double*, const double*, double*);
@@ -1129,24 +1279,28 @@ void tm_stvk_quad8_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad8_terms_energy(const double*, const double*);
 void tm_stvk_quad8_terms_gradient(const double*, const double*, double*);
 void tm_stvk_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stvk_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_whole_energy(const double*, const double*);
 void tm_stvk_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stvk_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_terms_energy(const double*, const double*);
 void tm_stvk_tet10_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tet10_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_whole_energy(const double*, const double*);
 void tm_stvk_tet4_whole_gradient(const double*, const double*, double*);
@@ -1156,12 +1310,14 @@ void tm_stvk_tet4_whole_stress(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_terms_energy(const double*, const double*);
 void tm_stvk_tet4_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tet4_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_tensor_energy(const double*, const double*);
 void tm_stvk_tet4_tensor_gradient(const double*, const double*, double*);
@@ -1177,12 +1333,14 @@ void tm_stvk_tri3_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_terms_energy(const double*, const double*);
 void tm_stvk_tri3_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tri3_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_tensor_energy(const double*, const double*);
 void tm_stvk_tri3_tensor_gradient(const double*, const double*, double*);
@@ -1198,36 +1356,42 @@ void tm_stvk_tri6_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_stvk_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri6_terms_energy(const double*, const double*);
 void tm_stvk_tri6_terms_gradient(const double*, const double*, double*);
 void tm_stvk_tri6_terms_hessian(const double*, const double*, double*);
 void tm_stvk_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex20_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex20_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex20_terms_energy(const double*, const double*);
 void tm_veronda_westmann_hex20_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex8_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex8_terms_energy(const double*, const double*);
 void tm_veronda_westmann_hex8_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism6_whole_energy(const double*, const double*);
 void tm_veronda_westmann_prism6_whole_gradient(const double*, const double*, double*);
@@ -1237,12 +1401,14 @@ void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, doubl
 void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism6_terms_energy(const double*, const double*);
 void tm_veronda_westmann_prism6_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid5_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1252,12 +1418,14 @@ void tm_veronda_westmann_pyramid5_whole_stress(const double*, const double*, dou
 void tm_veronda_westmann_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid5_terms_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad4_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad4_whole_gradient(const double*, const double*, double*);
@@ -1267,12 +1435,14 @@ void tm_veronda_westmann_quad4_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad4_terms_energy(const double*, const double*);
 void tm_veronda_westmann_quad4_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_quad4_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad8_whole_gradient(const double*, const double*, double*);
@@ -1282,24 +1452,28 @@ void tm_veronda_westmann_quad8_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad8_terms_energy(const double*, const double*);
 void tm_veronda_westmann_quad8_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_quad8_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet10_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tet10_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet10_terms_energy(const double*, const double*);
 void tm_veronda_westmann_tet10_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet4_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tet4_whole_gradient(const double*, const double*, double*);
@@ -1309,12 +1483,14 @@ void tm_veronda_westmann_tet4_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet4_terms_energy(const double*, const double*);
 void tm_veronda_westmann_tet4_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tet4_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri3_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri3_whole_gradient(const double*, const double*, double*);
@@ -1324,12 +1500,14 @@ void tm_veronda_westmann_tri3_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri3_terms_energy(const double*, const double*);
 void tm_veronda_westmann_tri3_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tri3_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri6_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri6_whole_gradient(const double*, const double*, double*);
@@ -1339,36 +1517,42 @@ void tm_veronda_westmann_tri6_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_veronda_westmann_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri6_terms_energy(const double*, const double*);
 void tm_veronda_westmann_tri6_terms_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tri6_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex20_whole_energy(const double*, const double*);
 void tm_yeoh_hex20_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex20_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex20_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_hex20_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex20_terms_energy(const double*, const double*);
 void tm_yeoh_hex20_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_hex20_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex20_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex8_whole_energy(const double*, const double*);
 void tm_yeoh_hex8_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex8_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_hex8_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex8_terms_energy(const double*, const double*);
 void tm_yeoh_hex8_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_hex8_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism6_whole_energy(const double*, const double*);
 void tm_yeoh_prism6_whole_gradient(const double*, const double*, double*);
@@ -1378,12 +1562,14 @@ void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_prism6_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism6_terms_energy(const double*, const double*);
 void tm_yeoh_prism6_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_prism6_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid5_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1393,12 +1579,14 @@ void tm_yeoh_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_pyramid5_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_pyramid5_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid5_terms_energy(const double*, const double*);
 void tm_yeoh_pyramid5_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_pyramid5_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_pyramid5_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad4_whole_energy(const double*, const double*);
 void tm_yeoh_quad4_whole_gradient(const double*, const double*, double*);
@@ -1408,12 +1596,14 @@ void tm_yeoh_quad4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_quad4_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad4_terms_energy(const double*, const double*);
 void tm_yeoh_quad4_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_quad4_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_quad4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad8_whole_energy(const double*, const double*);
 void tm_yeoh_quad8_whole_gradient(const double*, const double*, double*);
@@ -1423,24 +1613,28 @@ void tm_yeoh_quad8_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad8_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_quad8_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad8_terms_energy(const double*, const double*);
 void tm_yeoh_quad8_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_quad8_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_quad8_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet10_whole_energy(const double*, const double*);
 void tm_yeoh_tet10_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_tet10_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tet10_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_tet10_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet10_terms_energy(const double*, const double*);
 void tm_yeoh_tet10_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_tet10_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tet10_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet4_whole_energy(const double*, const double*);
 void tm_yeoh_tet4_whole_gradient(const double*, const double*, double*);
@@ -1450,12 +1644,14 @@ void tm_yeoh_tet4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tet4_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_tet4_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet4_terms_energy(const double*, const double*);
 void tm_yeoh_tet4_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_tet4_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tet4_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri3_whole_energy(const double*, const double*);
 void tm_yeoh_tri3_whole_gradient(const double*, const double*, double*);
@@ -1465,12 +1661,14 @@ void tm_yeoh_tri3_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tri3_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_tri3_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri3_terms_energy(const double*, const double*);
 void tm_yeoh_tri3_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_tri3_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tri3_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri6_whole_energy(const double*, const double*);
 void tm_yeoh_tri6_whole_gradient(const double*, const double*, double*);
@@ -1480,12 +1678,14 @@ void tm_yeoh_tri6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tri6_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
 int tm_yeoh_tri6_terms_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri6_terms_energy(const double*, const double*);
 void tm_yeoh_tri6_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_tri6_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tri6_terms_stress(const double*, const double*, double*);
+#endif
 }
 
 namespace {
@@ -1517,11 +1717,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_terms_precompute, tm_arruda_boyce_hex20_terms_energy, tm_arruda_boyce_hex20_terms_gradient,
    tm_arruda_boyce_hex20_terms_hessian, tm_arruda_boyce_hex20_terms_gradient_hessian, tm_arruda_boyce_hex20_terms_stress, 12798, 110565, 995760,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
@@ -1529,11 +1731,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_terms_precompute, tm_arruda_boyce_hex8_terms_energy, tm_arruda_boyce_hex8_terms_gradient,
    tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60416,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
@@ -1542,11 +1746,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_terms_precompute, tm_arruda_boyce_prism6_terms_energy, tm_arruda_boyce_prism6_terms_gradient,
    tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32838,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
@@ -1555,11 +1761,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
    tm_arruda_boyce_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_terms_precompute, tm_arruda_boyce_pyramid5_terms_energy, tm_arruda_boyce_pyramid5_terms_gradient,
    tm_arruda_boyce_pyramid5_terms_hessian, tm_arruda_boyce_pyramid5_terms_gradient_hessian, tm_arruda_boyce_pyramid5_terms_stress, 1632, 8352, 37160,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
@@ -1568,11 +1776,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_terms_precompute, tm_arruda_boyce_quad4_terms_energy, tm_arruda_boyce_quad4_terms_gradient,
    tm_arruda_boyce_quad4_terms_hessian, tm_arruda_boyce_quad4_terms_gradient_hessian, tm_arruda_boyce_quad4_terms_stress, 460, 1872, 4912,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
@@ -1581,11 +1791,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_terms_precompute, tm_arruda_boyce_quad8_terms_energy, tm_arruda_boyce_quad8_terms_gradient,
    tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18396,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
@@ -1593,11 +1805,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_terms_precompute, tm_arruda_boyce_tet10_terms_energy, tm_arruda_boyce_tet10_terms_gradient,
    tm_arruda_boyce_tet10_terms_hessian, tm_arruda_boyce_tet10_terms_gradient_hessian, tm_arruda_boyce_tet10_terms_stress, 1176, 5256, 40780,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
@@ -1606,11 +1820,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
    tm_arruda_boyce_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_terms_precompute, tm_arruda_boyce_tet4_terms_energy, tm_arruda_boyce_tet4_terms_gradient,
    tm_arruda_boyce_tet4_terms_hessian, tm_arruda_boyce_tet4_terms_gradient_hessian, tm_arruda_boyce_tet4_terms_stress, 186, 990, 3958,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
@@ -1619,11 +1835,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_terms_precompute, tm_arruda_boyce_tri3_terms_energy, tm_arruda_boyce_tri3_terms_gradient,
    tm_arruda_boyce_tri3_terms_hessian, tm_arruda_boyce_tri3_terms_gradient_hessian, tm_arruda_boyce_tri3_terms_stress, 107, 444, 1099,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
@@ -1632,11 +1850,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"arruda_boyce", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_terms_precompute, tm_arruda_boyce_tri6_terms_energy, tm_arruda_boyce_tri6_terms_gradient,
    tm_arruda_boyce_tri6_terms_hessian, tm_arruda_boyce_tri6_terms_gradient_hessian, tm_arruda_boyce_tri6_terms_stress, 393, 1548, 4728,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
@@ -1644,11 +1864,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
    tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1086480,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
@@ -1656,11 +1878,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
    tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 71168,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
@@ -1669,11 +1893,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
    tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 40902,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
@@ -1682,11 +1908,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
    tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 47912,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
@@ -1695,11 +1923,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
    tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2800,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
@@ -1708,11 +1938,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
    tm_corotational_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
    tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 13644,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
@@ -1720,11 +1952,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
    tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 46156,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
@@ -1733,11 +1967,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
    tm_corotational_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
    tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5302,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
@@ -1746,11 +1982,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
    tm_corotational_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
    tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 571,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
@@ -1759,11 +1997,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
    tm_corotational_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
    tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3144,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
@@ -1771,11 +2011,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_terms_precompute, tm_gent_hex20_terms_energy, tm_gent_hex20_terms_gradient,
    tm_gent_hex20_terms_hessian, tm_gent_hex20_terms_gradient_hessian, tm_gent_hex20_terms_stress, 11394, 86670, 969300,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
@@ -1783,11 +2025,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_terms_precompute, tm_gent_hex8_terms_energy, tm_gent_hex8_terms_gradient,
    tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57280,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
@@ -1796,11 +2040,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_terms_precompute, tm_gent_prism6_terms_energy, tm_gent_prism6_terms_gradient,
    tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30486,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
@@ -1809,11 +2055,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
    tm_gent_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_terms_precompute, tm_gent_pyramid5_terms_energy, tm_gent_pyramid5_terms_gradient,
    tm_gent_pyramid5_terms_hessian, tm_gent_pyramid5_terms_gradient_hessian, tm_gent_pyramid5_terms_stress, 1216, 5520, 34024,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
@@ -1822,11 +2070,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
    tm_gent_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_terms_precompute, tm_gent_quad4_terms_energy, tm_gent_quad4_terms_gradient,
    tm_gent_quad4_terms_hessian, tm_gent_quad4_terms_gradient_hessian, tm_gent_quad4_terms_stress, 252, 880, 3368,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
@@ -1835,11 +2085,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
    tm_gent_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_terms_precompute, tm_gent_quad8_terms_energy, tm_gent_quad8_terms_gradient,
    tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14922,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
@@ -1847,11 +2099,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_terms_precompute, tm_gent_tet10_terms_energy, tm_gent_tet10_terms_gradient,
    tm_gent_tet10_terms_hessian, tm_gent_tet10_terms_gradient_hessian, tm_gent_tet10_terms_stress, 968, 3840, 39212,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
@@ -1860,11 +2114,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
    tm_gent_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_terms_precompute, tm_gent_tet4_terms_energy, tm_gent_tet4_terms_gradient,
    tm_gent_tet4_terms_hessian, tm_gent_tet4_terms_gradient_hessian, tm_gent_tet4_terms_stress, 134, 636, 3566,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
@@ -1873,11 +2129,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
    tm_gent_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_terms_precompute, tm_gent_tri3_terms_energy, tm_gent_tri3_terms_gradient,
    tm_gent_tri3_terms_hessian, tm_gent_tri3_terms_gradient_hessian, tm_gent_tri3_terms_stress, 55, 196, 713,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
@@ -1886,11 +2144,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
    tm_gent_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"gent", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_terms_precompute, tm_gent_tri6_terms_energy, tm_gent_tri6_terms_gradient,
    tm_gent_tri6_terms_hessian, tm_gent_tri6_terms_gradient_hessian, tm_gent_tri6_terms_stress, 237, 804, 3570,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
@@ -1898,11 +2158,13 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_terms_precompute, tm_hooke_hex20_terms_energy, tm_hooke_hex20_terms_gradient,
    tm_hooke_hex20_terms_hessian, tm_hooke_hex20_terms_gradient_hessian, tm_hooke_hex20_terms_stress, 10341, 60210, 309015,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
@@ -1910,11 +2172,13 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_terms_precompute, tm_hooke_hex8_terms_energy, tm_hooke_hex8_terms_gradient,
    tm_hooke_hex8_terms_hessian, tm_hooke_hex8_terms_gradient_hessian, tm_hooke_hex8_terms_stress, 1336, 3680, 14736,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
@@ -1929,11 +2193,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
    tm_hooke_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_terms_precompute, tm_hooke_prism6_terms_energy, tm_hooke_prism6_terms_gradient,
    tm_hooke_prism6_terms_hessian, tm_hooke_prism6_terms_gradient_hessian, tm_hooke_prism6_terms_stress, 786, 2112, 6552,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
@@ -1948,11 +2214,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
    tm_hooke_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_terms_precompute, tm_hooke_pyramid5_terms_energy, tm_hooke_pyramid5_terms_gradient,
    tm_hooke_pyramid5_terms_hessian, tm_hooke_pyramid5_terms_gradient_hessian, tm_hooke_pyramid5_terms_stress, 904, 2384, 6312,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
@@ -1967,11 +2235,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
    tm_hooke_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_terms_precompute, tm_hooke_quad4_terms_energy, tm_hooke_quad4_terms_gradient,
    tm_hooke_quad4_terms_hessian, tm_hooke_quad4_terms_gradient_hessian, tm_hooke_quad4_terms_stress, 180, 464, 960,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
@@ -1986,11 +2256,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
    tm_hooke_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
    tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 7164,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
@@ -1998,11 +2270,13 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_terms_precompute, tm_hooke_tet10_terms_energy, tm_hooke_tet10_terms_gradient,
    tm_hooke_tet10_terms_hessian, tm_hooke_tet10_terms_gradient_hessian, tm_hooke_tet10_terms_stress, 812, 2272, 11136,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
@@ -2011,11 +2285,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
    tm_hooke_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_terms_precompute, tm_hooke_tet4_terms_energy, tm_hooke_tet4_terms_gradient,
    tm_hooke_tet4_terms_hessian, tm_hooke_tet4_terms_gradient_hessian, tm_hooke_tet4_terms_stress, 95, 244, 534,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
@@ -2030,11 +2306,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
    tm_hooke_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_terms_precompute, tm_hooke_tri3_terms_energy, tm_hooke_tri3_terms_gradient,
    tm_hooke_tri3_terms_hessian, tm_hooke_tri3_terms_gradient_hessian, tm_hooke_tri3_terms_stress, 37, 92, 151,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
@@ -2049,11 +2327,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
    tm_hooke_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"hooke", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kHookeParameters, kHookeLimits, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
    tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1434,
    1, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
@@ -2061,11 +2341,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_terms_precompute, tm_mooney_rivlin_hex20_terms_energy, tm_mooney_rivlin_hex20_terms_gradient,
    tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 105435, 955395,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
@@ -2073,11 +2355,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
    tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55632,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
@@ -2086,11 +2370,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
    tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29250,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
@@ -2099,11 +2385,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_terms_precompute, tm_mooney_rivlin_pyramid5_terms_energy, tm_mooney_rivlin_pyramid5_terms_gradient,
    tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 7744, 32376,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
@@ -2112,11 +2400,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_terms_precompute, tm_mooney_rivlin_quad4_terms_energy, tm_mooney_rivlin_quad4_terms_gradient,
    tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1312, 3488,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
@@ -2125,11 +2415,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
    tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15192,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
@@ -2137,11 +2429,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_terms_precompute, tm_mooney_rivlin_tet10_terms_energy, tm_mooney_rivlin_tet10_terms_gradient,
    tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 4952, 38388,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
@@ -2150,11 +2444,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_terms_precompute, tm_mooney_rivlin_tet4_terms_energy, tm_mooney_rivlin_tet4_terms_gradient,
    tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 914, 3360,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
@@ -2163,11 +2459,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_terms_precompute, tm_mooney_rivlin_tri3_terms_energy, tm_mooney_rivlin_tri3_terms_gradient,
    tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 304, 743,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
@@ -2176,11 +2474,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"mooney_rivlin", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_terms_precompute, tm_mooney_rivlin_tri6_terms_energy, tm_mooney_rivlin_tri6_terms_gradient,
    tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1128, 3660,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
@@ -2188,11 +2488,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
    tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 883035,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
@@ -2200,11 +2502,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
    tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 47056,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
@@ -2213,11 +2517,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
    tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22818,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
@@ -2226,11 +2532,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
    tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 23800,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
@@ -2239,11 +2547,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
    tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2224,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
@@ -2252,11 +2562,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
    tm_neohookean_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
    tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12348,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
@@ -2264,11 +2576,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
    tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 34100,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
@@ -2277,11 +2591,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
    tm_neohookean_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
    tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2288,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
@@ -2290,11 +2606,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
    tm_neohookean_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
    tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 427,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
@@ -2303,11 +2621,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
    tm_neohookean_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
    tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2712,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
@@ -2315,11 +2635,13 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
    tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 880335,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
@@ -2327,11 +2649,13 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
    tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46736,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
@@ -2340,11 +2664,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
    tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22578,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
@@ -2353,11 +2679,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
    tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 23480,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
@@ -2366,11 +2694,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
    tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2240,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
@@ -2379,11 +2709,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
    tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12384,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
@@ -2391,11 +2723,13 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
    tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 33940,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
@@ -2404,11 +2738,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
    tm_stable_neohookean_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
    tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2248,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
@@ -2417,11 +2753,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
    tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 431,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
@@ -2430,11 +2768,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stable_neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
    tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2724,
    0, 1,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
@@ -2442,11 +2782,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
    tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 870075,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
@@ -2454,11 +2796,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
    tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 45520,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
@@ -2473,11 +2817,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
    tm_stvk_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
    tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 21666,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
@@ -2492,11 +2838,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
    tm_stvk_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
    tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 22264,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
@@ -2511,11 +2859,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
    tm_stvk_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_terms_precompute, tm_stvk_quad4_terms_energy, tm_stvk_quad4_terms_gradient,
    tm_stvk_quad4_terms_hessian, tm_stvk_quad4_terms_gradient_hessian, tm_stvk_quad4_terms_stress, 248, 816, 2168,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
@@ -2530,11 +2880,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
    tm_stvk_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
    tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 12222,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
@@ -2542,11 +2894,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
    tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 33332,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
@@ -2555,11 +2909,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
    tm_stvk_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
    tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2096,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
@@ -2574,11 +2930,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
    tm_stvk_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_terms_precompute, tm_stvk_tri3_terms_energy, tm_stvk_tri3_terms_gradient,
    tm_stvk_tri3_terms_hessian, tm_stvk_tri3_terms_gradient_hessian, tm_stvk_tri3_terms_stress, 54, 180, 413,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
@@ -2593,11 +2951,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"stvk", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
    kStvkParameters, kStvkLimits, tm_stvk_tri6_terms_precompute, tm_stvk_tri6_terms_energy, tm_stvk_tri6_terms_gradient,
    tm_stvk_tri6_terms_hessian, tm_stvk_tri6_terms_gradient_hessian, tm_stvk_tri6_terms_stress, 234, 756, 2670,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
@@ -2605,11 +2965,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_terms_precompute, tm_veronda_westmann_hex20_terms_energy, tm_veronda_westmann_hex20_terms_gradient,
    tm_veronda_westmann_hex20_terms_hessian, tm_veronda_westmann_hex20_terms_gradient_hessian, tm_veronda_westmann_hex20_terms_stress, 12501, 106650, 1026405,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
@@ -2617,11 +2979,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_terms_precompute, tm_veronda_westmann_hex8_terms_energy, tm_veronda_westmann_hex8_terms_gradient,
    tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64048,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
@@ -2630,11 +2994,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_terms_precompute, tm_veronda_westmann_prism6_terms_energy, tm_veronda_westmann_prism6_terms_gradient,
    tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35562,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
@@ -2643,11 +3009,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
    tm_veronda_westmann_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_terms_precompute, tm_veronda_westmann_pyramid5_terms_energy, tm_veronda_westmann_pyramid5_terms_gradient,
    tm_veronda_westmann_pyramid5_terms_hessian, tm_veronda_westmann_pyramid5_terms_gradient_hessian, tm_veronda_westmann_pyramid5_terms_stress, 1544, 7888, 40792,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
@@ -2656,11 +3024,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_terms_precompute, tm_veronda_westmann_quad4_terms_energy, tm_veronda_westmann_quad4_terms_gradient,
    tm_veronda_westmann_quad4_terms_hessian, tm_veronda_westmann_quad4_terms_gradient_hessian, tm_veronda_westmann_quad4_terms_stress, 336, 1416, 4224,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
@@ -2669,11 +3039,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_terms_precompute, tm_veronda_westmann_quad8_terms_energy, tm_veronda_westmann_quad8_terms_gradient,
    tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16848,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
@@ -2681,11 +3053,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_terms_precompute, tm_veronda_westmann_tet10_terms_energy, tm_veronda_westmann_tet10_terms_gradient,
    tm_veronda_westmann_tet10_terms_hessian, tm_veronda_westmann_tet10_terms_gradient_hessian, tm_veronda_westmann_tet10_terms_stress, 1132, 5024, 42596,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
@@ -2694,11 +3068,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
    tm_veronda_westmann_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_terms_precompute, tm_veronda_westmann_tet4_terms_energy, tm_veronda_westmann_tet4_terms_gradient,
    tm_veronda_westmann_tet4_terms_hessian, tm_veronda_westmann_tet4_terms_gradient_hessian, tm_veronda_westmann_tet4_terms_stress, 175, 932, 4412,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
@@ -2707,11 +3083,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_terms_precompute, tm_veronda_westmann_tri3_terms_energy, tm_veronda_westmann_tri3_terms_gradient,
    tm_veronda_westmann_tri3_terms_hessian, tm_veronda_westmann_tri3_terms_gradient_hessian, tm_veronda_westmann_tri3_terms_stress, 76, 330, 927,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
@@ -2720,11 +3098,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"veronda_westmann", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_terms_precompute, tm_veronda_westmann_tri6_terms_energy, tm_veronda_westmann_tri6_terms_gradient,
    tm_veronda_westmann_tri6_terms_hessian, tm_veronda_westmann_tri6_terms_gradient_hessian, tm_veronda_westmann_tri6_terms_stress, 300, 1206, 4212,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
@@ -2732,11 +3112,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "hex20", "terms", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_terms_precompute, tm_yeoh_hex20_terms_energy, tm_yeoh_hex20_terms_gradient,
    tm_yeoh_hex20_terms_hessian, tm_yeoh_hex20_terms_gradient_hessian, tm_yeoh_hex20_terms_stress, 11421, 94365, 944730,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
@@ -2744,11 +3126,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "hex8", "terms", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_terms_precompute, tm_yeoh_hex8_terms_energy, tm_yeoh_hex8_terms_gradient,
    tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54368,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
@@ -2757,11 +3141,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "prism6", "terms", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_terms_precompute, tm_yeoh_prism6_terms_energy, tm_yeoh_prism6_terms_gradient,
    tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28302,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
@@ -2770,11 +3156,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
    tm_yeoh_pyramid5_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "pyramid5", "terms", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_terms_precompute, tm_yeoh_pyramid5_terms_energy, tm_yeoh_pyramid5_terms_gradient,
    tm_yeoh_pyramid5_terms_hessian, tm_yeoh_pyramid5_terms_gradient_hessian, tm_yeoh_pyramid5_terms_stress, 1224, 6432, 31112,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
@@ -2783,11 +3171,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
    tm_yeoh_quad4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "quad4", "terms", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_terms_precompute, tm_yeoh_quad4_terms_energy, tm_yeoh_quad4_terms_gradient,
    tm_yeoh_quad4_terms_hessian, tm_yeoh_quad4_terms_gradient_hessian, tm_yeoh_quad4_terms_stress, 256, 1096, 3536,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
@@ -2796,11 +3186,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
    tm_yeoh_quad8_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "quad8", "terms", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_terms_precompute, tm_yeoh_quad8_terms_energy, tm_yeoh_quad8_terms_gradient,
    tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15300,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
@@ -2808,11 +3200,13 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "tet10", "terms", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_terms_precompute, tm_yeoh_tet10_terms_energy, tm_yeoh_tet10_terms_gradient,
    tm_yeoh_tet10_terms_hessian, tm_yeoh_tet10_terms_gradient_hessian, tm_yeoh_tet10_terms_stress, 972, 4296, 37756,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
@@ -2821,11 +3215,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
    tm_yeoh_tet4_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "tet4", "terms", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_terms_precompute, tm_yeoh_tet4_terms_energy, tm_yeoh_tet4_terms_gradient,
    tm_yeoh_tet4_terms_hessian, tm_yeoh_tet4_terms_gradient_hessian, tm_yeoh_tet4_terms_stress, 135, 750, 3202,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
@@ -2834,11 +3230,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
    tm_yeoh_tri3_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "tri3", "terms", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_terms_precompute, tm_yeoh_tri3_terms_energy, tm_yeoh_tri3_terms_gradient,
    tm_yeoh_tri3_terms_hessian, tm_yeoh_tri3_terms_gradient_hessian, tm_yeoh_tri3_terms_stress, 56, 250, 755,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
   {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
@@ -2847,17 +3245,20 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
    tm_yeoh_tri6_whole_stress_batch},
 
+#if TENSORMASS_TERMS_SPLIT
   {"yeoh", "tri6", "terms", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_terms_precompute, tm_yeoh_tri6_terms_energy, tm_yeoh_tri6_terms_gradient,
    tm_yeoh_tri6_terms_hessian, tm_yeoh_tri6_terms_gradient_hessian, tm_yeoh_tri6_terms_stress, 240, 966, 3696,
    0, 0,
    0, nullptr, nullptr, nullptr},
+#endif
 
 };
+constexpr int kKernelCount = static_cast<int>(sizeof(kKernels) / sizeof(kKernels[0]));
 }  // namespace
 
-extern "C" int tm_kernel_count(void) { return 212; }
+extern "C" int tm_kernel_count(void) { return kKernelCount; }
 
 extern "C" const tm_kernel* tm_kernel_at(int index) {
-  return index >= 0 && index < 212 ? &kKernels[index] : nullptr;
+  return index >= 0 && index < kKernelCount ? &kKernels[index] : nullptr;
 }

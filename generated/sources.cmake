@@ -2,447 +2,449 @@
 # The translation units of generated/, relative to it.
 set(TENSORMASS_GENERATED_SOURCES
   elements.cpp
+  kernels/arruda_boyce_hex20_whole.cpp
+  kernels/arruda_boyce_hex8_whole.cpp
+  kernels/arruda_boyce_prism6_whole.cpp
+  kernels/arruda_boyce_pyramid5_whole.cpp
+  kernels/arruda_boyce_quad4_whole.cpp
+  kernels/arruda_boyce_quad8_whole.cpp
+  kernels/arruda_boyce_tet10_whole.cpp
+  kernels/arruda_boyce_tet4_whole.cpp
+  kernels/arruda_boyce_tri3_whole.cpp
+  kernels/arruda_boyce_tri6_whole.cpp
+  kernels/corotational_hex20_whole.cpp
+  kernels/corotational_hex8_whole.cpp
+  kernels/corotational_prism6_whole.cpp
+  kernels/corotational_pyramid5_whole.cpp
+  kernels/corotational_quad4_whole.cpp
+  kernels/corotational_quad8_whole.cpp
+  kernels/corotational_tet10_whole.cpp
+  kernels/corotational_tet4_whole.cpp
+  kernels/corotational_tri3_whole.cpp
+  kernels/corotational_tri6_whole.cpp
+  kernels/gent_hex20_whole.cpp
+  kernels/gent_hex8_whole.cpp
+  kernels/gent_prism6_whole.cpp
+  kernels/gent_pyramid5_whole.cpp
+  kernels/gent_quad4_whole.cpp
+  kernels/gent_quad8_whole.cpp
+  kernels/gent_tet10_whole.cpp
+  kernels/gent_tet4_whole.cpp
+  kernels/gent_tri3_whole.cpp
+  kernels/gent_tri6_whole.cpp
+  kernels/hooke_hex20_whole.cpp
+  kernels/hooke_hex8_tensor.cpp
+  kernels/hooke_hex8_whole.cpp
+  kernels/hooke_prism6_tensor.cpp
+  kernels/hooke_prism6_whole.cpp
+  kernels/hooke_pyramid5_tensor.cpp
+  kernels/hooke_pyramid5_whole.cpp
+  kernels/hooke_quad4_tensor.cpp
+  kernels/hooke_quad4_whole.cpp
+  kernels/hooke_quad8_whole.cpp
+  kernels/hooke_tet10_whole.cpp
+  kernels/hooke_tet4_tensor.cpp
+  kernels/hooke_tet4_whole.cpp
+  kernels/hooke_tri3_tensor.cpp
+  kernels/hooke_tri3_whole.cpp
+  kernels/hooke_tri6_whole.cpp
+  kernels/mooney_rivlin_hex20_whole.cpp
+  kernels/mooney_rivlin_hex8_whole.cpp
+  kernels/mooney_rivlin_prism6_whole.cpp
+  kernels/mooney_rivlin_pyramid5_whole.cpp
+  kernels/mooney_rivlin_quad4_whole.cpp
+  kernels/mooney_rivlin_quad8_whole.cpp
+  kernels/mooney_rivlin_tet10_whole.cpp
+  kernels/mooney_rivlin_tet4_whole.cpp
+  kernels/mooney_rivlin_tri3_whole.cpp
+  kernels/mooney_rivlin_tri6_whole.cpp
+  kernels/neohookean_hex20_whole.cpp
+  kernels/neohookean_hex8_whole.cpp
+  kernels/neohookean_prism6_whole.cpp
+  kernels/neohookean_pyramid5_whole.cpp
+  kernels/neohookean_quad4_whole.cpp
+  kernels/neohookean_quad8_whole.cpp
+  kernels/neohookean_tet10_whole.cpp
+  kernels/neohookean_tet4_whole.cpp
+  kernels/neohookean_tri3_whole.cpp
+  kernels/neohookean_tri6_whole.cpp
+  kernels/stable_neohookean_hex20_whole.cpp
+  kernels/stable_neohookean_hex8_whole.cpp
+  kernels/stable_neohookean_prism6_whole.cpp
+  kernels/stable_neohookean_pyramid5_whole.cpp
+  kernels/stable_neohookean_quad4_whole.cpp
+  kernels/stable_neohookean_quad8_whole.cpp
+  kernels/stable_neohookean_tet10_whole.cpp
+  kernels/stable_neohookean_tet4_whole.cpp
+  kernels/stable_neohookean_tri3_whole.cpp
+  kernels/stable_neohookean_tri6_whole.cpp
+  kernels/stvk_hex20_whole.cpp
+  kernels/stvk_hex8_tensor.cpp
+  kernels/stvk_hex8_whole.cpp
+  kernels/stvk_prism6_tensor.cpp
+  kernels/stvk_prism6_whole.cpp
+  kernels/stvk_pyramid5_tensor.cpp
+  kernels/stvk_pyramid5_whole.cpp
+  kernels/stvk_quad4_tensor.cpp
+  kernels/stvk_quad4_whole.cpp
+  kernels/stvk_quad8_whole.cpp
+  kernels/stvk_tet10_whole.cpp
+  kernels/stvk_tet4_tensor.cpp
+  kernels/stvk_tet4_whole.cpp
+  kernels/stvk_tri3_tensor.cpp
+  kernels/stvk_tri3_whole.cpp
+  kernels/stvk_tri6_whole.cpp
+  kernels/veronda_westmann_hex20_whole.cpp
+  kernels/veronda_westmann_hex8_whole.cpp
+  kernels/veronda_westmann_prism6_whole.cpp
+  kernels/veronda_westmann_pyramid5_whole.cpp
+  kernels/veronda_westmann_quad4_whole.cpp
+  kernels/veronda_westmann_quad8_whole.cpp
+  kernels/veronda_westmann_tet10_whole.cpp
+  kernels/veronda_westmann_tet4_whole.cpp
+  kernels/veronda_westmann_tri3_whole.cpp
+  kernels/veronda_westmann_tri6_whole.cpp
+  kernels/yeoh_hex20_whole.cpp
+  kernels/yeoh_hex8_whole.cpp
+  kernels/yeoh_prism6_whole.cpp
+  kernels/yeoh_pyramid5_whole.cpp
+  kernels/yeoh_quad4_whole.cpp
+  kernels/yeoh_quad8_whole.cpp
+  kernels/yeoh_tet10_whole.cpp
+  kernels/yeoh_tet4_whole.cpp
+  kernels/yeoh_tri3_whole.cpp
+  kernels/yeoh_tri6_whole.cpp
+  registry.cpp
+)
+set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/arruda_boyce_hex20_terms.cpp
   kernels/arruda_boyce_hex20_terms_part0.cpp
   kernels/arruda_boyce_hex20_terms_part1.cpp
   kernels/arruda_boyce_hex20_terms_part2.cpp
   kernels/arruda_boyce_hex20_terms_part3.cpp
   kernels/arruda_boyce_hex20_terms_part4.cpp
-  kernels/arruda_boyce_hex20_whole.cpp
   kernels/arruda_boyce_hex8_terms.cpp
   kernels/arruda_boyce_hex8_terms_part0.cpp
   kernels/arruda_boyce_hex8_terms_part1.cpp
-  kernels/arruda_boyce_hex8_whole.cpp
   kernels/arruda_boyce_prism6_terms.cpp
   kernels/arruda_boyce_prism6_terms_part0.cpp
   kernels/arruda_boyce_prism6_terms_part1.cpp
-  kernels/arruda_boyce_prism6_whole.cpp
   kernels/arruda_boyce_pyramid5_terms.cpp
   kernels/arruda_boyce_pyramid5_terms_part0.cpp
   kernels/arruda_boyce_pyramid5_terms_part1.cpp
-  kernels/arruda_boyce_pyramid5_whole.cpp
   kernels/arruda_boyce_quad4_terms.cpp
   kernels/arruda_boyce_quad4_terms_part0.cpp
   kernels/arruda_boyce_quad4_terms_part1.cpp
-  kernels/arruda_boyce_quad4_whole.cpp
   kernels/arruda_boyce_quad8_terms.cpp
   kernels/arruda_boyce_quad8_terms_part0.cpp
   kernels/arruda_boyce_quad8_terms_part1.cpp
-  kernels/arruda_boyce_quad8_whole.cpp
   kernels/arruda_boyce_tet10_terms.cpp
   kernels/arruda_boyce_tet10_terms_part0.cpp
   kernels/arruda_boyce_tet10_terms_part1.cpp
-  kernels/arruda_boyce_tet10_whole.cpp
   kernels/arruda_boyce_tet4_terms.cpp
   kernels/arruda_boyce_tet4_terms_part0.cpp
   kernels/arruda_boyce_tet4_terms_part1.cpp
-  kernels/arruda_boyce_tet4_whole.cpp
   kernels/arruda_boyce_tri3_terms.cpp
   kernels/arruda_boyce_tri3_terms_part0.cpp
   kernels/arruda_boyce_tri3_terms_part1.cpp
-  kernels/arruda_boyce_tri3_whole.cpp
   kernels/arruda_boyce_tri6_terms.cpp
   kernels/arruda_boyce_tri6_terms_part0.cpp
   kernels/arruda_boyce_tri6_terms_part1.cpp
-  kernels/arruda_boyce_tri6_whole.cpp
   kernels/corotational_hex20_terms.cpp
   kernels/corotational_hex20_terms_part0.cpp
   kernels/corotational_hex20_terms_part1.cpp
   kernels/corotational_hex20_terms_part2.cpp
   kernels/corotational_hex20_terms_part3.cpp
   kernels/corotational_hex20_terms_part4.cpp
-  kernels/corotational_hex20_whole.cpp
   kernels/corotational_hex8_terms.cpp
   kernels/corotational_hex8_terms_part0.cpp
   kernels/corotational_hex8_terms_part1.cpp
-  kernels/corotational_hex8_whole.cpp
   kernels/corotational_prism6_terms.cpp
   kernels/corotational_prism6_terms_part0.cpp
   kernels/corotational_prism6_terms_part1.cpp
-  kernels/corotational_prism6_whole.cpp
   kernels/corotational_pyramid5_terms.cpp
   kernels/corotational_pyramid5_terms_part0.cpp
   kernels/corotational_pyramid5_terms_part1.cpp
-  kernels/corotational_pyramid5_whole.cpp
   kernels/corotational_quad4_terms.cpp
   kernels/corotational_quad4_terms_part0.cpp
   kernels/corotational_quad4_terms_part1.cpp
-  kernels/corotational_quad4_whole.cpp
   kernels/corotational_quad8_terms.cpp
   kernels/corotational_quad8_terms_part0.cpp
   kernels/corotational_quad8_terms_part1.cpp
-  kernels/corotational_quad8_whole.cpp
   kernels/corotational_tet10_terms.cpp
   kernels/corotational_tet10_terms_part0.cpp
   kernels/corotational_tet10_terms_part1.cpp
-  kernels/corotational_tet10_whole.cpp
   kernels/corotational_tet4_terms.cpp
   kernels/corotational_tet4_terms_part0.cpp
   kernels/corotational_tet4_terms_part1.cpp
-  kernels/corotational_tet4_whole.cpp
   kernels/corotational_tri3_terms.cpp
   kernels/corotational_tri3_terms_part0.cpp
   kernels/corotational_tri3_terms_part1.cpp
-  kernels/corotational_tri3_whole.cpp
   kernels/corotational_tri6_terms.cpp
   kernels/corotational_tri6_terms_part0.cpp
   kernels/corotational_tri6_terms_part1.cpp
-  kernels/corotational_tri6_whole.cpp
   kernels/gent_hex20_terms.cpp
   kernels/gent_hex20_terms_part0.cpp
   kernels/gent_hex20_terms_part1.cpp
   kernels/gent_hex20_terms_part2.cpp
   kernels/gent_hex20_terms_part3.cpp
   kernels/gent_hex20_terms_part4.cpp
-  kernels/gent_hex20_whole.cpp
   kernels/gent_hex8_terms.cpp
   kernels/gent_hex8_terms_part0.cpp
   kernels/gent_hex8_terms_part1.cpp
-  kernels/gent_hex8_whole.cpp
   kernels/gent_prism6_terms.cpp
   kernels/gent_prism6_terms_part0.cpp
   kernels/gent_prism6_terms_part1.cpp
-  kernels/gent_prism6_whole.cpp
   kernels/gent_pyramid5_terms.cpp
   kernels/gent_pyramid5_terms_part0.cpp
   kernels/gent_pyramid5_terms_part1.cpp
-  kernels/gent_pyramid5_whole.cpp
   kernels/gent_quad4_terms.cpp
   kernels/gent_quad4_terms_part0.cpp
   kernels/gent_quad4_terms_part1.cpp
-  kernels/gent_quad4_whole.cpp
   kernels/gent_quad8_terms.cpp
   kernels/gent_quad8_terms_part0.cpp
   kernels/gent_quad8_terms_part1.cpp
-  kernels/gent_quad8_whole.cpp
   kernels/gent_tet10_terms.cpp
   kernels/gent_tet10_terms_part0.cpp
   kernels/gent_tet10_terms_part1.cpp
-  kernels/gent_tet10_whole.cpp
   kernels/gent_tet4_terms.cpp
   kernels/gent_tet4_terms_part0.cpp
   kernels/gent_tet4_terms_part1.cpp
-  kernels/gent_tet4_whole.cpp
   kernels/gent_tri3_terms.cpp
   kernels/gent_tri3_terms_part0.cpp
   kernels/gent_tri3_terms_part1.cpp
-  kernels/gent_tri3_whole.cpp
   kernels/gent_tri6_terms.cpp
   kernels/gent_tri6_terms_part0.cpp
   kernels/gent_tri6_terms_part1.cpp
-  kernels/gent_tri6_whole.cpp
   kernels/hooke_hex20_terms.cpp
   kernels/hooke_hex20_terms_part0.cpp
   kernels/hooke_hex20_terms_part1.cpp
   kernels/hooke_hex20_terms_part2.cpp
   kernels/hooke_hex20_terms_part3.cpp
   kernels/hooke_hex20_terms_part4.cpp
-  kernels/hooke_hex20_whole.cpp
-  kernels/hooke_hex8_tensor.cpp
   kernels/hooke_hex8_terms.cpp
   kernels/hooke_hex8_terms_part0.cpp
   kernels/hooke_hex8_terms_part1.cpp
-  kernels/hooke_hex8_whole.cpp
-  kernels/hooke_prism6_tensor.cpp
   kernels/hooke_prism6_terms.cpp
   kernels/hooke_prism6_terms_part0.cpp
   kernels/hooke_prism6_terms_part1.cpp
-  kernels/hooke_prism6_whole.cpp
-  kernels/hooke_pyramid5_tensor.cpp
   kernels/hooke_pyramid5_terms.cpp
   kernels/hooke_pyramid5_terms_part0.cpp
   kernels/hooke_pyramid5_terms_part1.cpp
-  kernels/hooke_pyramid5_whole.cpp
-  kernels/hooke_quad4_tensor.cpp
   kernels/hooke_quad4_terms.cpp
   kernels/hooke_quad4_terms_part0.cpp
   kernels/hooke_quad4_terms_part1.cpp
-  kernels/hooke_quad4_whole.cpp
   kernels/hooke_quad8_terms.cpp
   kernels/hooke_quad8_terms_part0.cpp
   kernels/hooke_quad8_terms_part1.cpp
-  kernels/hooke_quad8_whole.cpp
   kernels/hooke_tet10_terms.cpp
   kernels/hooke_tet10_terms_part0.cpp
   kernels/hooke_tet10_terms_part1.cpp
-  kernels/hooke_tet10_whole.cpp
-  kernels/hooke_tet4_tensor.cpp
   kernels/hooke_tet4_terms.cpp
   kernels/hooke_tet4_terms_part0.cpp
   kernels/hooke_tet4_terms_part1.cpp
-  kernels/hooke_tet4_whole.cpp
-  kernels/hooke_tri3_tensor.cpp
   kernels/hooke_tri3_terms.cpp
   kernels/hooke_tri3_terms_part0.cpp
   kernels/hooke_tri3_terms_part1.cpp
-  kernels/hooke_tri3_whole.cpp
   kernels/hooke_tri6_terms.cpp
   kernels/hooke_tri6_terms_part0.cpp
   kernels/hooke_tri6_terms_part1.cpp
-  kernels/hooke_tri6_whole.cpp
   kernels/mooney_rivlin_hex20_terms.cpp
   kernels/mooney_rivlin_hex20_terms_part0.cpp
   kernels/mooney_rivlin_hex20_terms_part1.cpp
   kernels/mooney_rivlin_hex20_terms_part2.cpp
   kernels/mooney_rivlin_hex20_terms_part3.cpp
   kernels/mooney_rivlin_hex20_terms_part4.cpp
-  kernels/mooney_rivlin_hex20_whole.cpp
   kernels/mooney_rivlin_hex8_terms.cpp
   kernels/mooney_rivlin_hex8_terms_part0.cpp
   kernels/mooney_rivlin_hex8_terms_part1.cpp
-  kernels/mooney_rivlin_hex8_whole.cpp
   kernels/mooney_rivlin_prism6_terms.cpp
   kernels/mooney_rivlin_prism6_terms_part0.cpp
   kernels/mooney_rivlin_prism6_terms_part1.cpp
-  kernels/mooney_rivlin_prism6_whole.cpp
   kernels/mooney_rivlin_pyramid5_terms.cpp
   kernels/mooney_rivlin_pyramid5_terms_part0.cpp
   kernels/mooney_rivlin_pyramid5_terms_part1.cpp
-  kernels/mooney_rivlin_pyramid5_whole.cpp
   kernels/mooney_rivlin_quad4_terms.cpp
   kernels/mooney_rivlin_quad4_terms_part0.cpp
   kernels/mooney_rivlin_quad4_terms_part1.cpp
-  kernels/mooney_rivlin_quad4_whole.cpp
   kernels/mooney_rivlin_quad8_terms.cpp
   kernels/mooney_rivlin_quad8_terms_part0.cpp
   kernels/mooney_rivlin_quad8_terms_part1.cpp
-  kernels/mooney_rivlin_quad8_whole.cpp
   kernels/mooney_rivlin_tet10_terms.cpp
   kernels/mooney_rivlin_tet10_terms_part0.cpp
   kernels/mooney_rivlin_tet10_terms_part1.cpp
-  kernels/mooney_rivlin_tet10_whole.cpp
   kernels/mooney_rivlin_tet4_terms.cpp
   kernels/mooney_rivlin_tet4_terms_part0.cpp
   kernels/mooney_rivlin_tet4_terms_part1.cpp
-  kernels/mooney_rivlin_tet4_whole.cpp
   kernels/mooney_rivlin_tri3_terms.cpp
   kernels/mooney_rivlin_tri3_terms_part0.cpp
   kernels/mooney_rivlin_tri3_terms_part1.cpp
-  kernels/mooney_rivlin_tri3_whole.cpp
   kernels/mooney_rivlin_tri6_terms.cpp
   kernels/mooney_rivlin_tri6_terms_part0.cpp
   kernels/mooney_rivlin_tri6_terms_part1.cpp
-  kernels/mooney_rivlin_tri6_whole.cpp
   kernels/neohookean_hex20_terms.cpp
   kernels/neohookean_hex20_terms_part0.cpp
   kernels/neohookean_hex20_terms_part1.cpp
   kernels/neohookean_hex20_terms_part2.cpp
   kernels/neohookean_hex20_terms_part3.cpp
   kernels/neohookean_hex20_terms_part4.cpp
-  kernels/neohookean_hex20_whole.cpp
   kernels/neohookean_hex8_terms.cpp
   kernels/neohookean_hex8_terms_part0.cpp
   kernels/neohookean_hex8_terms_part1.cpp
-  kernels/neohookean_hex8_whole.cpp
   kernels/neohookean_prism6_terms.cpp
   kernels/neohookean_prism6_terms_part0.cpp
   kernels/neohookean_prism6_terms_part1.cpp
-  kernels/neohookean_prism6_whole.cpp
   kernels/neohookean_pyramid5_terms.cpp
   kernels/neohookean_pyramid5_terms_part0.cpp
   kernels/neohookean_pyramid5_terms_part1.cpp
-  kernels/neohookean_pyramid5_whole.cpp
   kernels/neohookean_quad4_terms.cpp
   kernels/neohookean_quad4_terms_part0.cpp
   kernels/neohookean_quad4_terms_part1.cpp
-  kernels/neohookean_quad4_whole.cpp
   kernels/neohookean_quad8_terms.cpp
   kernels/neohookean_quad8_terms_part0.cpp
   kernels/neohookean_quad8_terms_part1.cpp
-  kernels/neohookean_quad8_whole.cpp
   kernels/neohookean_tet10_terms.cpp
   kernels/neohookean_tet10_terms_part0.cpp
   kernels/neohookean_tet10_terms_part1.cpp
-  kernels/neohookean_tet10_whole.cpp
   kernels/neohookean_tet4_terms.cpp
   kernels/neohookean_tet4_terms_part0.cpp
   kernels/neohookean_tet4_terms_part1.cpp
-  kernels/neohookean_tet4_whole.cpp
   kernels/neohookean_tri3_terms.cpp
   kernels/neohookean_tri3_terms_part0.cpp
   kernels/neohookean_tri3_terms_part1.cpp
-  kernels/neohookean_tri3_whole.cpp
   kernels/neohookean_tri6_terms.cpp
   kernels/neohookean_tri6_terms_part0.cpp
   kernels/neohookean_tri6_terms_part1.cpp
-  kernels/neohookean_tri6_whole.cpp
   kernels/stable_neohookean_hex20_terms.cpp
   kernels/stable_neohookean_hex20_terms_part0.cpp
   kernels/stable_neohookean_hex20_terms_part1.cpp
   kernels/stable_neohookean_hex20_terms_part2.cpp
   kernels/stable_neohookean_hex20_terms_part3.cpp
   kernels/stable_neohookean_hex20_terms_part4.cpp
-  kernels/stable_neohookean_hex20_whole.cpp
   kernels/stable_neohookean_hex8_terms.cpp
   kernels/stable_neohookean_hex8_terms_part0.cpp
   kernels/stable_neohookean_hex8_terms_part1.cpp
-  kernels/stable_neohookean_hex8_whole.cpp
   kernels/stable_neohookean_prism6_terms.cpp
   kernels/stable_neohookean_prism6_terms_part0.cpp
   kernels/stable_neohookean_prism6_terms_part1.cpp
-  kernels/stable_neohookean_prism6_whole.cpp
   kernels/stable_neohookean_pyramid5_terms.cpp
   kernels/stable_neohookean_pyramid5_terms_part0.cpp
   kernels/stable_neohookean_pyramid5_terms_part1.cpp
-  kernels/stable_neohookean_pyramid5_whole.cpp
   kernels/stable_neohookean_quad4_terms.cpp
   kernels/stable_neohookean_quad4_terms_part0.cpp
   kernels/stable_neohookean_quad4_terms_part1.cpp
-  kernels/stable_neohookean_quad4_whole.cpp
   kernels/stable_neohookean_quad8_terms.cpp
   kernels/stable_neohookean_quad8_terms_part0.cpp
   kernels/stable_neohookean_quad8_terms_part1.cpp
-  kernels/stable_neohookean_quad8_whole.cpp
   kernels/stable_neohookean_tet10_terms.cpp
   kernels/stable_neohookean_tet10_terms_part0.cpp
   kernels/stable_neohookean_tet10_terms_part1.cpp
-  kernels/stable_neohookean_tet10_whole.cpp
   kernels/stable_neohookean_tet4_terms.cpp
   kernels/stable_neohookean_tet4_terms_part0.cpp
   kernels/stable_neohookean_tet4_terms_part1.cpp
-  kernels/stable_neohookean_tet4_whole.cpp
   kernels/stable_neohookean_tri3_terms.cpp
   kernels/stable_neohookean_tri3_terms_part0.cpp
   kernels/stable_neohookean_tri3_terms_part1.cpp
-  kernels/stable_neohookean_tri3_whole.cpp
   kernels/stable_neohookean_tri6_terms.cpp
   kernels/stable_neohookean_tri6_terms_part0.cpp
   kernels/stable_neohookean_tri6_terms_part1.cpp
-  kernels/stable_neohookean_tri6_whole.cpp
   kernels/stvk_hex20_terms.cpp
   kernels/stvk_hex20_terms_part0.cpp
   kernels/stvk_hex20_terms_part1.cpp
   kernels/stvk_hex20_terms_part2.cpp
   kernels/stvk_hex20_terms_part3.cpp
   kernels/stvk_hex20_terms_part4.cpp
-  kernels/stvk_hex20_whole.cpp
-  kernels/stvk_hex8_tensor.cpp
   kernels/stvk_hex8_terms.cpp
   kernels/stvk_hex8_terms_part0.cpp
   kernels/stvk_hex8_terms_part1.cpp
-  kernels/stvk_hex8_whole.cpp
-  kernels/stvk_prism6_tensor.cpp
   kernels/stvk_prism6_terms.cpp
   kernels/stvk_prism6_terms_part0.cpp
   kernels/stvk_prism6_terms_part1.cpp
-  kernels/stvk_prism6_whole.cpp
-  kernels/stvk_pyramid5_tensor.cpp
   kernels/stvk_pyramid5_terms.cpp
   kernels/stvk_pyramid5_terms_part0.cpp
   kernels/stvk_pyramid5_terms_part1.cpp
-  kernels/stvk_pyramid5_whole.cpp
-  kernels/stvk_quad4_tensor.cpp
   kernels/stvk_quad4_terms.cpp
   kernels/stvk_quad4_terms_part0.cpp
   kernels/stvk_quad4_terms_part1.cpp
-  kernels/stvk_quad4_whole.cpp
   kernels/stvk_quad8_terms.cpp
   kernels/stvk_quad8_terms_part0.cpp
   kernels/stvk_quad8_terms_part1.cpp
-  kernels/stvk_quad8_whole.cpp
   kernels/stvk_tet10_terms.cpp
   kernels/stvk_tet10_terms_part0.cpp
   kernels/stvk_tet10_terms_part1.cpp
-  kernels/stvk_tet10_whole.cpp
-  kernels/stvk_tet4_tensor.cpp
   kernels/stvk_tet4_terms.cpp
   kernels/stvk_tet4_terms_part0.cpp
   kernels/stvk_tet4_terms_part1.cpp
-  kernels/stvk_tet4_whole.cpp
-  kernels/stvk_tri3_tensor.cpp
   kernels/stvk_tri3_terms.cpp
   kernels/stvk_tri3_terms_part0.cpp
   kernels/stvk_tri3_terms_part1.cpp
-  kernels/stvk_tri3_whole.cpp
   kernels/stvk_tri6_terms.cpp
   kernels/stvk_tri6_terms_part0.cpp
   kernels/stvk_tri6_terms_part1.cpp
-  kernels/stvk_tri6_whole.cpp
   kernels/veronda_westmann_hex20_terms.cpp
   kernels/veronda_westmann_hex20_terms_part0.cpp
   kernels/veronda_westmann_hex20_terms_part1.cpp
   kernels/veronda_westmann_hex20_terms_part2.cpp
   kernels/veronda_westmann_hex20_terms_part3.cpp
   kernels/veronda_westmann_hex20_terms_part4.cpp
-  kernels/veronda_westmann_hex20_whole.cpp
   kernels/veronda_westmann_hex8_terms.cpp
   kernels/veronda_westmann_hex8_terms_part0.cpp
   kernels/veronda_westmann_hex8_terms_part1.cpp
-  kernels/veronda_westmann_hex8_whole.cpp
   kernels/veronda_westmann_prism6_terms.cpp
   kernels/veronda_westmann_prism6_terms_part0.cpp
   kernels/veronda_westmann_prism6_terms_part1.cpp
-  kernels/veronda_westmann_prism6_whole.cpp
   kernels/veronda_westmann_pyramid5_terms.cpp
   kernels/veronda_westmann_pyramid5_terms_part0.cpp
   kernels/veronda_westmann_pyramid5_terms_part1.cpp
-  kernels/veronda_westmann_pyramid5_whole.cpp
   kernels/veronda_westmann_quad4_terms.cpp
   kernels/veronda_westmann_quad4_terms_part0.cpp
   kernels/veronda_westmann_quad4_terms_part1.cpp
-  kernels/veronda_westmann_quad4_whole.cpp
   kernels/veronda_westmann_quad8_terms.cpp
   kernels/veronda_westmann_quad8_terms_part0.cpp
   kernels/veronda_westmann_quad8_terms_part1.cpp
-  kernels/veronda_westmann_quad8_whole.cpp
   kernels/veronda_westmann_tet10_terms.cpp
   kernels/veronda_westmann_tet10_terms_part0.cpp
   kernels/veronda_westmann_tet10_terms_part1.cpp
-  kernels/veronda_westmann_tet10_whole.cpp
   kernels/veronda_westmann_tet4_terms.cpp
   kernels/veronda_westmann_tet4_terms_part0.cpp
   kernels/veronda_westmann_tet4_terms_part1.cpp
-  kernels/veronda_westmann_tet4_whole.cpp
   kernels/veronda_westmann_tri3_terms.cpp
   kernels/veronda_westmann_tri3_terms_part0.cpp
   kernels/veronda_westmann_tri3_terms_part1.cpp
-  kernels/veronda_westmann_tri3_whole.cpp
   kernels/veronda_westmann_tri6_terms.cpp
   kernels/veronda_westmann_tri6_terms_part0.cpp
   kernels/veronda_westmann_tri6_terms_part1.cpp
-  kernels/veronda_westmann_tri6_whole.cpp
   kernels/yeoh_hex20_terms.cpp
   kernels/yeoh_hex20_terms_part0.cpp
   kernels/yeoh_hex20_terms_part1.cpp
   kernels/yeoh_hex20_terms_part2.cpp
   kernels/yeoh_hex20_terms_part3.cpp
   kernels/yeoh_hex20_terms_part4.cpp
-  kernels/yeoh_hex20_whole.cpp
   kernels/yeoh_hex8_terms.cpp
   kernels/yeoh_hex8_terms_part0.cpp
   kernels/yeoh_hex8_terms_part1.cpp
-  kernels/yeoh_hex8_whole.cpp
   kernels/yeoh_prism6_terms.cpp
   kernels/yeoh_prism6_terms_part0.cpp
   kernels/yeoh_prism6_terms_part1.cpp
-  kernels/yeoh_prism6_whole.cpp
   kernels/yeoh_pyramid5_terms.cpp
   kernels/yeoh_pyramid5_terms_part0.cpp
   kernels/yeoh_pyramid5_terms_part1.cpp
-  kernels/yeoh_pyramid5_whole.cpp
   kernels/yeoh_quad4_terms.cpp
   kernels/yeoh_quad4_terms_part0.cpp
   kernels/yeoh_quad4_terms_part1.cpp
-  kernels/yeoh_quad4_whole.cpp
   kernels/yeoh_quad8_terms.cpp
   kernels/yeoh_quad8_terms_part0.cpp
   kernels/yeoh_quad8_terms_part1.cpp
-  kernels/yeoh_quad8_whole.cpp
   kernels/yeoh_tet10_terms.cpp
   kernels/yeoh_tet10_terms_part0.cpp
   kernels/yeoh_tet10_terms_part1.cpp
-  kernels/yeoh_tet10_whole.cpp
   kernels/yeoh_tet4_terms.cpp
   kernels/yeoh_tet4_terms_part0.cpp
   kernels/yeoh_tet4_terms_part1.cpp
-  kernels/yeoh_tet4_whole.cpp
   kernels/yeoh_tri3_terms.cpp
   kernels/yeoh_tri3_terms_part0.cpp
   kernels/yeoh_tri3_terms_part1.cpp
-  kernels/yeoh_tri3_whole.cpp
   kernels/yeoh_tri6_terms.cpp
   kernels/yeoh_tri6_terms_part0.cpp
   kernels/yeoh_tri6_terms_part1.cpp
-  kernels/yeoh_tri6_whole.cpp
-  registry.cpp
 )

@@ -163,7 +163,17 @@ TEST_P(SplitAgreement, SplitsAgreeWithWhole) {
   EXPECT_GE(compared, 1) << "only the whole split exists";
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPairs, SplitAgreement, testing::ValuesIn(law_element_pairs()), LawElementParamName());
+/// The (law, element) pairs of the registry with a split besides whole.
+std::vector<LawElement> pairs_with_several_splits() {
+  std::vector<LawElement> result;
+  for (const LawElement& pair : law_element_pairs())
+    if (registry().find(pair.law, pair.element, "terms") || registry().find(pair.law, pair.element, "tensor"))
+      result.push_back(pair);
+  return result;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPairs, SplitAgreement, testing::ValuesIn(pairs_with_several_splits()),
+                         LawElementParamName());
 
 }  // namespace
 }  // namespace tmtest
