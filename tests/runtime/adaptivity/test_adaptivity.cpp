@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -14,6 +15,7 @@
 #include "support/test_support.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/io/gmsh_writer.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/simulation/simulation.hpp"
@@ -133,6 +135,37 @@ TEST_F(AdaptiveBeam, EveryCriterionRunsAndWritesItsField) {
     EXPECT_EQ(report.switches, 0) << name;
     EXPECT_TRUE(fs::exists(fs::path(s.output.directory) / "final.vtu")) << name;
   }
+}
+
+/// A ladder's laws must compute the same constants from each material on it:
+/// hooke and mooney_rivlin do not (lam, mu against c10, c01, kappa), even
+/// for a material that gives both laws' constants.
+TEST(Adaptivity, LadderOfLawsWithOtherConstantsIsRefused) {
+  BeamSpec spec;
+  spec.cells = {4, 2, 1};
+  const Mesh mesh = make_beam(spec);
+  Scene s;
+  std::map<std::string, double> constants = elastic_constants(1e6, 0.3);
+  constants.insert({{"c10", 1e5}, {"c01", 2e4}, {"kappa", 1e6}});
+  s.model.source = "ladder.yaml";
+  s.model.materials = {{"all", "hooke", "", constants, 1000, 7}};
+  s.model.fixed = {"clamp"};
+  Model model(mesh, s.model);
+  const Assembler assembler(model);
+  AdaptivitySettings adaptive;
+  adaptive.enabled = true;
+  adaptive.criteria = {{"R_NL", 0.01, 0, ""}};
+  adaptive.ladder = {"hooke", "mooney_rivlin"};
+  try {
+    Adaptivity adaptivity(adaptive, model, assembler);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("ladder.yaml:7: material 0"), std::string::npos) << message;
+    EXPECT_NE(message.find("hooke and mooney_rivlin do not compute the same constants"), std::string::npos) << message;
+  }
+  adaptive.ladder = {"hooke", "stvk"};
+  EXPECT_NO_THROW(Adaptivity(adaptive, model, assembler));
 }
 
 TEST(Adaptivity, BlendingStartsWithoutAJumpAndReachesTheNewLaw) {
