@@ -28,9 +28,9 @@ def test_kernels_lists_the_registry():
     kernels = tm.kernels()
     laws = {k["law"] for k in kernels}
     elements = {k["element"] for k in kernels}
-    assert len(kernels) >= 2 * len(laws) * len(elements)  # whole and terms of every pair, tensor of some
     triples = {(k["law"], k["element"], k["split"]) for k in kernels}
     assert len(triples) == len(kernels)
+    assert all((law, element, "whole") in triples for law in laws for element in elements)
     stvk = next(k for k in kernels if (k["law"], k["element"], k["split"]) == ("stvk", "tet4", "whole"))
     assert stvk["nodes"] == 4 and stvk["dim"] == 3 and stvk["dofs"] == 12
     assert stvk["parameters"] == ["young", "poisson"]
