@@ -794,7 +794,9 @@ void measure_cost(int count, int sweeps) {
       std::snprintf(text, sizeof text, "  %s %.1f ns", name.c_str(), ns);
       line += text;
       ::testing::Test::RecordProperty(type + "_" + name + "_" + std::to_string(count) + "_ns", std::to_string(ns));
+#ifndef __SANITIZE_ADDRESS__  // sanitized code runs several times slower: the guard is for optimised builds
       EXPECT_LT(ns, 5000.0) << type << " " << name;  // only a gross regression guard
+#endif
     }
     std::printf("%s  | hooke gradient %.1f ns\n", line.c_str(), gradient_nanoseconds_per_element(block, sweeps, 7));
   }
