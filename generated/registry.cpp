@@ -18,6 +18,20 @@ void tm_arruda_boyce_hex20_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_arruda_boyce_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex27_whole_energy(const double*, const double*);
+void tm_arruda_boyce_hex27_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex27_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_arruda_boyce_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex27_terms_energy(const double*, const double*);
+void tm_arruda_boyce_hex27_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex27_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_arruda_boyce_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_hex8_whole_gradient(const double*, const double*, double*);
@@ -31,6 +45,20 @@ void tm_arruda_boyce_hex8_terms_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_arruda_boyce_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism15_whole_energy(const double*, const double*);
+void tm_arruda_boyce_prism15_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism15_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_arruda_boyce_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism15_terms_energy(const double*, const double*);
+void tm_arruda_boyce_prism15_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism15_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_arruda_boyce_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism6_whole_energy(const double*, const double*);
@@ -48,6 +76,20 @@ void tm_arruda_boyce_prism6_terms_gradient(const double*, const double*, double*
 void tm_arruda_boyce_prism6_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_arruda_boyce_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_pyramid13_whole_energy(const double*, const double*);
+void tm_arruda_boyce_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_arruda_boyce_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_pyramid13_terms_energy(const double*, const double*);
+void tm_arruda_boyce_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_arruda_boyce_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid5_whole_energy(const double*, const double*);
@@ -99,6 +141,23 @@ void tm_arruda_boyce_quad8_terms_gradient(const double*, const double*, double*)
 void tm_arruda_boyce_quad8_terms_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_arruda_boyce_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad9_whole_energy(const double*, const double*);
+void tm_arruda_boyce_quad9_whole_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_whole_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad9_whole_stress(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_arruda_boyce_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad9_terms_energy(const double*, const double*);
+void tm_arruda_boyce_quad9_terms_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_terms_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_arruda_boyce_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet10_whole_energy(const double*, const double*);
@@ -179,6 +238,20 @@ void tm_corotational_hex20_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_corotational_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_corotational_hex27_whole_energy(const double*, const double*);
+void tm_corotational_hex27_whole_gradient(const double*, const double*, double*);
+void tm_corotational_hex27_whole_hessian(const double*, const double*, double*);
+void tm_corotational_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_corotational_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_corotational_hex27_terms_energy(const double*, const double*);
+void tm_corotational_hex27_terms_gradient(const double*, const double*, double*);
+void tm_corotational_hex27_terms_hessian(const double*, const double*, double*);
+void tm_corotational_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_corotational_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_whole_energy(const double*, const double*);
 void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
@@ -192,6 +265,20 @@ void tm_corotational_hex8_terms_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_corotational_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_corotational_prism15_whole_energy(const double*, const double*);
+void tm_corotational_prism15_whole_gradient(const double*, const double*, double*);
+void tm_corotational_prism15_whole_hessian(const double*, const double*, double*);
+void tm_corotational_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_corotational_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_corotational_prism15_terms_energy(const double*, const double*);
+void tm_corotational_prism15_terms_gradient(const double*, const double*, double*);
+void tm_corotational_prism15_terms_hessian(const double*, const double*, double*);
+void tm_corotational_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_corotational_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_whole_energy(const double*, const double*);
@@ -209,6 +296,20 @@ void tm_corotational_prism6_terms_gradient(const double*, const double*, double*
 void tm_corotational_prism6_terms_hessian(const double*, const double*, double*);
 void tm_corotational_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_corotational_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_corotational_pyramid13_whole_energy(const double*, const double*);
+void tm_corotational_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_corotational_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_corotational_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_corotational_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_corotational_pyramid13_terms_energy(const double*, const double*);
+void tm_corotational_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_corotational_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_corotational_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_corotational_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_whole_energy(const double*, const double*);
@@ -260,6 +361,23 @@ void tm_corotational_quad8_terms_gradient(const double*, const double*, double*)
 void tm_corotational_quad8_terms_hessian(const double*, const double*, double*);
 void tm_corotational_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_corotational_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_corotational_quad9_whole_energy(const double*, const double*);
+void tm_corotational_quad9_whole_gradient(const double*, const double*, double*);
+void tm_corotational_quad9_whole_hessian(const double*, const double*, double*);
+void tm_corotational_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad9_whole_stress(const double*, const double*, double*);
+void tm_corotational_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_corotational_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_corotational_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_corotational_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_corotational_quad9_terms_energy(const double*, const double*);
+void tm_corotational_quad9_terms_gradient(const double*, const double*, double*);
+void tm_corotational_quad9_terms_hessian(const double*, const double*, double*);
+void tm_corotational_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_corotational_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_whole_energy(const double*, const double*);
@@ -340,6 +458,20 @@ void tm_gent_hex20_terms_hessian(const double*, const double*, double*);
 void tm_gent_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_gent_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_hex27_whole_energy(const double*, const double*);
+void tm_gent_hex27_whole_gradient(const double*, const double*, double*);
+void tm_gent_hex27_whole_hessian(const double*, const double*, double*);
+void tm_gent_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_gent_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_hex27_terms_energy(const double*, const double*);
+void tm_gent_hex27_terms_gradient(const double*, const double*, double*);
+void tm_gent_hex27_terms_hessian(const double*, const double*, double*);
+void tm_gent_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_gent_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex8_whole_energy(const double*, const double*);
 void tm_gent_hex8_whole_gradient(const double*, const double*, double*);
@@ -353,6 +485,20 @@ void tm_gent_hex8_terms_gradient(const double*, const double*, double*);
 void tm_gent_hex8_terms_hessian(const double*, const double*, double*);
 void tm_gent_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_gent_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_prism15_whole_energy(const double*, const double*);
+void tm_gent_prism15_whole_gradient(const double*, const double*, double*);
+void tm_gent_prism15_whole_hessian(const double*, const double*, double*);
+void tm_gent_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_gent_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_prism15_terms_energy(const double*, const double*);
+void tm_gent_prism15_terms_gradient(const double*, const double*, double*);
+void tm_gent_prism15_terms_hessian(const double*, const double*, double*);
+void tm_gent_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_gent_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_prism6_whole_energy(const double*, const double*);
@@ -370,6 +516,20 @@ void tm_gent_prism6_terms_gradient(const double*, const double*, double*);
 void tm_gent_prism6_terms_hessian(const double*, const double*, double*);
 void tm_gent_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_gent_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_pyramid13_whole_energy(const double*, const double*);
+void tm_gent_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_gent_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_gent_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_gent_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_pyramid13_terms_energy(const double*, const double*);
+void tm_gent_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_gent_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_gent_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_gent_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid5_whole_energy(const double*, const double*);
@@ -421,6 +581,23 @@ void tm_gent_quad8_terms_gradient(const double*, const double*, double*);
 void tm_gent_quad8_terms_hessian(const double*, const double*, double*);
 void tm_gent_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_gent_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_gent_quad9_whole_energy(const double*, const double*);
+void tm_gent_quad9_whole_gradient(const double*, const double*, double*);
+void tm_gent_quad9_whole_hessian(const double*, const double*, double*);
+void tm_gent_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad9_whole_stress(const double*, const double*, double*);
+void tm_gent_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_gent_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_gent_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_gent_quad9_terms_energy(const double*, const double*);
+void tm_gent_quad9_terms_gradient(const double*, const double*, double*);
+void tm_gent_quad9_terms_hessian(const double*, const double*, double*);
+void tm_gent_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_gent_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tet10_whole_energy(const double*, const double*);
@@ -501,6 +678,20 @@ void tm_hooke_hex20_terms_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_hooke_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_hooke_hex27_whole_energy(const double*, const double*);
+void tm_hooke_hex27_whole_gradient(const double*, const double*, double*);
+void tm_hooke_hex27_whole_hessian(const double*, const double*, double*);
+void tm_hooke_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_hooke_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_hooke_hex27_terms_energy(const double*, const double*);
+void tm_hooke_hex27_terms_gradient(const double*, const double*, double*);
+void tm_hooke_hex27_terms_hessian(const double*, const double*, double*);
+void tm_hooke_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_whole_energy(const double*, const double*);
 void tm_hooke_hex8_whole_gradient(const double*, const double*, double*);
@@ -521,6 +712,20 @@ void tm_hooke_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_tensor_stress(const double*, const double*, double*);
+int tm_hooke_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_hooke_prism15_whole_energy(const double*, const double*);
+void tm_hooke_prism15_whole_gradient(const double*, const double*, double*);
+void tm_hooke_prism15_whole_hessian(const double*, const double*, double*);
+void tm_hooke_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_hooke_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_hooke_prism15_terms_energy(const double*, const double*);
+void tm_hooke_prism15_terms_gradient(const double*, const double*, double*);
+void tm_hooke_prism15_terms_hessian(const double*, const double*, double*);
+void tm_hooke_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_prism15_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_whole_energy(const double*, const double*);
 void tm_hooke_prism6_whole_gradient(const double*, const double*, double*);
@@ -544,6 +749,20 @@ void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_tensor_stress(const double*, const double*, double*);
+int tm_hooke_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_hooke_pyramid13_whole_energy(const double*, const double*);
+void tm_hooke_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_hooke_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_hooke_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_hooke_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_hooke_pyramid13_terms_energy(const double*, const double*);
+void tm_hooke_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_hooke_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_hooke_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_pyramid13_terms_stress(const double*, const double*, double*);
+#endif
 int tm_hooke_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_whole_energy(const double*, const double*);
 void tm_hooke_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -606,6 +825,23 @@ void tm_hooke_quad8_terms_gradient(const double*, const double*, double*);
 void tm_hooke_quad8_terms_hessian(const double*, const double*, double*);
 void tm_hooke_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_hooke_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_hooke_quad9_whole_energy(const double*, const double*);
+void tm_hooke_quad9_whole_gradient(const double*, const double*, double*);
+void tm_hooke_quad9_whole_hessian(const double*, const double*, double*);
+void tm_hooke_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_quad9_whole_stress(const double*, const double*, double*);
+void tm_hooke_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_hooke_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_hooke_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_hooke_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_hooke_quad9_terms_energy(const double*, const double*);
+void tm_hooke_quad9_terms_gradient(const double*, const double*, double*);
+void tm_hooke_quad9_terms_hessian(const double*, const double*, double*);
+void tm_hooke_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_hooke_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_whole_energy(const double*, const double*);
@@ -698,6 +934,20 @@ void tm_mooney_rivlin_hex20_terms_hessian(const double*, const double*, double*)
 void tm_mooney_rivlin_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_mooney_rivlin_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex27_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_hex27_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex27_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_mooney_rivlin_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex27_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_hex27_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex27_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_mooney_rivlin_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*);
@@ -711,6 +961,20 @@ void tm_mooney_rivlin_hex8_terms_gradient(const double*, const double*, double*)
 void tm_mooney_rivlin_hex8_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_mooney_rivlin_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism15_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_prism15_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism15_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_mooney_rivlin_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism15_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_prism15_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism15_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_mooney_rivlin_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism6_whole_energy(const double*, const double*);
@@ -728,6 +992,20 @@ void tm_mooney_rivlin_prism6_terms_gradient(const double*, const double*, double
 void tm_mooney_rivlin_prism6_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_mooney_rivlin_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_pyramid13_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_mooney_rivlin_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid5_whole_energy(const double*, const double*);
@@ -779,6 +1057,23 @@ void tm_mooney_rivlin_quad8_terms_gradient(const double*, const double*, double*
 void tm_mooney_rivlin_quad8_terms_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_mooney_rivlin_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad9_whole_energy(const double*, const double*);
+void tm_mooney_rivlin_quad9_whole_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_whole_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad9_whole_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_mooney_rivlin_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad9_terms_energy(const double*, const double*);
+void tm_mooney_rivlin_quad9_terms_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_terms_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_mooney_rivlin_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet10_whole_energy(const double*, const double*);
@@ -859,6 +1154,20 @@ void tm_neohookean_hex20_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_neohookean_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_neohookean_hex27_whole_energy(const double*, const double*);
+void tm_neohookean_hex27_whole_gradient(const double*, const double*, double*);
+void tm_neohookean_hex27_whole_hessian(const double*, const double*, double*);
+void tm_neohookean_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_neohookean_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_neohookean_hex27_terms_energy(const double*, const double*);
+void tm_neohookean_hex27_terms_gradient(const double*, const double*, double*);
+void tm_neohookean_hex27_terms_hessian(const double*, const double*, double*);
+void tm_neohookean_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_neohookean_hex8_whole_gradient(const double*, const double*, double*);
@@ -872,6 +1181,20 @@ void tm_neohookean_hex8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_neohookean_prism15_whole_energy(const double*, const double*);
+void tm_neohookean_prism15_whole_gradient(const double*, const double*, double*);
+void tm_neohookean_prism15_whole_hessian(const double*, const double*, double*);
+void tm_neohookean_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_neohookean_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_neohookean_prism15_terms_energy(const double*, const double*);
+void tm_neohookean_prism15_terms_gradient(const double*, const double*, double*);
+void tm_neohookean_prism15_terms_hessian(const double*, const double*, double*);
+void tm_neohookean_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_whole_energy(const double*, const double*);
@@ -889,6 +1212,20 @@ void tm_neohookean_prism6_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_neohookean_pyramid13_whole_energy(const double*, const double*);
+void tm_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_neohookean_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_neohookean_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_neohookean_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_neohookean_pyramid13_terms_energy(const double*, const double*);
+void tm_neohookean_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_neohookean_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_neohookean_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_whole_energy(const double*, const double*);
@@ -940,6 +1277,23 @@ void tm_neohookean_quad8_terms_gradient(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_neohookean_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_neohookean_quad9_whole_energy(const double*, const double*);
+void tm_neohookean_quad9_whole_gradient(const double*, const double*, double*);
+void tm_neohookean_quad9_whole_hessian(const double*, const double*, double*);
+void tm_neohookean_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_quad9_whole_stress(const double*, const double*, double*);
+void tm_neohookean_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_neohookean_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_neohookean_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_neohookean_quad9_terms_energy(const double*, const double*);
+void tm_neohookean_quad9_terms_gradient(const double*, const double*, double*);
+void tm_neohookean_quad9_terms_hessian(const double*, const double*, double*);
+void tm_neohookean_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_whole_energy(const double*, const double*);
@@ -1020,6 +1374,20 @@ void tm_stable_neohookean_hex20_terms_hessian(const double*, const double*, doub
 void tm_stable_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_stable_neohookean_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_hex27_whole_energy(const double*, const double*);
+void tm_stable_neohookean_hex27_whole_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_hex27_whole_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stable_neohookean_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_hex27_terms_energy(const double*, const double*);
+void tm_stable_neohookean_hex27_terms_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_hex27_terms_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stable_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_whole_gradient(const double*, const double*, double*);
@@ -1033,6 +1401,20 @@ void tm_stable_neohookean_hex8_terms_gradient(const double*, const double*, doub
 void tm_stable_neohookean_hex8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_stable_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_prism15_whole_energy(const double*, const double*);
+void tm_stable_neohookean_prism15_whole_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_prism15_whole_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stable_neohookean_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_prism15_terms_energy(const double*, const double*);
+void tm_stable_neohookean_prism15_terms_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_prism15_terms_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_stable_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_whole_energy(const double*, const double*);
@@ -1050,6 +1432,20 @@ void tm_stable_neohookean_prism6_terms_gradient(const double*, const double*, do
 void tm_stable_neohookean_prism6_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_stable_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_pyramid13_whole_energy(const double*, const double*);
+void tm_stable_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stable_neohookean_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_pyramid13_terms_energy(const double*, const double*);
+void tm_stable_neohookean_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_stable_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_whole_energy(const double*, const double*);
@@ -1101,6 +1497,23 @@ void tm_stable_neohookean_quad8_terms_gradient(const double*, const double*, dou
 void tm_stable_neohookean_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_stable_neohookean_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_quad9_whole_energy(const double*, const double*);
+void tm_stable_neohookean_quad9_whole_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_whole_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_quad9_whole_stress(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_stable_neohookean_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stable_neohookean_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_quad9_terms_energy(const double*, const double*);
+void tm_stable_neohookean_quad9_terms_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_terms_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_stable_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_whole_energy(const double*, const double*);
@@ -1181,6 +1594,20 @@ void tm_stvk_hex20_terms_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_stvk_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_stvk_hex27_whole_energy(const double*, const double*);
+void tm_stvk_hex27_whole_gradient(const double*, const double*, double*);
+void tm_stvk_hex27_whole_hessian(const double*, const double*, double*);
+void tm_stvk_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stvk_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_stvk_hex27_terms_energy(const double*, const double*);
+void tm_stvk_hex27_terms_gradient(const double*, const double*, double*);
+void tm_stvk_hex27_terms_hessian(const double*, const double*, double*);
+void tm_stvk_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_whole_energy(const double*, const double*);
 void tm_stvk_hex8_whole_gradient(const double*, const double*, double*);
@@ -1201,6 +1628,20 @@ void tm_stvk_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_tensor_stress(const double*, const double*, double*);
+int tm_stvk_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_stvk_prism15_whole_energy(const double*, const double*);
+void tm_stvk_prism15_whole_gradient(const double*, const double*, double*);
+void tm_stvk_prism15_whole_hessian(const double*, const double*, double*);
+void tm_stvk_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stvk_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_stvk_prism15_terms_energy(const double*, const double*);
+void tm_stvk_prism15_terms_gradient(const double*, const double*, double*);
+void tm_stvk_prism15_terms_hessian(const double*, const double*, double*);
+void tm_stvk_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_prism15_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_whole_energy(const double*, const double*);
 void tm_stvk_prism6_whole_gradient(const double*, const double*, double*);
@@ -1224,6 +1665,20 @@ void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_tensor_stress(const double*, const double*, double*);
+int tm_stvk_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_stvk_pyramid13_whole_energy(const double*, const double*);
+void tm_stvk_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_stvk_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_stvk_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stvk_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_stvk_pyramid13_terms_energy(const double*, const double*);
+void tm_stvk_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_stvk_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_stvk_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_pyramid13_terms_stress(const double*, const double*, double*);
+#endif
 int tm_stvk_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_whole_energy(const double*, const double*);
 void tm_stvk_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1286,6 +1741,23 @@ void tm_stvk_quad8_terms_gradient(const double*, const double*, double*);
 void tm_stvk_quad8_terms_hessian(const double*, const double*, double*);
 void tm_stvk_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_stvk_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_stvk_quad9_whole_energy(const double*, const double*);
+void tm_stvk_quad9_whole_gradient(const double*, const double*, double*);
+void tm_stvk_quad9_whole_hessian(const double*, const double*, double*);
+void tm_stvk_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_quad9_whole_stress(const double*, const double*, double*);
+void tm_stvk_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_stvk_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_stvk_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_stvk_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_stvk_quad9_terms_energy(const double*, const double*);
+void tm_stvk_quad9_terms_gradient(const double*, const double*, double*);
+void tm_stvk_quad9_terms_hessian(const double*, const double*, double*);
+void tm_stvk_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_stvk_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_whole_energy(const double*, const double*);
@@ -1378,6 +1850,20 @@ void tm_veronda_westmann_hex20_terms_hessian(const double*, const double*, doubl
 void tm_veronda_westmann_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_veronda_westmann_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex27_whole_energy(const double*, const double*);
+void tm_veronda_westmann_hex27_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex27_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_veronda_westmann_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex27_terms_energy(const double*, const double*);
+void tm_veronda_westmann_hex27_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex27_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_veronda_westmann_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex8_whole_gradient(const double*, const double*, double*);
@@ -1391,6 +1877,20 @@ void tm_veronda_westmann_hex8_terms_gradient(const double*, const double*, doubl
 void tm_veronda_westmann_hex8_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_veronda_westmann_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism15_whole_energy(const double*, const double*);
+void tm_veronda_westmann_prism15_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism15_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_veronda_westmann_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism15_terms_energy(const double*, const double*);
+void tm_veronda_westmann_prism15_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism15_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_veronda_westmann_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism6_whole_energy(const double*, const double*);
@@ -1408,6 +1908,20 @@ void tm_veronda_westmann_prism6_terms_gradient(const double*, const double*, dou
 void tm_veronda_westmann_prism6_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_veronda_westmann_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_pyramid13_whole_energy(const double*, const double*);
+void tm_veronda_westmann_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_veronda_westmann_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_pyramid13_terms_energy(const double*, const double*);
+void tm_veronda_westmann_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_veronda_westmann_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid5_whole_energy(const double*, const double*);
@@ -1459,6 +1973,23 @@ void tm_veronda_westmann_quad8_terms_gradient(const double*, const double*, doub
 void tm_veronda_westmann_quad8_terms_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_veronda_westmann_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad9_whole_energy(const double*, const double*);
+void tm_veronda_westmann_quad9_whole_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_whole_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad9_whole_stress(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_veronda_westmann_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad9_terms_energy(const double*, const double*);
+void tm_veronda_westmann_quad9_terms_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_terms_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_veronda_westmann_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet10_whole_energy(const double*, const double*);
@@ -1539,6 +2070,20 @@ void tm_yeoh_hex20_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex20_terms_stress(const double*, const double*, double*);
 #endif
+int tm_yeoh_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex27_whole_energy(const double*, const double*);
+void tm_yeoh_hex27_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_hex27_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex27_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_yeoh_hex27_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex27_terms_energy(const double*, const double*);
+void tm_yeoh_hex27_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_hex27_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex27_terms_stress(const double*, const double*, double*);
+#endif
 int tm_yeoh_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex8_whole_energy(const double*, const double*);
 void tm_yeoh_hex8_whole_gradient(const double*, const double*, double*);
@@ -1552,6 +2097,20 @@ void tm_yeoh_hex8_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_hex8_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_yeoh_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism15_whole_energy(const double*, const double*);
+void tm_yeoh_prism15_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_prism15_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism15_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_yeoh_prism15_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism15_terms_energy(const double*, const double*);
+void tm_yeoh_prism15_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_prism15_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism15_terms_stress(const double*, const double*, double*);
 #endif
 int tm_yeoh_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism6_whole_energy(const double*, const double*);
@@ -1569,6 +2128,20 @@ void tm_yeoh_prism6_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_prism6_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_terms_stress(const double*, const double*, double*);
+#endif
+int tm_yeoh_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_pyramid13_whole_energy(const double*, const double*);
+void tm_yeoh_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid13_whole_stress(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_yeoh_pyramid13_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_pyramid13_terms_energy(const double*, const double*);
+void tm_yeoh_pyramid13_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_pyramid13_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid13_terms_stress(const double*, const double*, double*);
 #endif
 int tm_yeoh_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid5_whole_energy(const double*, const double*);
@@ -1620,6 +2193,23 @@ void tm_yeoh_quad8_terms_gradient(const double*, const double*, double*);
 void tm_yeoh_quad8_terms_hessian(const double*, const double*, double*);
 void tm_yeoh_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_quad8_terms_stress(const double*, const double*, double*);
+#endif
+int tm_yeoh_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad9_whole_energy(const double*, const double*);
+void tm_yeoh_quad9_whole_gradient(const double*, const double*, double*);
+void tm_yeoh_quad9_whole_hessian(const double*, const double*, double*);
+void tm_yeoh_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad9_whole_stress(const double*, const double*, double*);
+void tm_yeoh_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_quad9_whole_stress_batch(const double*, const double*, double*);
+#if TENSORMASS_TERMS_SPLIT
+int tm_yeoh_quad9_terms_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad9_terms_energy(const double*, const double*);
+void tm_yeoh_quad9_terms_gradient(const double*, const double*, double*);
+void tm_yeoh_quad9_terms_hessian(const double*, const double*, double*);
+void tm_yeoh_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad9_terms_stress(const double*, const double*, double*);
 #endif
 int tm_yeoh_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet10_whole_energy(const double*, const double*);
@@ -1725,6 +2315,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"arruda_boyce", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_whole_precompute, tm_arruda_boyce_hex27_whole_energy, tm_arruda_boyce_hex27_whole_gradient,
+   tm_arruda_boyce_hex27_whole_hessian, tm_arruda_boyce_hex27_whole_gradient_hessian, tm_arruda_boyce_hex27_whole_stress, 16200, 36693, 826335,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"arruda_boyce", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_terms_precompute, tm_arruda_boyce_hex27_terms_energy, tm_arruda_boyce_hex27_terms_gradient,
+   tm_arruda_boyce_hex27_terms_hessian, tm_arruda_boyce_hex27_terms_gradient_hessian, tm_arruda_boyce_hex27_terms_stress, 16200, 225261, 1836108,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
    tm_arruda_boyce_hex8_whole_hessian, tm_arruda_boyce_hex8_whole_gradient_hessian, tm_arruda_boyce_hex8_whole_stress, 2064, 5400, 36904,
@@ -1735,6 +2339,20 @@ const tm_kernel kKernels[] = {
   {"arruda_boyce", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_terms_precompute, tm_arruda_boyce_hex8_terms_energy, tm_arruda_boyce_hex8_terms_gradient,
    tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60416,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
+   tm_arruda_boyce_prism15_whole_hessian, tm_arruda_boyce_prism15_whole_gradient_hessian, tm_arruda_boyce_prism15_whole_stress, 6912, 16686, 200970,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"arruda_boyce", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_terms_precompute, tm_arruda_boyce_prism15_terms_energy, tm_arruda_boyce_prism15_terms_gradient,
+   tm_arruda_boyce_prism15_terms_hessian, tm_arruda_boyce_prism15_terms_gradient_hessian, tm_arruda_boyce_prism15_terms_stress, 6912, 40338, 375300,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -1750,6 +2368,20 @@ const tm_kernel kKernels[] = {
   {"arruda_boyce", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_terms_precompute, tm_arruda_boyce_prism6_terms_energy, tm_arruda_boyce_prism6_terms_gradient,
    tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32838,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
+   tm_arruda_boyce_pyramid13_whole_hessian, tm_arruda_boyce_pyramid13_whole_gradient_hessian, tm_arruda_boyce_pyramid13_whole_stress, 9396, 23085, 241191,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"arruda_boyce", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_terms_precompute, tm_arruda_boyce_pyramid13_terms_energy, tm_arruda_boyce_pyramid13_terms_gradient,
+   tm_arruda_boyce_pyramid13_terms_hessian, tm_arruda_boyce_pyramid13_terms_gradient_hessian, tm_arruda_boyce_pyramid13_terms_stress, 9396, 39852, 410859,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -1795,6 +2427,21 @@ const tm_kernel kKernels[] = {
   {"arruda_boyce", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_terms_precompute, tm_arruda_boyce_quad8_terms_energy, tm_arruda_boyce_quad8_terms_gradient,
    tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18396,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"arruda_boyce", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_whole_precompute, tm_arruda_boyce_quad9_whole_energy, tm_arruda_boyce_quad9_whole_gradient,
+   tm_arruda_boyce_quad9_whole_hessian, tm_arruda_boyce_quad9_whole_gradient_hessian, tm_arruda_boyce_quad9_whole_stress, 1395, 2970, 15453,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad9_whole_gradient_batch, tm_arruda_boyce_quad9_whole_gradient_hessian_batch,
+   tm_arruda_boyce_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"arruda_boyce", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_terms_precompute, tm_arruda_boyce_quad9_terms_energy, tm_arruda_boyce_quad9_terms_gradient,
+   tm_arruda_boyce_quad9_terms_hessian, tm_arruda_boyce_quad9_terms_gradient_hessian, tm_arruda_boyce_quad9_terms_stress, 1395, 5292, 20907,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -1872,6 +2519,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"corotational", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_whole_precompute, tm_corotational_hex27_whole_energy, tm_corotational_hex27_whole_gradient,
+   tm_corotational_hex27_whole_hessian, tm_corotational_hex27_whole_gradient_hessian, tm_corotational_hex27_whole_stress, 27783, 41580, 842373,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"corotational", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_terms_precompute, tm_corotational_hex27_terms_energy, tm_corotational_hex27_terms_gradient,
+   tm_corotational_hex27_terms_hessian, tm_corotational_hex27_terms_gradient_hessian, tm_corotational_hex27_terms_stress, 27783, 269244, 1999404,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
    tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
@@ -1882,6 +2543,20 @@ const tm_kernel kKernels[] = {
   {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
    tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 71168,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
+   tm_corotational_prism15_whole_hessian, tm_corotational_prism15_whole_gradient_hessian, tm_corotational_prism15_whole_stress, 14634, 19944, 211662,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"corotational", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_terms_precompute, tm_corotational_prism15_terms_energy, tm_corotational_prism15_terms_gradient,
+   tm_corotational_prism15_terms_hessian, tm_corotational_prism15_terms_gradient_hessian, tm_corotational_prism15_terms_stress, 14634, 50112, 411588,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -1897,6 +2572,20 @@ const tm_kernel kKernels[] = {
   {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
    tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 40902,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
+   tm_corotational_pyramid13_whole_hessian, tm_corotational_pyramid13_whole_gradient_hessian, tm_corotational_pyramid13_whole_stress, 20979, 27972, 257229,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"corotational", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_terms_precompute, tm_corotational_pyramid13_terms_energy, tm_corotational_pyramid13_terms_gradient,
+   tm_corotational_pyramid13_terms_hessian, tm_corotational_pyramid13_terms_gradient_hessian, tm_corotational_pyramid13_terms_stress, 20979, 49626, 447147,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -1942,6 +2631,21 @@ const tm_kernel kKernels[] = {
   {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
    tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 13644,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"corotational", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_whole_precompute, tm_corotational_quad9_whole_energy, tm_corotational_quad9_whole_gradient,
+   tm_corotational_quad9_whole_hessian, tm_corotational_quad9_whole_gradient_hessian, tm_corotational_quad9_whole_stress, 1008, 1737, 12753,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_corotational_quad9_whole_gradient_batch, tm_corotational_quad9_whole_gradient_hessian_batch,
+   tm_corotational_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"corotational", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_terms_precompute, tm_corotational_quad9_terms_energy, tm_corotational_quad9_terms_gradient,
+   tm_corotational_quad9_terms_hessian, tm_corotational_quad9_terms_gradient_hessian, tm_corotational_quad9_terms_stress, 1008, 2826, 16155,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2019,6 +2723,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"gent", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
+   kGentParameters, kGentLimits, tm_gent_hex27_whole_precompute, tm_gent_hex27_whole_energy, tm_gent_hex27_whole_gradient,
+   tm_gent_hex27_whole_hessian, tm_gent_hex27_whole_gradient_hessian, tm_gent_hex27_whole_stress, 14796, 31914, 818667,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"gent", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
+   kGentParameters, kGentLimits, tm_gent_hex27_terms_precompute, tm_gent_hex27_terms_energy, tm_gent_hex27_terms_gradient,
+   tm_gent_hex27_terms_hessian, tm_gent_hex27_terms_gradient_hessian, tm_gent_hex27_terms_stress, 14796, 182250, 1788480,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
    tm_gent_hex8_whole_hessian, tm_gent_hex8_whole_gradient_hessian, tm_gent_hex8_whole_stress, 1648, 3984, 34632,
@@ -2029,6 +2747,20 @@ const tm_kernel kKernels[] = {
   {"gent", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_terms_precompute, tm_gent_hex8_terms_energy, tm_gent_hex8_terms_gradient,
    tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57280,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
+   kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
+   tm_gent_prism15_whole_hessian, tm_gent_prism15_whole_gradient_hessian, tm_gent_prism15_whole_stress, 5976, 13500, 195858,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"gent", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
+   kGentParameters, kGentLimits, tm_gent_prism15_terms_precompute, tm_gent_prism15_terms_energy, tm_gent_prism15_terms_gradient,
+   tm_gent_prism15_terms_hessian, tm_gent_prism15_terms_gradient_hessian, tm_gent_prism15_terms_stress, 5976, 30780, 364716,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2044,6 +2776,20 @@ const tm_kernel kKernels[] = {
   {"gent", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_terms_precompute, tm_gent_prism6_terms_energy, tm_gent_prism6_terms_gradient,
    tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30486,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
+   kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
+   tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"gent", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
+   kGentParameters, kGentLimits, tm_gent_pyramid13_terms_precompute, tm_gent_pyramid13_terms_energy, tm_gent_pyramid13_terms_gradient,
+   tm_gent_pyramid13_terms_hessian, tm_gent_pyramid13_terms_gradient_hessian, tm_gent_pyramid13_terms_stress, 7992, 30294, 400275,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2089,6 +2835,21 @@ const tm_kernel kKernels[] = {
   {"gent", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_terms_precompute, tm_gent_quad8_terms_energy, tm_gent_quad8_terms_gradient,
    tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14922,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"gent", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
+   kGentParameters, kGentLimits, tm_gent_quad9_whole_precompute, tm_gent_quad9_whole_energy, tm_gent_quad9_whole_gradient,
+   tm_gent_quad9_whole_hessian, tm_gent_quad9_whole_gradient_hessian, tm_gent_quad9_whole_stress, 927, 1854, 13347,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_quad9_whole_gradient_batch, tm_gent_quad9_whole_gradient_hessian_batch,
+   tm_gent_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"gent", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
+   kGentParameters, kGentLimits, tm_gent_quad9_terms_precompute, tm_gent_quad9_terms_energy, tm_gent_quad9_terms_gradient,
+   tm_gent_quad9_terms_hessian, tm_gent_quad9_terms_gradient_hessian, tm_gent_quad9_terms_stress, 927, 3060, 17433,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2166,6 +2927,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"hooke", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
+   kHookeParameters, kHookeLimits, tm_hooke_hex27_whole_precompute, tm_hooke_hex27_whole_energy, tm_hooke_hex27_whole_gradient,
+   tm_hooke_hex27_whole_hessian, tm_hooke_hex27_whole_gradient_hessian, tm_hooke_hex27_whole_stress, 13743, 26622, 787806,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"hooke", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
+   kHookeParameters, kHookeLimits, tm_hooke_hex27_terms_precompute, tm_hooke_hex27_terms_energy, tm_hooke_hex27_terms_gradient,
+   tm_hooke_hex27_terms_hessian, tm_hooke_hex27_terms_gradient_hessian, tm_hooke_hex27_terms_stress, 13743, 134622, 591948,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
    tm_hooke_hex8_whole_hessian, tm_hooke_hex8_whole_gradient_hessian, tm_hooke_hex8_whole_stress, 1336, 2416, 25488,
@@ -2185,6 +2960,20 @@ const tm_kernel kKernels[] = {
    tm_hooke_hex8_tensor_hessian, tm_hooke_hex8_tensor_gradient_hessian, tm_hooke_hex8_tensor_stress, 1200, 1152, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
+
+  {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
+   kHookeParameters, kHookeLimits, tm_hooke_prism15_whole_precompute, tm_hooke_prism15_whole_energy, tm_hooke_prism15_whole_gradient,
+   tm_hooke_prism15_whole_hessian, tm_hooke_prism15_whole_gradient_hessian, tm_hooke_prism15_whole_stress, 5274, 9972, 175284,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"hooke", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
+   kHookeParameters, kHookeLimits, tm_hooke_prism15_terms_precompute, tm_hooke_prism15_terms_energy, tm_hooke_prism15_terms_gradient,
+   tm_hooke_prism15_terms_hessian, tm_hooke_prism15_terms_gradient_hessian, tm_hooke_prism15_terms_stress, 5274, 20196, 112428,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
@@ -2206,6 +2995,20 @@ const tm_kernel kKernels[] = {
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
    0, nullptr, nullptr, nullptr},
+
+  {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid13_whole_precompute, tm_hooke_pyramid13_whole_energy, tm_hooke_pyramid13_whole_gradient,
+   tm_hooke_pyramid13_whole_hessian, tm_hooke_pyramid13_whole_gradient_hessian, tm_hooke_pyramid13_whole_stress, 6939, 13014, 202662,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"hooke", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid13_terms_precompute, tm_hooke_pyramid13_terms_energy, tm_hooke_pyramid13_terms_gradient,
+   tm_hooke_pyramid13_terms_hessian, tm_hooke_pyramid13_terms_gradient_hessian, tm_hooke_pyramid13_terms_stress, 6939, 19710, 123039,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
 
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
@@ -2260,6 +3063,21 @@ const tm_kernel kKernels[] = {
   {"hooke", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
    tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 7164,
+   1, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"hooke", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
+   kHookeParameters, kHookeLimits, tm_hooke_quad9_whole_precompute, tm_hooke_quad9_whole_energy, tm_hooke_quad9_whole_gradient,
+   tm_hooke_quad9_whole_hessian, tm_hooke_quad9_whole_gradient_hessian, tm_hooke_quad9_whole_stress, 765, 1386, 10980,
+   1, 0,
+   tensormass::kernel::kBatchWidth, tm_hooke_quad9_whole_gradient_batch, tm_hooke_quad9_whole_gradient_hessian_batch,
+   tm_hooke_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"hooke", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
+   kHookeParameters, kHookeLimits, tm_hooke_quad9_terms_precompute, tm_hooke_quad9_terms_energy, tm_hooke_quad9_terms_gradient,
+   tm_hooke_quad9_terms_hessian, tm_hooke_quad9_terms_gradient_hessian, tm_hooke_quad9_terms_stress, 765, 2124, 8865,
    1, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2349,6 +3167,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_whole_precompute, tm_mooney_rivlin_hex27_whole_energy, tm_mooney_rivlin_hex27_whole_gradient,
+   tm_mooney_rivlin_hex27_whole_hessian, tm_mooney_rivlin_hex27_whole_gradient_hessian, tm_mooney_rivlin_hex27_whole_stress, 15768, 35667, 816318,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"mooney_rivlin", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_terms_precompute, tm_mooney_rivlin_hex27_terms_energy, tm_mooney_rivlin_hex27_terms_gradient,
+   tm_mooney_rivlin_hex27_terms_hessian, tm_mooney_rivlin_hex27_terms_gradient_hessian, tm_mooney_rivlin_hex27_terms_stress, 15768, 216027, 1763451,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
    tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 5096, 33936,
@@ -2359,6 +3191,20 @@ const tm_kernel kKernels[] = {
   {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
    tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55632,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
+   tm_mooney_rivlin_prism15_whole_hessian, tm_mooney_rivlin_prism15_whole_gradient_hessian, tm_mooney_rivlin_prism15_whole_stress, 6624, 16002, 194292,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"mooney_rivlin", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_terms_precompute, tm_mooney_rivlin_prism15_terms_energy, tm_mooney_rivlin_prism15_terms_gradient,
+   tm_mooney_rivlin_prism15_terms_hessian, tm_mooney_rivlin_prism15_terms_gradient_hessian, tm_mooney_rivlin_prism15_terms_stress, 6624, 38286, 359154,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2374,6 +3220,20 @@ const tm_kernel kKernels[] = {
   {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
    tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29250,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
+   tm_mooney_rivlin_pyramid13_whole_hessian, tm_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_mooney_rivlin_pyramid13_whole_stress, 8964, 22059, 231174,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"mooney_rivlin", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_terms_precompute, tm_mooney_rivlin_pyramid13_terms_energy, tm_mooney_rivlin_pyramid13_terms_gradient,
+   tm_mooney_rivlin_pyramid13_terms_hessian, tm_mooney_rivlin_pyramid13_terms_gradient_hessian, tm_mooney_rivlin_pyramid13_terms_stress, 8964, 37800, 394713,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2419,6 +3279,21 @@ const tm_kernel kKernels[] = {
   {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
    tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15192,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_whole_precompute, tm_mooney_rivlin_quad9_whole_energy, tm_mooney_rivlin_quad9_whole_gradient,
+   tm_mooney_rivlin_quad9_whole_hessian, tm_mooney_rivlin_quad9_whole_gradient_hessian, tm_mooney_rivlin_quad9_whole_stress, 1071, 2340, 13554,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad9_whole_gradient_batch, tm_mooney_rivlin_quad9_whole_gradient_hessian_batch,
+   tm_mooney_rivlin_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"mooney_rivlin", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_terms_precompute, tm_mooney_rivlin_quad9_terms_energy, tm_mooney_rivlin_quad9_terms_gradient,
+   tm_mooney_rivlin_quad9_terms_hessian, tm_mooney_rivlin_quad9_terms_gradient_hessian, tm_mooney_rivlin_quad9_terms_stress, 1071, 4032, 17703,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2496,6 +3371,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_whole_precompute, tm_neohookean_hex27_whole_energy, tm_neohookean_hex27_whole_gradient,
+   tm_neohookean_hex27_whole_hessian, tm_neohookean_hex27_whole_gradient_hessian, tm_neohookean_hex27_whole_stress, 14580, 29565, 801387,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"neohookean", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_terms_precompute, tm_neohookean_hex27_terms_energy, tm_neohookean_hex27_terms_gradient,
+   tm_neohookean_hex27_terms_hessian, tm_neohookean_hex27_terms_gradient_hessian, tm_neohookean_hex27_terms_stress, 14580, 161109, 1633203,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
    tm_neohookean_hex8_whole_hessian, tm_neohookean_hex8_whole_gradient_hessian, tm_neohookean_hex8_whole_stress, 1584, 3288, 29512,
@@ -2506,6 +3395,20 @@ const tm_kernel kKernels[] = {
   {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
    tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 47056,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
+   tm_neohookean_prism15_whole_hessian, tm_neohookean_prism15_whole_gradient_hessian, tm_neohookean_prism15_whole_stress, 5832, 11934, 184338,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"neohookean", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_terms_precompute, tm_neohookean_prism15_terms_energy, tm_neohookean_prism15_terms_gradient,
+   tm_neohookean_prism15_terms_hessian, tm_neohookean_prism15_terms_gradient_hessian, tm_neohookean_prism15_terms_stress, 5832, 26082, 330210,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2521,6 +3424,20 @@ const tm_kernel kKernels[] = {
   {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
    tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22818,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
+   tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"neohookean", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_terms_precompute, tm_neohookean_pyramid13_terms_energy, tm_neohookean_pyramid13_terms_gradient,
+   tm_neohookean_pyramid13_terms_hessian, tm_neohookean_pyramid13_terms_gradient_hessian, tm_neohookean_pyramid13_terms_stress, 7776, 25596, 365769,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2566,6 +3483,21 @@ const tm_kernel kKernels[] = {
   {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
    tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12348,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_whole_precompute, tm_neohookean_quad9_whole_energy, tm_neohookean_quad9_whole_gradient,
+   tm_neohookean_quad9_whole_hessian, tm_neohookean_quad9_whole_gradient_hessian, tm_neohookean_quad9_whole_stress, 846, 1629, 12078,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_neohookean_quad9_whole_gradient_batch, tm_neohookean_quad9_whole_gradient_hessian_batch,
+   tm_neohookean_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"neohookean", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_terms_precompute, tm_neohookean_quad9_terms_energy, tm_neohookean_quad9_terms_gradient,
+   tm_neohookean_quad9_terms_hessian, tm_neohookean_quad9_terms_gradient_hessian, tm_neohookean_quad9_terms_stress, 846, 2610, 14859,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2643,6 +3575,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"stable_neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_whole_precompute, tm_stable_neohookean_hex27_whole_energy, tm_stable_neohookean_hex27_whole_gradient,
+   tm_stable_neohookean_hex27_whole_hessian, tm_stable_neohookean_hex27_whole_gradient_hessian, tm_stable_neohookean_hex27_whole_stress, 15471, 31212, 800847,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stable_neohookean", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_terms_precompute, tm_stable_neohookean_hex27_terms_energy, tm_stable_neohookean_hex27_terms_gradient,
+   tm_stable_neohookean_hex27_terms_hessian, tm_stable_neohookean_hex27_terms_gradient_hessian, tm_stable_neohookean_hex27_terms_stress, 15471, 175932, 1628343,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
    tm_stable_neohookean_hex8_whole_hessian, tm_stable_neohookean_hex8_whole_gradient_hessian, tm_stable_neohookean_hex8_whole_stress, 1848, 3776, 29352,
@@ -2653,6 +3599,20 @@ const tm_kernel kKernels[] = {
   {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
    tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46736,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
+   tm_stable_neohookean_prism15_whole_hessian, tm_stable_neohookean_prism15_whole_gradient_hessian, tm_stable_neohookean_prism15_whole_stress, 6426, 13032, 183978,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stable_neohookean", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_terms_precompute, tm_stable_neohookean_prism15_terms_energy, tm_stable_neohookean_prism15_terms_gradient,
+   tm_stable_neohookean_prism15_terms_hessian, tm_stable_neohookean_prism15_terms_gradient_hessian, tm_stable_neohookean_prism15_terms_stress, 6426, 29376, 329130,
    0, 1,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2668,6 +3628,20 @@ const tm_kernel kKernels[] = {
   {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
    tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22578,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
+   tm_stable_neohookean_pyramid13_whole_hessian, tm_stable_neohookean_pyramid13_whole_gradient_hessian, tm_stable_neohookean_pyramid13_whole_stress, 8667, 17604, 215703,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stable_neohookean", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_terms_precompute, tm_stable_neohookean_pyramid13_terms_energy, tm_stable_neohookean_pyramid13_terms_gradient,
+   tm_stable_neohookean_pyramid13_terms_hessian, tm_stable_neohookean_pyramid13_terms_gradient_hessian, tm_stable_neohookean_pyramid13_terms_stress, 8667, 28890, 364689,
    0, 1,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2713,6 +3687,21 @@ const tm_kernel kKernels[] = {
   {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
    tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12384,
+   0, 1,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"stable_neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_whole_precompute, tm_stable_neohookean_quad9_whole_energy, tm_stable_neohookean_quad9_whole_gradient,
+   tm_stable_neohookean_quad9_whole_hessian, tm_stable_neohookean_quad9_whole_gradient_hessian, tm_stable_neohookean_quad9_whole_stress, 1053, 1872, 12096,
+   0, 1,
+   tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad9_whole_gradient_batch, tm_stable_neohookean_quad9_whole_gradient_hessian_batch,
+   tm_stable_neohookean_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stable_neohookean", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_terms_precompute, tm_stable_neohookean_quad9_terms_energy, tm_stable_neohookean_quad9_terms_gradient,
+   tm_stable_neohookean_quad9_terms_hessian, tm_stable_neohookean_quad9_terms_gradient_hessian, tm_stable_neohookean_quad9_terms_stress, 1053, 3096, 14895,
    0, 1,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2790,6 +3779,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"stvk", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
+   kStvkParameters, kStvkLimits, tm_stvk_hex27_whole_precompute, tm_stvk_hex27_whole_energy, tm_stvk_hex27_whole_gradient,
+   tm_stvk_hex27_whole_hessian, tm_stvk_hex27_whole_gradient_hessian, tm_stvk_hex27_whole_stress, 14904, 30105, 800064,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stvk", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
+   kStvkParameters, kStvkLimits, tm_stvk_hex27_terms_precompute, tm_stvk_hex27_terms_energy, tm_stvk_hex27_terms_gradient,
+   tm_stvk_hex27_terms_hessian, tm_stvk_hex27_terms_gradient_hessian, tm_stvk_hex27_terms_stress, 14904, 165969, 1609875,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
    tm_stvk_hex8_whole_hessian, tm_stvk_hex8_whole_gradient_hessian, tm_stvk_hex8_whole_stress, 1680, 3448, 29120,
@@ -2809,6 +3812,20 @@ const tm_kernel kKernels[] = {
    tm_stvk_hex8_tensor_hessian, tm_stvk_hex8_tensor_gradient_hessian, tm_stvk_hex8_tensor_stress, 5844, 9012, 57684,
    0, 0,
    0, nullptr, nullptr, nullptr},
+
+  {"stvk", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
+   kStvkParameters, kStvkLimits, tm_stvk_prism15_whole_precompute, tm_stvk_prism15_whole_energy, tm_stvk_prism15_whole_gradient,
+   tm_stvk_prism15_whole_hessian, tm_stvk_prism15_whole_gradient_hessian, tm_stvk_prism15_whole_stress, 6048, 12294, 183456,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stvk", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
+   kStvkParameters, kStvkLimits, tm_stvk_prism15_terms_precompute, tm_stvk_prism15_terms_energy, tm_stvk_prism15_terms_gradient,
+   tm_stvk_prism15_terms_hessian, tm_stvk_prism15_terms_gradient_hessian, tm_stvk_prism15_terms_stress, 6048, 27162, 325026,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
@@ -2830,6 +3847,20 @@ const tm_kernel kKernels[] = {
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
    0, 0,
    0, nullptr, nullptr, nullptr},
+
+  {"stvk", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid13_whole_precompute, tm_stvk_pyramid13_whole_energy, tm_stvk_pyramid13_whole_gradient,
+   tm_stvk_pyramid13_whole_hessian, tm_stvk_pyramid13_whole_gradient_hessian, tm_stvk_pyramid13_whole_stress, 8100, 16497, 214920,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stvk", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid13_terms_precompute, tm_stvk_pyramid13_terms_energy, tm_stvk_pyramid13_terms_gradient,
+   tm_stvk_pyramid13_terms_hessian, tm_stvk_pyramid13_terms_gradient_hessian, tm_stvk_pyramid13_terms_stress, 8100, 26676, 360585,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
 
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
@@ -2884,6 +3915,21 @@ const tm_kernel kKernels[] = {
   {"stvk", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
    tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 12222,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"stvk", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
+   kStvkParameters, kStvkLimits, tm_stvk_quad9_whole_precompute, tm_stvk_quad9_whole_energy, tm_stvk_quad9_whole_gradient,
+   tm_stvk_quad9_whole_hessian, tm_stvk_quad9_whole_gradient_hessian, tm_stvk_quad9_whole_stress, 918, 1782, 12096,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_stvk_quad9_whole_gradient_batch, tm_stvk_quad9_whole_gradient_hessian_batch,
+   tm_stvk_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"stvk", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
+   kStvkParameters, kStvkLimits, tm_stvk_quad9_terms_precompute, tm_stvk_quad9_terms_energy, tm_stvk_quad9_terms_gradient,
+   tm_stvk_quad9_terms_hessian, tm_stvk_quad9_terms_gradient_hessian, tm_stvk_quad9_terms_stress, 918, 2916, 14733,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2973,6 +4019,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"veronda_westmann", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_whole_precompute, tm_veronda_westmann_hex27_whole_energy, tm_veronda_westmann_hex27_whole_gradient,
+   tm_veronda_westmann_hex27_whole_hessian, tm_veronda_westmann_hex27_whole_gradient_hessian, tm_veronda_westmann_hex27_whole_stress, 15903, 35910, 830547,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"veronda_westmann", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_terms_precompute, tm_veronda_westmann_hex27_terms_energy, tm_veronda_westmann_hex27_terms_gradient,
+   tm_veronda_westmann_hex27_terms_hessian, tm_veronda_westmann_hex27_terms_gradient_hessian, tm_veronda_westmann_hex27_terms_stress, 15903, 218214, 1891269,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
    tm_veronda_westmann_hex8_whole_hessian, tm_veronda_westmann_hex8_whole_gradient_hessian, tm_veronda_westmann_hex8_whole_stress, 1976, 5168, 38152,
@@ -2983,6 +4043,20 @@ const tm_kernel kKernels[] = {
   {"veronda_westmann", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_terms_precompute, tm_veronda_westmann_hex8_terms_energy, tm_veronda_westmann_hex8_terms_gradient,
    tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64048,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
+   tm_veronda_westmann_prism15_whole_hessian, tm_veronda_westmann_prism15_whole_gradient_hessian, tm_veronda_westmann_prism15_whole_stress, 6714, 16164, 203778,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"veronda_westmann", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_terms_precompute, tm_veronda_westmann_prism15_terms_energy, tm_veronda_westmann_prism15_terms_gradient,
+   tm_veronda_westmann_prism15_terms_hessian, tm_veronda_westmann_prism15_terms_gradient_hessian, tm_veronda_westmann_prism15_terms_stress, 6714, 38772, 387558,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -2998,6 +4072,20 @@ const tm_kernel kKernels[] = {
   {"veronda_westmann", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_terms_precompute, tm_veronda_westmann_prism6_terms_energy, tm_veronda_westmann_prism6_terms_gradient,
    tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35562,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
+   tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"veronda_westmann", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_terms_precompute, tm_veronda_westmann_pyramid13_terms_energy, tm_veronda_westmann_pyramid13_terms_gradient,
+   tm_veronda_westmann_pyramid13_terms_hessian, tm_veronda_westmann_pyramid13_terms_gradient_hessian, tm_veronda_westmann_pyramid13_terms_stress, 9099, 38286, 423117,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -3043,6 +4131,21 @@ const tm_kernel kKernels[] = {
   {"veronda_westmann", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_terms_precompute, tm_veronda_westmann_quad8_terms_energy, tm_veronda_westmann_quad8_terms_gradient,
    tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16848,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"veronda_westmann", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_whole_precompute, tm_veronda_westmann_quad9_whole_energy, tm_veronda_westmann_quad9_whole_gradient,
+   tm_veronda_westmann_quad9_whole_hessian, tm_veronda_westmann_quad9_whole_gradient_hessian, tm_veronda_westmann_quad9_whole_stress, 1116, 2457, 14436,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad9_whole_gradient_batch, tm_veronda_westmann_quad9_whole_gradient_hessian_batch,
+   tm_veronda_westmann_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"veronda_westmann", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_terms_precompute, tm_veronda_westmann_quad9_terms_energy, tm_veronda_westmann_quad9_terms_gradient,
+   tm_veronda_westmann_quad9_terms_hessian, tm_veronda_westmann_quad9_terms_gradient_hessian, tm_veronda_westmann_quad9_terms_stress, 1116, 4266, 19359,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -3120,6 +4223,20 @@ const tm_kernel kKernels[] = {
    0, nullptr, nullptr, nullptr},
 #endif
 
+  {"yeoh", "hex27", "whole", 3, 27, 81, 27, 4, 4, 2218,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex27_whole_precompute, tm_yeoh_hex27_whole_energy, tm_yeoh_hex27_whole_gradient,
+   tm_yeoh_hex27_whole_hessian, tm_yeoh_hex27_whole_gradient_hessian, tm_yeoh_hex27_whole_stress, 14823, 33453, 814779,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"yeoh", "hex27", "terms", 3, 27, 81, 27, 4, 4, 2218,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex27_terms_precompute, tm_yeoh_hex27_terms_energy, tm_yeoh_hex27_terms_gradient,
+   tm_yeoh_hex27_terms_hessian, tm_yeoh_hex27_terms_gradient_hessian, tm_yeoh_hex27_terms_stress, 14823, 196101, 1744254,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
    tm_yeoh_hex8_whole_hessian, tm_yeoh_hex8_whole_gradient_hessian, tm_yeoh_hex8_whole_stress, 1656, 4440, 33480,
@@ -3130,6 +4247,20 @@ const tm_kernel kKernels[] = {
   {"yeoh", "hex8", "terms", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_terms_precompute, tm_yeoh_hex8_terms_energy, tm_yeoh_hex8_terms_gradient,
    tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54368,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
+   tm_yeoh_prism15_whole_hessian, tm_yeoh_prism15_whole_gradient_hessian, tm_yeoh_prism15_whole_stress, 5994, 14526, 193266,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"yeoh", "prism15", "terms", 3, 15, 45, 18, 4, 4, 832,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism15_terms_precompute, tm_yeoh_prism15_terms_energy, tm_yeoh_prism15_terms_gradient,
+   tm_yeoh_prism15_terms_hessian, tm_yeoh_prism15_terms_gradient_hessian, tm_yeoh_prism15_terms_stress, 5994, 33858, 354888,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -3145,6 +4276,20 @@ const tm_kernel kKernels[] = {
   {"yeoh", "prism6", "terms", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_terms_precompute, tm_yeoh_prism6_terms_energy, tm_yeoh_prism6_terms_gradient,
    tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28302,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
+   kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
+   tm_yeoh_pyramid13_whole_hessian, tm_yeoh_pyramid13_whole_gradient_hessian, tm_yeoh_pyramid13_whole_stress, 8019, 19845, 229635,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"yeoh", "pyramid13", "terms", 3, 13, 39, 27, 4, 4, 1084,
+   kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_terms_precompute, tm_yeoh_pyramid13_terms_energy, tm_yeoh_pyramid13_terms_gradient,
+   tm_yeoh_pyramid13_terms_hessian, tm_yeoh_pyramid13_terms_gradient_hessian, tm_yeoh_pyramid13_terms_stress, 8019, 33372, 390447,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif
@@ -3190,6 +4335,21 @@ const tm_kernel kKernels[] = {
   {"yeoh", "quad8", "terms", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_terms_precompute, tm_yeoh_quad8_terms_energy, tm_yeoh_quad8_terms_gradient,
    tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15300,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+#endif
+
+  {"yeoh", "quad9", "whole", 2, 9, 18, 9, 4, 4, 175,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad9_whole_precompute, tm_yeoh_quad9_whole_energy, tm_yeoh_quad9_whole_gradient,
+   tm_yeoh_quad9_whole_hessian, tm_yeoh_quad9_whole_gradient_hessian, tm_yeoh_quad9_whole_stress, 936, 2097, 13707,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_quad9_whole_gradient_batch, tm_yeoh_quad9_whole_gradient_hessian_batch,
+   tm_yeoh_quad9_whole_stress_batch},
+
+#if TENSORMASS_TERMS_SPLIT
+  {"yeoh", "quad9", "terms", 2, 9, 18, 9, 4, 4, 175,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad9_terms_precompute, tm_yeoh_quad9_terms_energy, tm_yeoh_quad9_terms_gradient,
+   tm_yeoh_quad9_terms_hessian, tm_yeoh_quad9_terms_gradient_hessian, tm_yeoh_quad9_terms_stress, 936, 3546, 17811,
    0, 0,
    0, nullptr, nullptr, nullptr},
 #endif

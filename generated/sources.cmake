@@ -3,45 +3,61 @@
 set(TENSORMASS_GENERATED_SOURCES
   elements.cpp
   kernels/arruda_boyce_hex20_whole.cpp
+  kernels/arruda_boyce_hex27_whole.cpp
   kernels/arruda_boyce_hex8_whole.cpp
+  kernels/arruda_boyce_prism15_whole.cpp
   kernels/arruda_boyce_prism6_whole.cpp
+  kernels/arruda_boyce_pyramid13_whole.cpp
   kernels/arruda_boyce_pyramid5_whole.cpp
   kernels/arruda_boyce_quad4_whole.cpp
   kernels/arruda_boyce_quad8_whole.cpp
+  kernels/arruda_boyce_quad9_whole.cpp
   kernels/arruda_boyce_tet10_whole.cpp
   kernels/arruda_boyce_tet4_whole.cpp
   kernels/arruda_boyce_tri3_whole.cpp
   kernels/arruda_boyce_tri6_whole.cpp
   kernels/corotational_hex20_whole.cpp
+  kernels/corotational_hex27_whole.cpp
   kernels/corotational_hex8_whole.cpp
+  kernels/corotational_prism15_whole.cpp
   kernels/corotational_prism6_whole.cpp
+  kernels/corotational_pyramid13_whole.cpp
   kernels/corotational_pyramid5_whole.cpp
   kernels/corotational_quad4_whole.cpp
   kernels/corotational_quad8_whole.cpp
+  kernels/corotational_quad9_whole.cpp
   kernels/corotational_tet10_whole.cpp
   kernels/corotational_tet4_whole.cpp
   kernels/corotational_tri3_whole.cpp
   kernels/corotational_tri6_whole.cpp
   kernels/gent_hex20_whole.cpp
+  kernels/gent_hex27_whole.cpp
   kernels/gent_hex8_whole.cpp
+  kernels/gent_prism15_whole.cpp
   kernels/gent_prism6_whole.cpp
+  kernels/gent_pyramid13_whole.cpp
   kernels/gent_pyramid5_whole.cpp
   kernels/gent_quad4_whole.cpp
   kernels/gent_quad8_whole.cpp
+  kernels/gent_quad9_whole.cpp
   kernels/gent_tet10_whole.cpp
   kernels/gent_tet4_whole.cpp
   kernels/gent_tri3_whole.cpp
   kernels/gent_tri6_whole.cpp
   kernels/hooke_hex20_whole.cpp
+  kernels/hooke_hex27_whole.cpp
   kernels/hooke_hex8_tensor.cpp
   kernels/hooke_hex8_whole.cpp
+  kernels/hooke_prism15_whole.cpp
   kernels/hooke_prism6_tensor.cpp
   kernels/hooke_prism6_whole.cpp
+  kernels/hooke_pyramid13_whole.cpp
   kernels/hooke_pyramid5_tensor.cpp
   kernels/hooke_pyramid5_whole.cpp
   kernels/hooke_quad4_tensor.cpp
   kernels/hooke_quad4_whole.cpp
   kernels/hooke_quad8_whole.cpp
+  kernels/hooke_quad9_whole.cpp
   kernels/hooke_tet10_whole.cpp
   kernels/hooke_tet4_tensor.cpp
   kernels/hooke_tet4_whole.cpp
@@ -49,45 +65,61 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_tri3_whole.cpp
   kernels/hooke_tri6_whole.cpp
   kernels/mooney_rivlin_hex20_whole.cpp
+  kernels/mooney_rivlin_hex27_whole.cpp
   kernels/mooney_rivlin_hex8_whole.cpp
+  kernels/mooney_rivlin_prism15_whole.cpp
   kernels/mooney_rivlin_prism6_whole.cpp
+  kernels/mooney_rivlin_pyramid13_whole.cpp
   kernels/mooney_rivlin_pyramid5_whole.cpp
   kernels/mooney_rivlin_quad4_whole.cpp
   kernels/mooney_rivlin_quad8_whole.cpp
+  kernels/mooney_rivlin_quad9_whole.cpp
   kernels/mooney_rivlin_tet10_whole.cpp
   kernels/mooney_rivlin_tet4_whole.cpp
   kernels/mooney_rivlin_tri3_whole.cpp
   kernels/mooney_rivlin_tri6_whole.cpp
   kernels/neohookean_hex20_whole.cpp
+  kernels/neohookean_hex27_whole.cpp
   kernels/neohookean_hex8_whole.cpp
+  kernels/neohookean_prism15_whole.cpp
   kernels/neohookean_prism6_whole.cpp
+  kernels/neohookean_pyramid13_whole.cpp
   kernels/neohookean_pyramid5_whole.cpp
   kernels/neohookean_quad4_whole.cpp
   kernels/neohookean_quad8_whole.cpp
+  kernels/neohookean_quad9_whole.cpp
   kernels/neohookean_tet10_whole.cpp
   kernels/neohookean_tet4_whole.cpp
   kernels/neohookean_tri3_whole.cpp
   kernels/neohookean_tri6_whole.cpp
   kernels/stable_neohookean_hex20_whole.cpp
+  kernels/stable_neohookean_hex27_whole.cpp
   kernels/stable_neohookean_hex8_whole.cpp
+  kernels/stable_neohookean_prism15_whole.cpp
   kernels/stable_neohookean_prism6_whole.cpp
+  kernels/stable_neohookean_pyramid13_whole.cpp
   kernels/stable_neohookean_pyramid5_whole.cpp
   kernels/stable_neohookean_quad4_whole.cpp
   kernels/stable_neohookean_quad8_whole.cpp
+  kernels/stable_neohookean_quad9_whole.cpp
   kernels/stable_neohookean_tet10_whole.cpp
   kernels/stable_neohookean_tet4_whole.cpp
   kernels/stable_neohookean_tri3_whole.cpp
   kernels/stable_neohookean_tri6_whole.cpp
   kernels/stvk_hex20_whole.cpp
+  kernels/stvk_hex27_whole.cpp
   kernels/stvk_hex8_tensor.cpp
   kernels/stvk_hex8_whole.cpp
+  kernels/stvk_prism15_whole.cpp
   kernels/stvk_prism6_tensor.cpp
   kernels/stvk_prism6_whole.cpp
+  kernels/stvk_pyramid13_whole.cpp
   kernels/stvk_pyramid5_tensor.cpp
   kernels/stvk_pyramid5_whole.cpp
   kernels/stvk_quad4_tensor.cpp
   kernels/stvk_quad4_whole.cpp
   kernels/stvk_quad8_whole.cpp
+  kernels/stvk_quad9_whole.cpp
   kernels/stvk_tet10_whole.cpp
   kernels/stvk_tet4_tensor.cpp
   kernels/stvk_tet4_whole.cpp
@@ -95,21 +127,29 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stvk_tri3_whole.cpp
   kernels/stvk_tri6_whole.cpp
   kernels/veronda_westmann_hex20_whole.cpp
+  kernels/veronda_westmann_hex27_whole.cpp
   kernels/veronda_westmann_hex8_whole.cpp
+  kernels/veronda_westmann_prism15_whole.cpp
   kernels/veronda_westmann_prism6_whole.cpp
+  kernels/veronda_westmann_pyramid13_whole.cpp
   kernels/veronda_westmann_pyramid5_whole.cpp
   kernels/veronda_westmann_quad4_whole.cpp
   kernels/veronda_westmann_quad8_whole.cpp
+  kernels/veronda_westmann_quad9_whole.cpp
   kernels/veronda_westmann_tet10_whole.cpp
   kernels/veronda_westmann_tet4_whole.cpp
   kernels/veronda_westmann_tri3_whole.cpp
   kernels/veronda_westmann_tri6_whole.cpp
   kernels/yeoh_hex20_whole.cpp
+  kernels/yeoh_hex27_whole.cpp
   kernels/yeoh_hex8_whole.cpp
+  kernels/yeoh_prism15_whole.cpp
   kernels/yeoh_prism6_whole.cpp
+  kernels/yeoh_pyramid13_whole.cpp
   kernels/yeoh_pyramid5_whole.cpp
   kernels/yeoh_quad4_whole.cpp
   kernels/yeoh_quad8_whole.cpp
+  kernels/yeoh_quad9_whole.cpp
   kernels/yeoh_tet10_whole.cpp
   kernels/yeoh_tet4_whole.cpp
   kernels/yeoh_tri3_whole.cpp
@@ -123,12 +163,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/arruda_boyce_hex20_terms_part2.cpp
   kernels/arruda_boyce_hex20_terms_part3.cpp
   kernels/arruda_boyce_hex20_terms_part4.cpp
+  kernels/arruda_boyce_hex27_terms.cpp
+  kernels/arruda_boyce_hex27_terms_part0.cpp
+  kernels/arruda_boyce_hex27_terms_part1.cpp
+  kernels/arruda_boyce_hex27_terms_part2.cpp
+  kernels/arruda_boyce_hex27_terms_part3.cpp
+  kernels/arruda_boyce_hex27_terms_part4.cpp
+  kernels/arruda_boyce_hex27_terms_part5.cpp
+  kernels/arruda_boyce_hex27_terms_part6.cpp
+  kernels/arruda_boyce_hex27_terms_part7.cpp
+  kernels/arruda_boyce_hex27_terms_part8.cpp
   kernels/arruda_boyce_hex8_terms.cpp
   kernels/arruda_boyce_hex8_terms_part0.cpp
   kernels/arruda_boyce_hex8_terms_part1.cpp
+  kernels/arruda_boyce_prism15_terms.cpp
+  kernels/arruda_boyce_prism15_terms_part0.cpp
+  kernels/arruda_boyce_prism15_terms_part1.cpp
+  kernels/arruda_boyce_prism15_terms_part2.cpp
   kernels/arruda_boyce_prism6_terms.cpp
   kernels/arruda_boyce_prism6_terms_part0.cpp
   kernels/arruda_boyce_prism6_terms_part1.cpp
+  kernels/arruda_boyce_pyramid13_terms.cpp
+  kernels/arruda_boyce_pyramid13_terms_part0.cpp
+  kernels/arruda_boyce_pyramid13_terms_part1.cpp
   kernels/arruda_boyce_pyramid5_terms.cpp
   kernels/arruda_boyce_pyramid5_terms_part0.cpp
   kernels/arruda_boyce_pyramid5_terms_part1.cpp
@@ -138,6 +195,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/arruda_boyce_quad8_terms.cpp
   kernels/arruda_boyce_quad8_terms_part0.cpp
   kernels/arruda_boyce_quad8_terms_part1.cpp
+  kernels/arruda_boyce_quad9_terms.cpp
+  kernels/arruda_boyce_quad9_terms_part0.cpp
+  kernels/arruda_boyce_quad9_terms_part1.cpp
   kernels/arruda_boyce_tet10_terms.cpp
   kernels/arruda_boyce_tet10_terms_part0.cpp
   kernels/arruda_boyce_tet10_terms_part1.cpp
@@ -156,12 +216,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/corotational_hex20_terms_part2.cpp
   kernels/corotational_hex20_terms_part3.cpp
   kernels/corotational_hex20_terms_part4.cpp
+  kernels/corotational_hex27_terms.cpp
+  kernels/corotational_hex27_terms_part0.cpp
+  kernels/corotational_hex27_terms_part1.cpp
+  kernels/corotational_hex27_terms_part2.cpp
+  kernels/corotational_hex27_terms_part3.cpp
+  kernels/corotational_hex27_terms_part4.cpp
+  kernels/corotational_hex27_terms_part5.cpp
+  kernels/corotational_hex27_terms_part6.cpp
+  kernels/corotational_hex27_terms_part7.cpp
+  kernels/corotational_hex27_terms_part8.cpp
   kernels/corotational_hex8_terms.cpp
   kernels/corotational_hex8_terms_part0.cpp
   kernels/corotational_hex8_terms_part1.cpp
+  kernels/corotational_prism15_terms.cpp
+  kernels/corotational_prism15_terms_part0.cpp
+  kernels/corotational_prism15_terms_part1.cpp
+  kernels/corotational_prism15_terms_part2.cpp
   kernels/corotational_prism6_terms.cpp
   kernels/corotational_prism6_terms_part0.cpp
   kernels/corotational_prism6_terms_part1.cpp
+  kernels/corotational_pyramid13_terms.cpp
+  kernels/corotational_pyramid13_terms_part0.cpp
+  kernels/corotational_pyramid13_terms_part1.cpp
   kernels/corotational_pyramid5_terms.cpp
   kernels/corotational_pyramid5_terms_part0.cpp
   kernels/corotational_pyramid5_terms_part1.cpp
@@ -171,6 +248,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/corotational_quad8_terms.cpp
   kernels/corotational_quad8_terms_part0.cpp
   kernels/corotational_quad8_terms_part1.cpp
+  kernels/corotational_quad9_terms.cpp
+  kernels/corotational_quad9_terms_part0.cpp
+  kernels/corotational_quad9_terms_part1.cpp
   kernels/corotational_tet10_terms.cpp
   kernels/corotational_tet10_terms_part0.cpp
   kernels/corotational_tet10_terms_part1.cpp
@@ -189,12 +269,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/gent_hex20_terms_part2.cpp
   kernels/gent_hex20_terms_part3.cpp
   kernels/gent_hex20_terms_part4.cpp
+  kernels/gent_hex27_terms.cpp
+  kernels/gent_hex27_terms_part0.cpp
+  kernels/gent_hex27_terms_part1.cpp
+  kernels/gent_hex27_terms_part2.cpp
+  kernels/gent_hex27_terms_part3.cpp
+  kernels/gent_hex27_terms_part4.cpp
+  kernels/gent_hex27_terms_part5.cpp
+  kernels/gent_hex27_terms_part6.cpp
+  kernels/gent_hex27_terms_part7.cpp
+  kernels/gent_hex27_terms_part8.cpp
   kernels/gent_hex8_terms.cpp
   kernels/gent_hex8_terms_part0.cpp
   kernels/gent_hex8_terms_part1.cpp
+  kernels/gent_prism15_terms.cpp
+  kernels/gent_prism15_terms_part0.cpp
+  kernels/gent_prism15_terms_part1.cpp
+  kernels/gent_prism15_terms_part2.cpp
   kernels/gent_prism6_terms.cpp
   kernels/gent_prism6_terms_part0.cpp
   kernels/gent_prism6_terms_part1.cpp
+  kernels/gent_pyramid13_terms.cpp
+  kernels/gent_pyramid13_terms_part0.cpp
+  kernels/gent_pyramid13_terms_part1.cpp
   kernels/gent_pyramid5_terms.cpp
   kernels/gent_pyramid5_terms_part0.cpp
   kernels/gent_pyramid5_terms_part1.cpp
@@ -204,6 +301,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/gent_quad8_terms.cpp
   kernels/gent_quad8_terms_part0.cpp
   kernels/gent_quad8_terms_part1.cpp
+  kernels/gent_quad9_terms.cpp
+  kernels/gent_quad9_terms_part0.cpp
+  kernels/gent_quad9_terms_part1.cpp
   kernels/gent_tet10_terms.cpp
   kernels/gent_tet10_terms_part0.cpp
   kernels/gent_tet10_terms_part1.cpp
@@ -222,12 +322,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/hooke_hex20_terms_part2.cpp
   kernels/hooke_hex20_terms_part3.cpp
   kernels/hooke_hex20_terms_part4.cpp
+  kernels/hooke_hex27_terms.cpp
+  kernels/hooke_hex27_terms_part0.cpp
+  kernels/hooke_hex27_terms_part1.cpp
+  kernels/hooke_hex27_terms_part2.cpp
+  kernels/hooke_hex27_terms_part3.cpp
+  kernels/hooke_hex27_terms_part4.cpp
+  kernels/hooke_hex27_terms_part5.cpp
+  kernels/hooke_hex27_terms_part6.cpp
+  kernels/hooke_hex27_terms_part7.cpp
+  kernels/hooke_hex27_terms_part8.cpp
   kernels/hooke_hex8_terms.cpp
   kernels/hooke_hex8_terms_part0.cpp
   kernels/hooke_hex8_terms_part1.cpp
+  kernels/hooke_prism15_terms.cpp
+  kernels/hooke_prism15_terms_part0.cpp
+  kernels/hooke_prism15_terms_part1.cpp
+  kernels/hooke_prism15_terms_part2.cpp
   kernels/hooke_prism6_terms.cpp
   kernels/hooke_prism6_terms_part0.cpp
   kernels/hooke_prism6_terms_part1.cpp
+  kernels/hooke_pyramid13_terms.cpp
+  kernels/hooke_pyramid13_terms_part0.cpp
+  kernels/hooke_pyramid13_terms_part1.cpp
   kernels/hooke_pyramid5_terms.cpp
   kernels/hooke_pyramid5_terms_part0.cpp
   kernels/hooke_pyramid5_terms_part1.cpp
@@ -237,6 +354,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/hooke_quad8_terms.cpp
   kernels/hooke_quad8_terms_part0.cpp
   kernels/hooke_quad8_terms_part1.cpp
+  kernels/hooke_quad9_terms.cpp
+  kernels/hooke_quad9_terms_part0.cpp
+  kernels/hooke_quad9_terms_part1.cpp
   kernels/hooke_tet10_terms.cpp
   kernels/hooke_tet10_terms_part0.cpp
   kernels/hooke_tet10_terms_part1.cpp
@@ -255,12 +375,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/mooney_rivlin_hex20_terms_part2.cpp
   kernels/mooney_rivlin_hex20_terms_part3.cpp
   kernels/mooney_rivlin_hex20_terms_part4.cpp
+  kernels/mooney_rivlin_hex27_terms.cpp
+  kernels/mooney_rivlin_hex27_terms_part0.cpp
+  kernels/mooney_rivlin_hex27_terms_part1.cpp
+  kernels/mooney_rivlin_hex27_terms_part2.cpp
+  kernels/mooney_rivlin_hex27_terms_part3.cpp
+  kernels/mooney_rivlin_hex27_terms_part4.cpp
+  kernels/mooney_rivlin_hex27_terms_part5.cpp
+  kernels/mooney_rivlin_hex27_terms_part6.cpp
+  kernels/mooney_rivlin_hex27_terms_part7.cpp
+  kernels/mooney_rivlin_hex27_terms_part8.cpp
   kernels/mooney_rivlin_hex8_terms.cpp
   kernels/mooney_rivlin_hex8_terms_part0.cpp
   kernels/mooney_rivlin_hex8_terms_part1.cpp
+  kernels/mooney_rivlin_prism15_terms.cpp
+  kernels/mooney_rivlin_prism15_terms_part0.cpp
+  kernels/mooney_rivlin_prism15_terms_part1.cpp
+  kernels/mooney_rivlin_prism15_terms_part2.cpp
   kernels/mooney_rivlin_prism6_terms.cpp
   kernels/mooney_rivlin_prism6_terms_part0.cpp
   kernels/mooney_rivlin_prism6_terms_part1.cpp
+  kernels/mooney_rivlin_pyramid13_terms.cpp
+  kernels/mooney_rivlin_pyramid13_terms_part0.cpp
+  kernels/mooney_rivlin_pyramid13_terms_part1.cpp
   kernels/mooney_rivlin_pyramid5_terms.cpp
   kernels/mooney_rivlin_pyramid5_terms_part0.cpp
   kernels/mooney_rivlin_pyramid5_terms_part1.cpp
@@ -270,6 +407,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/mooney_rivlin_quad8_terms.cpp
   kernels/mooney_rivlin_quad8_terms_part0.cpp
   kernels/mooney_rivlin_quad8_terms_part1.cpp
+  kernels/mooney_rivlin_quad9_terms.cpp
+  kernels/mooney_rivlin_quad9_terms_part0.cpp
+  kernels/mooney_rivlin_quad9_terms_part1.cpp
   kernels/mooney_rivlin_tet10_terms.cpp
   kernels/mooney_rivlin_tet10_terms_part0.cpp
   kernels/mooney_rivlin_tet10_terms_part1.cpp
@@ -288,12 +428,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/neohookean_hex20_terms_part2.cpp
   kernels/neohookean_hex20_terms_part3.cpp
   kernels/neohookean_hex20_terms_part4.cpp
+  kernels/neohookean_hex27_terms.cpp
+  kernels/neohookean_hex27_terms_part0.cpp
+  kernels/neohookean_hex27_terms_part1.cpp
+  kernels/neohookean_hex27_terms_part2.cpp
+  kernels/neohookean_hex27_terms_part3.cpp
+  kernels/neohookean_hex27_terms_part4.cpp
+  kernels/neohookean_hex27_terms_part5.cpp
+  kernels/neohookean_hex27_terms_part6.cpp
+  kernels/neohookean_hex27_terms_part7.cpp
+  kernels/neohookean_hex27_terms_part8.cpp
   kernels/neohookean_hex8_terms.cpp
   kernels/neohookean_hex8_terms_part0.cpp
   kernels/neohookean_hex8_terms_part1.cpp
+  kernels/neohookean_prism15_terms.cpp
+  kernels/neohookean_prism15_terms_part0.cpp
+  kernels/neohookean_prism15_terms_part1.cpp
+  kernels/neohookean_prism15_terms_part2.cpp
   kernels/neohookean_prism6_terms.cpp
   kernels/neohookean_prism6_terms_part0.cpp
   kernels/neohookean_prism6_terms_part1.cpp
+  kernels/neohookean_pyramid13_terms.cpp
+  kernels/neohookean_pyramid13_terms_part0.cpp
+  kernels/neohookean_pyramid13_terms_part1.cpp
   kernels/neohookean_pyramid5_terms.cpp
   kernels/neohookean_pyramid5_terms_part0.cpp
   kernels/neohookean_pyramid5_terms_part1.cpp
@@ -303,6 +460,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/neohookean_quad8_terms.cpp
   kernels/neohookean_quad8_terms_part0.cpp
   kernels/neohookean_quad8_terms_part1.cpp
+  kernels/neohookean_quad9_terms.cpp
+  kernels/neohookean_quad9_terms_part0.cpp
+  kernels/neohookean_quad9_terms_part1.cpp
   kernels/neohookean_tet10_terms.cpp
   kernels/neohookean_tet10_terms_part0.cpp
   kernels/neohookean_tet10_terms_part1.cpp
@@ -321,12 +481,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/stable_neohookean_hex20_terms_part2.cpp
   kernels/stable_neohookean_hex20_terms_part3.cpp
   kernels/stable_neohookean_hex20_terms_part4.cpp
+  kernels/stable_neohookean_hex27_terms.cpp
+  kernels/stable_neohookean_hex27_terms_part0.cpp
+  kernels/stable_neohookean_hex27_terms_part1.cpp
+  kernels/stable_neohookean_hex27_terms_part2.cpp
+  kernels/stable_neohookean_hex27_terms_part3.cpp
+  kernels/stable_neohookean_hex27_terms_part4.cpp
+  kernels/stable_neohookean_hex27_terms_part5.cpp
+  kernels/stable_neohookean_hex27_terms_part6.cpp
+  kernels/stable_neohookean_hex27_terms_part7.cpp
+  kernels/stable_neohookean_hex27_terms_part8.cpp
   kernels/stable_neohookean_hex8_terms.cpp
   kernels/stable_neohookean_hex8_terms_part0.cpp
   kernels/stable_neohookean_hex8_terms_part1.cpp
+  kernels/stable_neohookean_prism15_terms.cpp
+  kernels/stable_neohookean_prism15_terms_part0.cpp
+  kernels/stable_neohookean_prism15_terms_part1.cpp
+  kernels/stable_neohookean_prism15_terms_part2.cpp
   kernels/stable_neohookean_prism6_terms.cpp
   kernels/stable_neohookean_prism6_terms_part0.cpp
   kernels/stable_neohookean_prism6_terms_part1.cpp
+  kernels/stable_neohookean_pyramid13_terms.cpp
+  kernels/stable_neohookean_pyramid13_terms_part0.cpp
+  kernels/stable_neohookean_pyramid13_terms_part1.cpp
   kernels/stable_neohookean_pyramid5_terms.cpp
   kernels/stable_neohookean_pyramid5_terms_part0.cpp
   kernels/stable_neohookean_pyramid5_terms_part1.cpp
@@ -336,6 +513,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/stable_neohookean_quad8_terms.cpp
   kernels/stable_neohookean_quad8_terms_part0.cpp
   kernels/stable_neohookean_quad8_terms_part1.cpp
+  kernels/stable_neohookean_quad9_terms.cpp
+  kernels/stable_neohookean_quad9_terms_part0.cpp
+  kernels/stable_neohookean_quad9_terms_part1.cpp
   kernels/stable_neohookean_tet10_terms.cpp
   kernels/stable_neohookean_tet10_terms_part0.cpp
   kernels/stable_neohookean_tet10_terms_part1.cpp
@@ -354,12 +534,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/stvk_hex20_terms_part2.cpp
   kernels/stvk_hex20_terms_part3.cpp
   kernels/stvk_hex20_terms_part4.cpp
+  kernels/stvk_hex27_terms.cpp
+  kernels/stvk_hex27_terms_part0.cpp
+  kernels/stvk_hex27_terms_part1.cpp
+  kernels/stvk_hex27_terms_part2.cpp
+  kernels/stvk_hex27_terms_part3.cpp
+  kernels/stvk_hex27_terms_part4.cpp
+  kernels/stvk_hex27_terms_part5.cpp
+  kernels/stvk_hex27_terms_part6.cpp
+  kernels/stvk_hex27_terms_part7.cpp
+  kernels/stvk_hex27_terms_part8.cpp
   kernels/stvk_hex8_terms.cpp
   kernels/stvk_hex8_terms_part0.cpp
   kernels/stvk_hex8_terms_part1.cpp
+  kernels/stvk_prism15_terms.cpp
+  kernels/stvk_prism15_terms_part0.cpp
+  kernels/stvk_prism15_terms_part1.cpp
+  kernels/stvk_prism15_terms_part2.cpp
   kernels/stvk_prism6_terms.cpp
   kernels/stvk_prism6_terms_part0.cpp
   kernels/stvk_prism6_terms_part1.cpp
+  kernels/stvk_pyramid13_terms.cpp
+  kernels/stvk_pyramid13_terms_part0.cpp
+  kernels/stvk_pyramid13_terms_part1.cpp
   kernels/stvk_pyramid5_terms.cpp
   kernels/stvk_pyramid5_terms_part0.cpp
   kernels/stvk_pyramid5_terms_part1.cpp
@@ -369,6 +566,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/stvk_quad8_terms.cpp
   kernels/stvk_quad8_terms_part0.cpp
   kernels/stvk_quad8_terms_part1.cpp
+  kernels/stvk_quad9_terms.cpp
+  kernels/stvk_quad9_terms_part0.cpp
+  kernels/stvk_quad9_terms_part1.cpp
   kernels/stvk_tet10_terms.cpp
   kernels/stvk_tet10_terms_part0.cpp
   kernels/stvk_tet10_terms_part1.cpp
@@ -387,12 +587,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/veronda_westmann_hex20_terms_part2.cpp
   kernels/veronda_westmann_hex20_terms_part3.cpp
   kernels/veronda_westmann_hex20_terms_part4.cpp
+  kernels/veronda_westmann_hex27_terms.cpp
+  kernels/veronda_westmann_hex27_terms_part0.cpp
+  kernels/veronda_westmann_hex27_terms_part1.cpp
+  kernels/veronda_westmann_hex27_terms_part2.cpp
+  kernels/veronda_westmann_hex27_terms_part3.cpp
+  kernels/veronda_westmann_hex27_terms_part4.cpp
+  kernels/veronda_westmann_hex27_terms_part5.cpp
+  kernels/veronda_westmann_hex27_terms_part6.cpp
+  kernels/veronda_westmann_hex27_terms_part7.cpp
+  kernels/veronda_westmann_hex27_terms_part8.cpp
   kernels/veronda_westmann_hex8_terms.cpp
   kernels/veronda_westmann_hex8_terms_part0.cpp
   kernels/veronda_westmann_hex8_terms_part1.cpp
+  kernels/veronda_westmann_prism15_terms.cpp
+  kernels/veronda_westmann_prism15_terms_part0.cpp
+  kernels/veronda_westmann_prism15_terms_part1.cpp
+  kernels/veronda_westmann_prism15_terms_part2.cpp
   kernels/veronda_westmann_prism6_terms.cpp
   kernels/veronda_westmann_prism6_terms_part0.cpp
   kernels/veronda_westmann_prism6_terms_part1.cpp
+  kernels/veronda_westmann_pyramid13_terms.cpp
+  kernels/veronda_westmann_pyramid13_terms_part0.cpp
+  kernels/veronda_westmann_pyramid13_terms_part1.cpp
   kernels/veronda_westmann_pyramid5_terms.cpp
   kernels/veronda_westmann_pyramid5_terms_part0.cpp
   kernels/veronda_westmann_pyramid5_terms_part1.cpp
@@ -402,6 +619,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/veronda_westmann_quad8_terms.cpp
   kernels/veronda_westmann_quad8_terms_part0.cpp
   kernels/veronda_westmann_quad8_terms_part1.cpp
+  kernels/veronda_westmann_quad9_terms.cpp
+  kernels/veronda_westmann_quad9_terms_part0.cpp
+  kernels/veronda_westmann_quad9_terms_part1.cpp
   kernels/veronda_westmann_tet10_terms.cpp
   kernels/veronda_westmann_tet10_terms_part0.cpp
   kernels/veronda_westmann_tet10_terms_part1.cpp
@@ -420,12 +640,29 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/yeoh_hex20_terms_part2.cpp
   kernels/yeoh_hex20_terms_part3.cpp
   kernels/yeoh_hex20_terms_part4.cpp
+  kernels/yeoh_hex27_terms.cpp
+  kernels/yeoh_hex27_terms_part0.cpp
+  kernels/yeoh_hex27_terms_part1.cpp
+  kernels/yeoh_hex27_terms_part2.cpp
+  kernels/yeoh_hex27_terms_part3.cpp
+  kernels/yeoh_hex27_terms_part4.cpp
+  kernels/yeoh_hex27_terms_part5.cpp
+  kernels/yeoh_hex27_terms_part6.cpp
+  kernels/yeoh_hex27_terms_part7.cpp
+  kernels/yeoh_hex27_terms_part8.cpp
   kernels/yeoh_hex8_terms.cpp
   kernels/yeoh_hex8_terms_part0.cpp
   kernels/yeoh_hex8_terms_part1.cpp
+  kernels/yeoh_prism15_terms.cpp
+  kernels/yeoh_prism15_terms_part0.cpp
+  kernels/yeoh_prism15_terms_part1.cpp
+  kernels/yeoh_prism15_terms_part2.cpp
   kernels/yeoh_prism6_terms.cpp
   kernels/yeoh_prism6_terms_part0.cpp
   kernels/yeoh_prism6_terms_part1.cpp
+  kernels/yeoh_pyramid13_terms.cpp
+  kernels/yeoh_pyramid13_terms_part0.cpp
+  kernels/yeoh_pyramid13_terms_part1.cpp
   kernels/yeoh_pyramid5_terms.cpp
   kernels/yeoh_pyramid5_terms_part0.cpp
   kernels/yeoh_pyramid5_terms_part1.cpp
@@ -435,6 +672,9 @@ set(TENSORMASS_GENERATED_TERMS_SOURCES
   kernels/yeoh_quad8_terms.cpp
   kernels/yeoh_quad8_terms_part0.cpp
   kernels/yeoh_quad8_terms_part1.cpp
+  kernels/yeoh_quad9_terms.cpp
+  kernels/yeoh_quad9_terms_part0.cpp
+  kernels/yeoh_quad9_terms_part1.cpp
   kernels/yeoh_tet10_terms.cpp
   kernels/yeoh_tet10_terms_part0.cpp
   kernels/yeoh_tet10_terms_part1.cpp

@@ -199,6 +199,9 @@ def element_context(e: ElementIR) -> dict:
         "shape_values": _literals(e.shape_values),
         "calculix_type": e.calculix.type if e.calculix else "",
         "calculix_order": list(e.calculix.node_order) if e.calculix else [],
+        "corner_count": e.corner_count,
+        "reference_volume": _literals((e.reference_volume,))[0],
+        "shape_gradients": _literals(e.shape_gradients),
     }
 
 

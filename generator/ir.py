@@ -135,8 +135,8 @@ class KernelIR:
 class ElementIR:
     """Reference-element facts for elements.cpp (meshes, criteria, outputs).
 
-    reference_nodes and shape_values are flattened row-major (nodes by dim,
-    points by nodes); face_offsets[f] is where face f starts in the
+    reference_nodes, shape_values and shape_gradients are flattened row-major
+    (nodes by dim, points by nodes, points by nodes by dim); face_offsets[f] is where face f starts in the
     concatenated face lists."""
     name: str
     description: str
@@ -153,6 +153,9 @@ class ElementIR:
     reference_nodes: tuple[float, ...]
     weights: tuple[float, ...]
     shape_values: tuple[float, ...]
+    corner_count: int
+    reference_volume: float
+    shape_gradients: tuple[float, ...]  # points by nodes by dim
 
 
 @dataclass(frozen=True)

@@ -67,10 +67,12 @@ DPS = 40
 # Reference coordinates of the external formats, in each format's own node
 # order.  Each is a positively oriented element in the format's convention.
 # --------------------------------------------------------------------------
-def _with_midpoints(corners, edges):
+def _with_midpoints(corners, *entities):
+    """Corners, then one node at the centroid of each listed edge, face or
+    cell (lists of corner indices), in the order given."""
     pts = [tuple(sp.Rational(c) for c in p) for p in corners]
-    for a, b in edges:
-        pts.append(tuple((pts[a][i] + pts[b][i]) / 2 for i in range(len(pts[a]))))
+    for entity in (e for group in entities for e in group):
+        pts.append(tuple(sum(pts[j][i] for j in entity) / len(entity) for i in range(len(pts[0]))))
     return pts
 
 
@@ -96,6 +98,21 @@ _PRISM_C_GMSH = [(0, 0, -1), (1, 0, -1), (0, 1, -1), (0, 0, 1), (1, 0, 1), (0, 1
 # (vtkWedge.h); ParaView gives such a cell a positive volume.
 _WEDGE_C_VTK = [(0, 0, 0), (0, 1, 0), (1, 0, 0), (0, 0, 1), (0, 1, 1), (1, 0, 1)]
 _PYR_C = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (0, 0, 1)]
+_PYR_C_VTK = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), ("1/2", "1/2", 1)]
+_QUAD_CENTRE = [(0, 1, 2, 3)]
+_HEX_CENTRE = [tuple(range(8))]
+# VTK biquadratic / triquadratic face-centre order (vtkTriQuadraticHexahedron).
+_HEX_F_VTK = [(0, 4, 7, 3), (1, 2, 6, 5), (0, 1, 5, 4), (3, 7, 6, 2), (0, 3, 2, 1), (4, 5, 6, 7)]
+# Gmsh hexahedron faces (MHexahedron::getFace), the order of its face nodes.
+_HEX_F_GMSH = [(0, 3, 2, 1), (0, 1, 5, 4), (0, 4, 7, 3), (1, 2, 6, 5), (2, 3, 7, 6), (4, 5, 6, 7)]
+# Wedge / prism mid-edge orders: VTK (vtkQuadraticWedge) and CalculiX
+# (shape15w.f) list the edges of the two triangles, then the vertical ones;
+# Gmsh (MPrism) lists them by first corner.
+_WEDGE_E_VTK = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]
+_PRISM_E_GMSH = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 4), (2, 5), (3, 4), (3, 5), (4, 5)]
+# Pyramid mid-edge orders: VTK (vtkQuadraticPyramid) and Gmsh (MPyramid).
+_PYR_E_VTK = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 4), (2, 4), (3, 4)]
+_PYR_E_GMSH = [(0, 1), (0, 3), (0, 4), (1, 2), (1, 4), (2, 3), (2, 4), (3, 4)]
 
 GMSH_REF = {
     2: _with_midpoints(_TRI_C, []),
@@ -108,6 +125,10 @@ GMSH_REF = {
     17: _with_midpoints(_HEX_C, _HEX_E_GMSH),
     6: _with_midpoints(_PRISM_C_GMSH, []),
     7: _with_midpoints(_PYR_C, []),
+    10: _with_midpoints(_QUAD_C, _QUAD_E, _QUAD_CENTRE),
+    12: _with_midpoints(_HEX_C, _HEX_E_GMSH, _HEX_F_GMSH, _HEX_CENTRE),
+    18: _with_midpoints(_PRISM_C_GMSH, _PRISM_E_GMSH),
+    19: _with_midpoints(_PYR_C, _PYR_E_GMSH),
 }
 VTK_REF = {
     5: _with_midpoints(_TRI_C, []),
@@ -119,7 +140,11 @@ VTK_REF = {
     12: _with_midpoints(_HEX_C, []),
     25: _with_midpoints(_HEX_C, _HEX_E_VTK),
     13: _with_midpoints(_WEDGE_C_VTK, []),
-    14: _with_midpoints([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), ("1/2", "1/2", 1)], []),
+    14: _with_midpoints(_PYR_C_VTK, []),
+    28: _with_midpoints([(0, 0), (1, 0), (1, 1), (0, 1)], _QUAD_E, _QUAD_CENTRE),
+    29: _with_midpoints(_HEX_C, _HEX_E_VTK, _HEX_F_VTK, _HEX_CENTRE),
+    26: _with_midpoints(_WEDGE_C_VTK, _WEDGE_E_VTK),
+    27: _with_midpoints(_PYR_C_VTK, _PYR_E_VTK),
 }
 CALCULIX_REF = {
     "CPE3": _with_midpoints(_TRI_C, []),
@@ -131,10 +156,12 @@ CALCULIX_REF = {
     "C3D8": _with_midpoints(_HEX_C, []),
     "C3D20": _with_midpoints(_HEX_C, _HEX_E_VTK),
     "C3D6": _with_midpoints(_PRISM_C_GMSH, []),
+    "C3D15": _with_midpoints(_PRISM_C_GMSH, _WEDGE_E_VTK),
 }
 FORMAT_REF = {"gmsh": GMSH_REF, "vtk": VTK_REF, "calculix": CALCULIX_REF}
 # Format element types whose node order must differ from tensormass (= VTK).
-NON_IDENTITY = {("gmsh", 11), ("gmsh", 17), ("gmsh", 6), ("calculix", "C3D6")}
+NON_IDENTITY = {("gmsh", 11), ("gmsh", 17), ("gmsh", 6), ("gmsh", 12), ("gmsh", 18), ("gmsh", 19),
+                ("calculix", "C3D6"), ("calculix", "C3D15")}
 
 
 # --------------------------------------------------------------------------
@@ -525,8 +552,6 @@ def test_edges(path):
             a, b, m = (el.nodes[i] for i in e)
             assert all(m[k] == (a[k] + b[k]) / 2 for k in range(el.dim)), \
                 "node %d is not the midpoint of edge %s" % (e[2], e)
-    used = {i for e in el.edges for i in e}
-    assert used == set(range(el.n)), "edges do not cover every node"
     if el.order == 2:
         mids = [e[2] for e in el.edges]
         assert len(set(mids)) == len(mids)
@@ -543,6 +568,40 @@ def test_edges(path):
                 "edge %s is not counter-clockwise" % e
 
 
+def _node_kinds(el):
+    """Each node's kind: 0 corner, 1 mid-edge, 2 face (3D), 3 interior."""
+    kinds = [3] * el.n
+    for f in el.faces:
+        for i in f:
+            kinds[i] = 2
+    for e in el.edges:
+        for k, i in enumerate(e):
+            kinds[i] = 0 if k < 2 else 1
+    return kinds
+
+
+@pytest.mark.parametrize("path", FILES, ids=IDS)
+def test_node_kinds(path):
+    """The element-file rule on node order: corners first, then mid-edge
+    nodes, then face nodes (3D), then interior nodes; a node on no edge and
+    no face lies strictly inside the element, a face node at the centroid of
+    its face's corners, an interior node at the element's centroid."""
+    el = load(path)
+    kinds = _node_kinds(el)
+    assert kinds == sorted(kinds), "nodes are not ordered corners, mid-edge, face, interior: %s" % kinds
+    with mpmath.workdps(DPS):
+        for i in (i for i in range(el.n) if kinds[i] == 3):
+            point = [mpmath.mpf(sp.N(c, DPS)) for c in el.nodes[i]]
+            assert strictly_inside(el, point), "interior node %d is on the boundary" % i
+            assert tuple(el.nodes[i]) == tuple(el.centroid), "interior node %d is not at the centroid" % i
+    for f in el.faces:
+        for i in (i for i in f if kinds[i] == 2):
+            assert f[-1] == i, "face %s: its face node %d is not its last node" % (f, i)
+            corners = [el.nodes[j] for j in f if kinds[j] == 0]
+            centre = tuple(sum(c[k] for c in corners) / len(corners) for k in range(el.dim))
+            assert tuple(el.nodes[i]) == centre, "face node %d is not the centroid of %s" % (i, f)
+
+
 @pytest.mark.parametrize("path", [p for p in FILES if raw(p)["dim"] == 3],
                          ids=[p.stem for p in FILES if raw(p)["dim"] == 3])
 def test_faces(path):
@@ -554,7 +613,7 @@ def test_faces(path):
         assert all(0 <= i < el.n for i in f), "face %s: invalid node index" % f
         assert len(set(f)) == len(f)
         nc = len(f) if el.order == 1 else len(f) // 2
-        assert nc in (3, 4) and len(f) == (nc if el.order == 1 else 2 * nc), \
+        assert nc in (3, 4) and len(f) in ((nc,) if el.order == 1 else (2 * nc, 2 * nc + 1)), \
             "face %s has a wrong number of nodes" % f
         corners = f[:nc]
         assert set(corners) <= set(el.corner_ids)

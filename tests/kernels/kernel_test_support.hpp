@@ -94,15 +94,11 @@ inline const tm_element_info& element_of(const tm_kernel& kernel) {
   return *info;
 }
 
-/// The reference volume of each element (elements/*.toml reference_volume).
+/// The reference volume of an element (elements/*.toml reference_volume).
 inline double reference_volume(const std::string& element) {
-  if (element == "tri3" || element == "tri6") return 0.5;
-  if (element == "quad4" || element == "quad8") return 4.0;
-  if (element == "tet4" || element == "tet10") return 1.0 / 6.0;
-  if (element == "hex8" || element == "hex20") return 8.0;
-  if (element == "prism6") return 1.0;
-  if (element == "pyramid5") return 4.0 / 3.0;
-  throw std::logic_error("unknown element " + element);
+  const tm_element_info* info = registry().element(element);
+  if (info == nullptr) throw std::logic_error("unknown element " + element);
+  return info->reference_volume;
 }
 
 // --- Errors -------------------------------------------------------------------

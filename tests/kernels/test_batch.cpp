@@ -96,6 +96,8 @@ TEST_P(KernelBatch, HessianDoesNotDependOnAskingForTheGradient) {
 INSTANTIATE_TEST_SUITE_P(BatchedKernels, KernelBatch,
                          testing::ValuesIn(kernels_where([](const tm_kernel& k) { return k.batch_width > 0; })),
                          KernelParamName());
+// Empty for a registry without such kernels (a scratch project).
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(KernelBatch);
 
 /// The `whole` split is batched, with a SIMD width, where batches pay
 /// (generator/splits/whole.py): small elements, under laws whose block has

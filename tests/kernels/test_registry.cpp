@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -26,17 +27,26 @@ struct ExpectedElement {
 /// an element file of another name is checked against itself only.
 const std::map<std::string, ExpectedElement>& known_elements() {
   static const std::map<std::string, ExpectedElement> table = {
-      {"tri3", {2, 1, 3, 5}},    {"quad4", {2, 1, 4, 9}},     {"tet4", {3, 1, 4, 10}},  {"hex8", {3, 1, 8, 12}},
-      {"prism6", {3, 1, 6, 13}}, {"pyramid5", {3, 1, 5, 14}}, {"tri6", {2, 2, 6, 22}},  {"quad8", {2, 2, 8, 23}},
-      {"tet10", {3, 2, 10, 24}}, {"hex20", {3, 2, 20, 25}},   {"quad9", {2, 2, 9, 28}}, {"hex27", {3, 2, 27, 29}},
+      {"tri3", {2, 1, 3, 5}},      {"quad4", {2, 1, 4, 9}},       {"tet4", {3, 1, 4, 10}},  {"hex8", {3, 1, 8, 12}},
+      {"prism6", {3, 1, 6, 13}},   {"pyramid5", {3, 1, 5, 14}},   {"tri6", {2, 2, 6, 22}},  {"quad8", {2, 2, 8, 23}},
+      {"tet10", {3, 2, 10, 24}},   {"hex20", {3, 2, 20, 25}},     {"quad9", {2, 2, 9, 28}}, {"hex27", {3, 2, 27, 29}},
+      {"prism15", {3, 2, 15, 26}}, {"pyramid13", {3, 2, 13, 27}},
   };
   return table;
 }
 
-/// The stems of the *.toml files of the source tree's `folder`, sorted.
+/// The project whose elements/ and laws/ the registry was generated from:
+/// $TENSORMASS_INPUTS_DIR when set (a scratch project linked into these
+/// tests, tests/examples/run_adding_files.sh), else the source tree.
+std::filesystem::path inputs_dir() {
+  const char* scratch = std::getenv("TENSORMASS_INPUTS_DIR");
+  return scratch && *scratch ? std::filesystem::path(scratch) : std::filesystem::path(TENSORMASS_SOURCE_DIR);
+}
+
+/// The stems of the *.toml files of the project's `folder`, sorted.
 std::vector<std::string> description_files(const std::string& folder) {
   std::set<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(TENSORMASS_SOURCE_DIR) / folder))
+  for (const auto& entry : std::filesystem::directory_iterator(inputs_dir() / folder))
     if (entry.path().extension() == ".toml") names.insert(entry.path().stem().string());
   return {names.begin(), names.end()};
 }

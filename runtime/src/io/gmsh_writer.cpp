@@ -13,6 +13,7 @@
 
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
+#include "tensormass/mesh/mesh_topology.hpp"
 
 namespace tensormass::io {
 namespace {
@@ -45,14 +46,21 @@ struct MshModel {
 int physical_tag(std::size_t group) { return static_cast<int>(group) + 1; }
 
 /// Gmsh type of a facet with `count` nodes, corners first then mid-edge nodes.
-int facet_type(int count, int order) {
-  static const std::map<std::array<int, 2>, int> types{{{2, 1}, 1}, {{3, 2}, 8}, {{3, 1}, 2},
-                                                       {{6, 2}, 9}, {{4, 1}, 3}, {{8, 2}, 16}};
-  const auto found = types.find({count, order});
-  if (found == types.end())
-    throw std::invalid_argument("msh: no Gmsh facet type with " + std::to_string(count) + " nodes of order " +
-                                std::to_string(order));
-  return found->second;
+/// A group facet as a Gmsh element: line2 (type 1) or line3 (8) in a 2D
+/// mesh, the registry's 2D element with its node count in a 3D one (nodes
+/// put in Gmsh's order).
+MshElement facet_element_of(const std::vector<int>& nodes, int mesh_dim) {
+  const int count = static_cast<int>(nodes.size());
+  if (mesh_dim == 2) {
+    if (count != 2 && count != 3)
+      throw std::invalid_argument("msh: no Gmsh line type with " + std::to_string(count) + " nodes");
+    return {count == 2 ? 1 : 8, 1, nodes, {}, 0};
+  }
+  const tm_element_info* element = facet_element(count);
+  if (!element) throw std::invalid_argument("msh: no 2D element of " + std::to_string(count) + " nodes for a facet");
+  MshElement out{element->gmsh_type, 2, {}, {}, 0};
+  for (int k = 0; k < count; ++k) out.nodes.push_back(nodes[element->gmsh_order[k]]);
+  return out;
 }
 
 void add_cells(const Mesh& mesh, MshModel& model) {
@@ -80,10 +88,7 @@ void add_facets(const Mesh& mesh, MshModel& model) {
       std::vector<int> key = nodes;
       std::sort(key.begin(), key.end());
       const auto [where, inserted] = seen.emplace(key, model.elements.size());
-      if (inserted) {
-        const int order = f < static_cast<int>(facets.orders.size()) ? facets.orders[f] : 1;
-        model.elements.push_back({facet_type(static_cast<int>(nodes.size()), order), mesh.dim - 1, nodes, {}, 0});
-      }
+      if (inserted) model.elements.push_back(facet_element_of(nodes, mesh.dim));
       std::vector<int>& tags = model.elements[where->second].physical;
       if (tags.empty() || tags.back() != physical_tag(g)) tags.push_back(physical_tag(g));
     }

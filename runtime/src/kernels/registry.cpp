@@ -24,6 +24,23 @@ bool same_parameters(const tm_kernel& a, const tm_kernel& b) {
 
 }  // namespace
 
+int face_corner_count(const tm_element_info& element, int face) {
+  const int* nodes = element.faces + element.face_offsets[face];
+  int corners = 0;
+  while (corners < element.face_sizes[face] && nodes[corners] < element.corner_count) ++corners;
+  return corners;
+}
+
+const tm_element_info* linear_version(const tm_element_info& element) {
+  if (element.order == 1) return &element;
+  for (const tm_element_info* linear : Registry::instance().elements())
+    if (linear->order == 1 && linear->dim == element.dim && linear->nodes == element.corner_count &&
+        std::equal(linear->reference_nodes, linear->reference_nodes + linear->nodes * linear->dim,
+                   element.reference_nodes))
+      return linear;
+  return nullptr;
+}
+
 const Registry& Registry::instance() {
   static const Registry registry;
   return registry;

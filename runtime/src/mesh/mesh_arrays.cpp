@@ -6,34 +6,43 @@
 
 #include "mesh/mesh_builder.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
 
 namespace {
 
-/// meshio's cell type names for our elements (VTK node order on both sides).
+/// meshio's cell type names by VTK type (meshio/_vtk_common.py,
+/// vtk_to_meshio_type); meshio keeps VTK's node order, which is ours.
+constexpr std::array<std::pair<int, std::string_view>, 19> kMeshioNames{{
+    {5, "triangle"}, {9, "quad"},       {10, "tetra"},        {12, "hexahedron"},   {13, "wedge"},
+    {14, "pyramid"}, {22, "triangle6"}, {23, "quad8"},        {24, "tetra10"},      {25, "hexahedron20"},
+    {26, "wedge15"}, {27, "pyramid13"}, {28, "quad9"},        {29, "hexahedron27"}, {30, "quad6"},
+    {31, "wedge12"}, {32, "wedge18"},   {33, "hexahedron24"}, {34, "triangle7"},
+}};
+
+std::string_view meshio_name(int vtk_type) {
+  for (const auto& [type, name] : kMeshioNames)
+    if (type == vtk_type) return name;
+  return {};
+}
+
+/// The registry element a meshio cell type or one of our names denotes.
 const detail::Shape* shape_named(std::string_view name) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 10> meshio_names{{
-      {"triangle", "tri3"},
-      {"triangle6", "tri6"},
-      {"quad", "quad4"},
-      {"quad8", "quad8"},
-      {"tetra", "tet4"},
-      {"tetra10", "tet10"},
-      {"hexahedron", "hex8"},
-      {"hexahedron20", "hex20"},
-      {"wedge", "prism6"},
-      {"pyramid", "pyramid5"},
-  }};
-  for (const auto& [meshio, ours] : meshio_names)
-    if (name == meshio) return detail::find_shape(ours);
+  for (const tm_element_info* element : Registry::instance().elements())
+    if (name == meshio_name(element->vtk_type)) return detail::shape_of(element);
   const detail::Shape* shape = detail::find_shape(name);
   return shape && shape->element ? shape : nullptr;
 }
 
 std::string known_elements() {
-  return "tri3 (triangle), tri6 (triangle6), quad4 (quad), quad8, tet4 (tetra), tet10 (tetra10), hex8 (hexahedron), "
-         "hex20 (hexahedron20), prism6 (wedge), pyramid5 (pyramid)";
+  std::string text;
+  for (const tm_element_info* element : Registry::instance().elements()) {
+    text += (text.empty() ? "" : ", ") + std::string(element->name);
+    const std::string_view meshio = meshio_name(element->vtk_type);
+    if (!meshio.empty() && meshio != element->name) text += " (" + std::string(meshio) + ")";
+  }
+  return text;
 }
 
 /// Group keys per element: point groups first, then cell groups.

@@ -5,6 +5,8 @@
 #include <map>
 #include <span>
 
+#include "tensormass/kernels/registry.hpp"
+
 namespace tensormass {
 namespace {
 
@@ -14,7 +16,7 @@ using FaceUses = std::map<std::vector<int>, int>;
 void count_faces(const tm_element_info& element, std::span<const int> nodes, FaceUses& uses) {
   for (int f = 0; f < element.face_count; ++f) {
     std::vector<int> face;
-    const int corners = element.face_sizes[f] == 6 || element.face_sizes[f] == 3 ? 3 : 4;
+    const int corners = face_corner_count(element, f);
     for (int n = 0; n < corners; ++n) face.push_back(nodes[element.faces[element.face_offsets[f] + n]]);
     std::sort(face.begin(), face.end());
     ++uses[face];

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tensormass/kernels/registry.hpp"
+
 namespace tensormass {
 
 std::vector<std::vector<int>> cells_around_nodes(const Mesh& mesh) {
@@ -12,11 +14,21 @@ std::vector<std::vector<int>> cells_around_nodes(const Mesh& mesh) {
   return node_cells;
 }
 
-bool is_load_facet(int dim, int nodes) {
-  return dim == 2 ? (nodes == 2 || nodes == 3) : (nodes == 3 || nodes == 4 || nodes == 6 || nodes == 8);
+const tm_element_info* facet_element(int nodes) {
+  for (const tm_element_info* element : Registry::instance().elements())
+    if (element->dim == 2 && element->nodes == nodes) return element;
+  return nullptr;
 }
 
-int facet_corners(int dim, int nodes) { return dim == 2 ? 2 : (nodes == 3 || nodes == 6 ? 3 : 4); }
+bool is_load_facet(int dim, int nodes) {
+  return dim == 2 ? (nodes == 2 || nodes == 3) : facet_element(nodes) != nullptr;
+}
+
+int facet_corners(int dim, int nodes) {
+  if (dim == 2) return 2;
+  const tm_element_info* element = facet_element(nodes);
+  return element ? element->corner_count : 0;
+}
 
 int facet_owner(const Mesh& mesh, const std::vector<std::vector<int>>& node_cells, std::span<const int> facet) {
   const int corners = facet_corners(mesh.dim, static_cast<int>(facet.size()));

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -36,8 +37,7 @@ std::string cut_list(int dim) {
 /// The message for a cut name that is not valid in `dim`.
 std::string bad_cut_message(int dim, const std::string& cut) {
   static const std::map<std::string, std::string> hints{
-      {"tri6", "tri3 with --order 2"},          {"quad8", "quad4 with --order 2"}, {"hex20", "hex8 with --order 2"},
-      {"tet10", "tet5 or tet6 with --order 2"}, {"tet4", "tet5 or tet6"},          {"wedge", "prism6"}};
+      {"tet10", "tet5 or tet6 with --order 2"}, {"tet4", "tet5 or tet6"}, {"wedge", "prism6"}};
   std::string message = "unknown cell type '" + cut + "'";
   if (is_cut(5 - dim, cut)) message = "'" + cut + "' is a " + std::to_string(5 - dim) + "D cell type";
   if (const auto hint = hints.find(cut); hint != hints.end()) message += " (use " + hint->second + ")";
@@ -62,22 +62,85 @@ void check_phases(const BeamSpec& spec) {
   if (std::abs(total - 1.0) > 1e-6) throw InputError("beam: mix fractions sum to " + std::to_string(total) + ", not 1");
 }
 
+// --- Order 2: the registry's quadratic version of each linear element ---------------
+
+/// The element order 2 turns `linear` into: the one `chosen` names among
+/// those with its corners, else the one with the fewest nodes (serendipity:
+/// quad8, hex20); nullptr when the registry has none.
+const tm_element_info* quadratic_version(const tm_element_info& linear, const std::vector<std::string>& chosen) {
+  const tm_element_info* best = nullptr;
+  for (const tm_element_info* element : Registry::instance().elements()) {
+    if (element->order != 2 || linear_version(*element) != &linear) continue;
+    if (std::find(chosen.begin(), chosen.end(), element->name) != chosen.end()) return element;
+    if (!best || element->nodes < best->nodes) best = element;
+  }
+  return best;
+}
+
+/// Whether a face of `element` has a node besides its corners and mid-edge nodes.
+bool has_face_nodes(const tm_element_info& element) {
+  for (int f = 0; f < element.face_count; ++f)
+    if (element.face_sizes[f] > 2 * face_corner_count(element, f)) return true;
+  return false;
+}
+
+/// The linear elements a cut makes (pyramid5 and tet4 also fill the
+/// transition cubes between a tetrahedral cut and another).
+std::vector<std::string> cut_elements(const std::string& cut) {
+  if (tetrahedral(cut)) return {"tet4"};
+  if (cut == "pyramid5") return {"pyramid5", "tet4"};
+  return {cut};
+}
+
 void check_order(const BeamSpec& spec) {
   if (spec.order != 1 && spec.order != 2)
     throw InputError("beam: order must be 1 or 2, got " + std::to_string(spec.order));
-  if (spec.order == 1) return;
-  for (const BeamPhase& phase : spec.phases)
-    if (phase.cut == "prism6" || phase.cut == "pyramid5")
-      throw InputError("beam: " + phase.cut +
-                       " has no quadratic version (order 2 works with tri3, quad4, hex8, "
-                       "tet5, tet6)");
-  for (std::size_t p = 0; p + 1 < spec.phases.size(); ++p) {
-    const std::string& a = spec.phases[p].cut;
-    const std::string& b = spec.phases[p + 1].cut;
-    if (tetrahedral(a) != tetrahedral(b))
-      throw InputError("beam: at order 2, " + a + " next to " + b +
-                       " needs pyramid5 transition cells, which have no quadratic version");
+  if (spec.order == 1) {
+    if (!spec.quadratic.empty()) throw InputError("beam: " + spec.quadratic.front() + " needs order 2");
+    return;
   }
+  std::vector<std::string> needed;
+  for (std::size_t p = 0; p < spec.phases.size(); ++p) {
+    for (const std::string& name : cut_elements(spec.phases[p].cut)) needed.push_back(name);
+    if (p + 1 < spec.phases.size() && tetrahedral(spec.phases[p].cut) != tetrahedral(spec.phases[p + 1].cut))
+      needed.insert(needed.end(), {"pyramid5", "tet4"});
+  }
+  for (const std::string& name : needed) {
+    const tm_element_info* linear = Registry::instance().element(name);
+    if (!quadratic_version(*linear, spec.quadratic))
+      throw InputError("beam: " + name + " has no quadratic version in the registry (no order-2 element with its " +
+                       "corners), so order 2 cannot make it");
+  }
+  for (const std::string& name : spec.quadratic) {
+    const tm_element_info* element = Registry::instance().element(name);
+    const tm_element_info* linear = element && element->order == 2 ? linear_version(*element) : nullptr;
+    if (!linear || std::find(needed.begin(), needed.end(), linear->name) == needed.end())
+      throw InputError("beam: " + name + " is not a quadratic version of a cell this beam makes");
+    const bool others =
+        std::any_of(needed.begin(), needed.end(), [&](const std::string& n) { return n != linear->name; });
+    if (has_face_nodes(*element) && others)
+      throw InputError("beam: " + name +
+                       " has face-centre nodes that the cells of the other types next to it lack "
+                       "(the mesh would not conform); make a beam of " +
+                       name + " alone");
+  }
+}
+
+/// `spec` with each quadratic element named as a cell type (e.g. quad9,
+/// hex27, prism15) replaced by the cut of its linear version, the element
+/// added to `quadratic` and the order set to 2.
+BeamSpec resolve_quadratic_types(BeamSpec spec) {
+  for (BeamPhase& phase : spec.phases) {
+    if (is_cut(spec.dim, phase.cut)) continue;
+    const tm_element_info* element = Registry::instance().element(phase.cut);
+    const tm_element_info* linear =
+        element && element->order == 2 && element->dim == spec.dim ? linear_version(*element) : nullptr;
+    if (!linear || !is_cut(spec.dim, linear->name)) continue;
+    spec.quadratic.push_back(phase.cut);
+    phase.cut = linear->name;
+    spec.order = 2;
+  }
+  return spec;
 }
 
 // --- Positions and orientation -------------------------------------------------
@@ -104,7 +167,8 @@ struct CellList {
 
 class BeamBuilder {
  public:
-  explicit BeamBuilder(const BeamSpec& spec);
+  /// `spec` resolved (resolve_quadratic_types); `phase_names` name the phase groups.
+  BeamBuilder(const BeamSpec& spec, std::vector<std::string> phase_names);
   Mesh build();
 
  private:
@@ -131,6 +195,9 @@ class BeamBuilder {
   void add_prism(std::array<int, 3> bottom, std::array<int, 3> top);
   // Order 2 and output.
   int mid_node(int a, int b);
+  int face_node(std::vector<int> corners);
+  int centre_node(const std::vector<int>& nodes);
+  std::vector<int> quadratic_nodes(const tm_element_info& element, std::span<const int> corners);
   void make_quadratic();
   Mesh assemble();
   void add_boundary_groups(Mesh& mesh) const;
@@ -144,10 +211,14 @@ class BeamBuilder {
   std::vector<char> at_clamp_, at_tip_;
   std::vector<CellList> lists_;  ///< indexed like Registry::elements()
   std::unordered_map<std::uint64_t, int> mid_nodes_;
+  std::map<std::vector<int>, int> face_nodes_;  ///< sorted face corners -> face-centre node
+  std::vector<std::string> phase_names_;        ///< as the spec named the cell types, for the groups
 };
 
-BeamBuilder::BeamBuilder(const BeamSpec& spec)
-    : spec_(spec), n_{spec.cells[0], spec.cells[1], spec.dim == 3 ? spec.cells[2] : 0} {
+BeamBuilder::BeamBuilder(const BeamSpec& spec, std::vector<std::string> phase_names)
+    : spec_(spec),
+      n_{spec.cells[0], spec.cells[1], spec.dim == 3 ? spec.cells[2] : 0},
+      phase_names_(std::move(phase_names)) {
   const std::vector<int> bounds = beam_phase_bounds(spec);
   for (std::size_t p = 0; p + 1 < bounds.size(); ++p)
     phase_of_column_.insert(phase_of_column_.end(), bounds[p + 1] - bounds[p], static_cast<int>(p));
@@ -338,34 +409,70 @@ int BeamBuilder::mid_node(int a, int b) {
   const std::uint64_t key =
       static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
   if (const auto found = mid_nodes_.find(key); found != mid_nodes_.end()) return found->second;
-  const Point pa = point(a), pb = point(b);
-  const int node = add_node({(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2},
-                            at_clamp_[a] && at_clamp_[b], at_tip_[a] && at_tip_[b]);
+  const int node = centre_node({a, b});
   mid_nodes_.emplace(key, node);
   return node;
 }
 
-/// Replaces tri3, quad4, tet4 and hex8 cells by tri6, quad8, tet10 and hex20.
+/// The node at the centre of a face (its corners), shared by the two cells on it.
+int BeamBuilder::face_node(std::vector<int> corners) {
+  std::sort(corners.begin(), corners.end());
+  if (const auto found = face_nodes_.find(corners); found != face_nodes_.end()) return found->second;
+  const int node = centre_node(corners);
+  face_nodes_.emplace(std::move(corners), node);
+  return node;
+}
+
+/// A new node at the mean of `nodes`, at the clamp or tip when they all are.
+int BeamBuilder::centre_node(const std::vector<int>& nodes) {
+  Point mean{0, 0, 0};
+  bool clamp = true, tip = true;
+  for (int node : nodes) {
+    for (int a = 0; a < 3; ++a) mean[a] += point(node)[a] / static_cast<double>(nodes.size());
+    clamp = clamp && at_clamp_[node];
+    tip = tip && at_tip_[node];
+  }
+  return add_node(mean, clamp, tip);
+}
+
+/// The nodes of `element` (order 2) on a cell whose corners are given: its
+/// mid-edge nodes at edge midpoints, its face nodes at face centres, its
+/// interior nodes at the mean of the corners (exact on the beam's straight
+/// sided cells).
+std::vector<int> BeamBuilder::quadratic_nodes(const tm_element_info& element, std::span<const int> corners) {
+  std::vector<int> nodes(element.nodes, -1);
+  std::copy(corners.begin(), corners.end(), nodes.begin());
+  for (int e = 0; e < element.edge_count; ++e) {
+    const int* edge = element.edges + e * element.edge_size;
+    nodes[edge[2]] = mid_node(nodes[edge[0]], nodes[edge[1]]);
+  }
+  for (int f = 0; f < element.face_count; ++f) {
+    const int* face = element.faces + element.face_offsets[f];
+    const int size = element.face_sizes[f];
+    if (nodes[face[size - 1]] >= 0) continue;  // no face node: its last node is a mid-edge node
+    std::vector<int> face_corners;
+    for (int k = 0; k < face_corner_count(element, f); ++k) face_corners.push_back(nodes[face[k]]);
+    nodes[face[size - 1]] = face_node(std::move(face_corners));
+  }
+  const std::vector<int> all_corners(corners.begin(), corners.end());
+  for (int& node : nodes)
+    if (node < 0) node = centre_node(all_corners);
+  return nodes;
+}
+
+/// Replaces every linear cell by its quadratic version (quadratic_version).
 void BeamBuilder::make_quadratic() {
-  static const std::map<std::string_view, std::string_view> quadratic{
-      {"tri3", "tri6"}, {"quad4", "quad8"}, {"tet4", "tet10"}, {"hex8", "hex20"}};
   for (CellList& linear : lists_) {
     if (linear.phase.empty() || linear.element->order == 2) continue;
-    const auto name = quadratic.find(linear.element->name);
-    if (name == quadratic.end())
-      throw InputError(std::string("beam: ") + linear.element->name + " has no quadratic version");
+    const tm_element_info* element = quadratic_version(*linear.element, spec_.quadratic);
+    if (!element) throw InputError(std::string("beam: ") + linear.element->name + " has no quadratic version");
     CellList* target = nullptr;
     for (CellList& list : lists_)
-      if (list.element->name == name->second) target = &list;
-    const tm_element_info& element = *target->element;
+      if (list.element == element) target = &list;
     const int corners = linear.element->nodes;
     for (std::size_t cell = 0; cell < linear.phase.size(); ++cell) {
-      std::vector<int> nodes(element.nodes);
-      std::copy_n(linear.connectivity.begin() + cell * corners, corners, nodes.begin());
-      for (int e = 0; e < element.edge_count; ++e) {
-        const int* edge = element.edges + e * element.edge_size;
-        nodes[edge[2]] = mid_node(nodes[edge[0]], nodes[edge[1]]);
-      }
+      const std::span<const int> cell_corners(linear.connectivity.data() + cell * corners, corners);
+      const std::vector<int> nodes = quadratic_nodes(*element, cell_corners);
       target->connectivity.insert(target->connectivity.end(), nodes.begin(), nodes.end());
       target->phase.push_back(linear.phase[cell]);
     }
@@ -459,7 +566,7 @@ void BeamBuilder::add_boundary_groups(Mesh& mesh) const {
 
 void BeamBuilder::add_phase_groups(Mesh& mesh, const std::vector<int>& cell_phase) const {
   for (std::size_t p = 0; p < spec_.phases.size(); ++p) {
-    Group group{"phase_" + spec_.phases[p].cut, mesh.dim, {}, {}, {}};
+    Group group{"phase_" + phase_names_[p], mesh.dim, {}, {}, {}};
     for (int cell = 0; cell < static_cast<int>(cell_phase.size()); ++cell) {
       if (cell_phase[cell] != static_cast<int>(p)) continue;
       group.cells.push_back(cell);
@@ -520,7 +627,8 @@ std::vector<int> beam_phase_bounds(const BeamSpec& spec) {
   return bounds;
 }
 
-void check_beam_spec(const BeamSpec& spec) {
+void check_beam_spec(const BeamSpec& given) {
+  const BeamSpec spec = resolve_quadratic_types(given);
   if (spec.dim != 2 && spec.dim != 3)
     throw InputError("beam: dimension must be 2 or 3, got " + std::to_string(spec.dim));
   double cubes = 1;
@@ -541,7 +649,9 @@ void check_beam_spec(const BeamSpec& spec) {
 
 Mesh make_beam(const BeamSpec& spec) {
   check_beam_spec(spec);
-  return BeamBuilder(spec).build();
+  std::vector<std::string> names;
+  for (const BeamPhase& phase : spec.phases) names.push_back(phase.cut);
+  return BeamBuilder(resolve_quadratic_types(spec), std::move(names)).build();
 }
 
 }  // namespace tensormass

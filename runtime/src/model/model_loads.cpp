@@ -85,84 +85,49 @@ void Model::compute_masses_and_gravity(const ModelSpec& spec) {
 
 namespace {
 
-struct FacetRule {
-  std::vector<std::array<double, 2>> points;
-  std::vector<double> weights;
+/// A facet's quadrature rule with its shape functions: weights (points),
+/// values (points by nodes) and the two parametric derivatives (points by
+/// nodes by 2; the second is 0 on a line).
+struct FacetQuadrature {
+  int nodes = 0;
+  std::vector<double> weights, values, gradients;
+  int points() const { return static_cast<int>(weights.size()); }
 };
 
-FacetRule gauss_line(int count) {
-  if (count == 2) {
-    const double p = 1.0 / std::sqrt(3.0);
-    return {{{-p, 0}, {p, 0}}, {1.0, 1.0}};
+/// A line2 or line3 facet of a 2D mesh (nodes: end, end, middle) with 2 or
+/// 3 Gauss points on [-1, 1].
+FacetQuadrature line_quadrature(int nodes) {
+  const double p2 = 1.0 / std::sqrt(3.0), p3 = std::sqrt(0.6);
+  const std::vector<double> points = nodes == 2 ? std::vector<double>{-p2, p2} : std::vector<double>{-p3, 0.0, p3};
+  FacetQuadrature rule;
+  rule.nodes = nodes;
+  rule.weights = nodes == 2 ? std::vector<double>{1.0, 1.0} : std::vector<double>{5.0 / 9, 8.0 / 9, 5.0 / 9};
+  for (double r : points) {
+    const std::vector<double> N = nodes == 2 ? std::vector<double>{(1 - r) / 2, (1 + r) / 2}
+                                             : std::vector<double>{r * (r - 1) / 2, r * (r + 1) / 2, 1 - r * r};
+    const std::vector<double> dN =
+        nodes == 2 ? std::vector<double>{-0.5, 0.5} : std::vector<double>{r - 0.5, r + 0.5, -2 * r};
+    rule.values.insert(rule.values.end(), N.begin(), N.end());
+    for (double d : dN) rule.gradients.insert(rule.gradients.end(), {d, 0.0});
   }
-  const double p = std::sqrt(0.6);
-  return {{{-p, 0}, {0, 0}, {p, 0}}, {5.0 / 9, 8.0 / 9, 5.0 / 9}};
-}
-
-FacetRule gauss_square(int count) {
-  const FacetRule line = gauss_line(count);
-  FacetRule rule;
-  for (std::size_t i = 0; i < line.points.size(); ++i)
-    for (std::size_t j = 0; j < line.points.size(); ++j) {
-      rule.points.push_back({line.points[i][0], line.points[j][0]});
-      rule.weights.push_back(line.weights[i] * line.weights[j]);
-    }
   return rule;
 }
 
-FacetRule triangle_rule() {
-  return {{{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}}, {1.0 / 6, 1.0 / 6, 1.0 / 6}};
+/// A face of a 3D mesh: the default rule and shape functions of the
+/// registry's 2D element with its node count (the element files list face
+/// nodes in that element's order).
+FacetQuadrature face_quadrature(const tm_element_info& element) {
+  FacetQuadrature rule;
+  rule.nodes = element.nodes;
+  const std::size_t points = element.quadrature_points, n = element.nodes;
+  rule.weights.assign(element.weights, element.weights + points);
+  rule.values.assign(element.shape_values, element.shape_values + points * n);
+  rule.gradients.assign(element.shape_gradients, element.shape_gradients + points * n * 2);
+  return rule;
 }
 
-/// Shape functions and their two parametric derivatives of a facet with
-/// `nodes` nodes (line2, line3 in 2D; tri3, quad4, tri6, quad8 in 3D).
-void facet_shape(int dim, int nodes, double r, double s, double* N, double (*dN)[2]) {
-  if (dim == 2 && nodes == 2) {
-    N[0] = (1 - r) / 2, N[1] = (1 + r) / 2;
-    dN[0][0] = -0.5, dN[1][0] = 0.5;
-  } else if (dim == 2 && nodes == 3) {
-    N[0] = r * (r - 1) / 2, N[1] = r * (r + 1) / 2, N[2] = 1 - r * r;
-    dN[0][0] = r - 0.5, dN[1][0] = r + 0.5, dN[2][0] = -2 * r;
-  } else if (nodes == 3 || nodes == 6) {
-    const double L[3] = {1 - r - s, r, s};
-    const double dL[3][2] = {{-1, -1}, {1, 0}, {0, 1}};
-    if (nodes == 3) {
-      for (int i = 0; i < 3; ++i) N[i] = L[i], dN[i][0] = dL[i][0], dN[i][1] = dL[i][1];
-    } else {
-      for (int i = 0; i < 3; ++i) {
-        N[i] = L[i] * (2 * L[i] - 1);
-        for (int c = 0; c < 2; ++c) dN[i][c] = (4 * L[i] - 1) * dL[i][c];
-        const int k = (i + 1) % 3;
-        N[3 + i] = 4 * L[i] * L[k];
-        for (int c = 0; c < 2; ++c) dN[3 + i][c] = 4 * (dL[i][c] * L[k] + L[i] * dL[k][c]);
-      }
-    }
-  } else {
-    const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int i = 0; i < 4; ++i) {
-      const double a = corner[i][0], b = corner[i][1];
-      if (nodes == 4) {
-        N[i] = (1 + a * r) * (1 + b * s) / 4;
-        dN[i][0] = a * (1 + b * s) / 4, dN[i][1] = b * (1 + a * r) / 4;
-      } else {
-        N[i] = (1 + a * r) * (1 + b * s) * (a * r + b * s - 1) / 4;
-        dN[i][0] = a * (1 + b * s) * (2 * a * r + b * s) / 4;
-        dN[i][1] = b * (1 + a * r) * (a * r + 2 * b * s) / 4;
-      }
-    }
-    if (nodes == 8) {  // mid-edge nodes 4..7 on edges 0-1, 1-2, 2-3, 3-0
-      N[4] = (1 - r * r) * (1 - s) / 2, dN[4][0] = -r * (1 - s), dN[4][1] = -(1 - r * r) / 2;
-      N[5] = (1 + r) * (1 - s * s) / 2, dN[5][0] = (1 - s * s) / 2, dN[5][1] = -s * (1 + r);
-      N[6] = (1 - r * r) * (1 + s) / 2, dN[6][0] = -r * (1 + s), dN[6][1] = (1 - r * r) / 2;
-      N[7] = (1 - r) * (1 - s * s) / 2, dN[7][0] = -(1 - s * s) / 2, dN[7][1] = -s * (1 - r);
-    }
-  }
-}
-
-FacetRule facet_rule(int dim, int nodes) {
-  if (dim == 2) return gauss_line(nodes == 2 ? 2 : 3);
-  if (nodes == 3 || nodes == 6) return triangle_rule();
-  return gauss_square(nodes == 4 ? 2 : 3);
+FacetQuadrature facet_quadrature(int dim, int nodes) {
+  return dim == 2 ? line_quadrature(nodes) : face_quadrature(*facet_element(nodes));
 }
 
 }  // namespace
@@ -194,17 +159,17 @@ void Model::apply_nodal_forces_and_pressure(const ModelSpec& spec) {
         for (int a = 0; a < 3; ++a) cell_centre[a] += mesh_->rest_positions[3 * node + a] / cn.size();
       for (int c = 0; c < corners; ++c)
         for (int a = 0; a < 3; ++a) facet_centre[a] += mesh_->rest_positions[3 * nodes[c] + a] / corners;
-      const FacetRule rule = facet_rule(dim_, count);
+      const FacetQuadrature rule = facet_quadrature(dim_, count);
       std::array<double, 3> total{};
       std::vector<std::array<double, 3>> nodal(count, std::array<double, 3>{});
-      for (std::size_t q = 0; q < rule.points.size(); ++q) {
-        double N[8], dN[8][2];
-        facet_shape(dim_, count, rule.points[q][0], rule.points[q][1], N, dN);
+      for (int q = 0; q < rule.points(); ++q) {
+        const double* N = rule.values.data() + static_cast<std::size_t>(q) * count;
+        const double* dN = rule.gradients.data() + static_cast<std::size_t>(q) * count * 2;
         std::array<double, 3> tr{}, ts{};
         for (int j = 0; j < count; ++j)
           for (int a = 0; a < 3; ++a) {
-            tr[a] += dN[j][0] * mesh_->rest_positions[3 * nodes[j] + a];
-            ts[a] += dN[j][1] * mesh_->rest_positions[3 * nodes[j] + a];
+            tr[a] += dN[2 * j] * mesh_->rest_positions[3 * nodes[j] + a];
+            ts[a] += dN[2 * j + 1] * mesh_->rest_positions[3 * nodes[j] + a];
           }
         // Area-weighted normal: tr x ts in 3D, tr x z in 2D (unit thickness).
         std::array<double, 3> normal =

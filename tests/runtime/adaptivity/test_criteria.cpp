@@ -280,13 +280,8 @@ double max_edge_strain(const TestElement& element) {
   return largest;
 }
 
-/// The measure of the reference element (area in 2D).
-double reference_volume(const std::string& type) {
-  static const std::map<std::string, double> volumes{
-      {"tri3", 0.5},        {"tri6", 0.5}, {"quad4", 4.0}, {"quad8", 4.0},  {"tet4", 1.0 / 6.0},
-      {"tet10", 1.0 / 6.0}, {"hex8", 8.0}, {"hex20", 8.0}, {"prism6", 1.0}, {"pyramid5", 4.0 / 3.0}};
-  return volumes.at(type);
-}
+/// The measure of the reference element (area in 2D), from its element file.
+double reference_volume(const std::string& type) { return registry().element(type)->reference_volume; }
 
 // --- Hand-built shapes ---------------------------------------------------------------
 

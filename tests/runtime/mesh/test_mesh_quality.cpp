@@ -4,6 +4,7 @@
 // summaries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -48,25 +49,45 @@ double ideal_volume(const std::string& linear) {
   return 1;  // quad4, hex8
 }
 
+/// The first-order registry element with the corners of `name` (itself for one of order 1).
 std::string linear_of(const std::string& name) {
-  if (name == "tri6") return "tri3";
-  if (name == "quad8") return "quad4";
-  if (name == "tet10") return "tet4";
-  if (name == "hex20") return "hex8";
-  return name;
+  const tm_element_info* linear = tensormass::linear_version(*tensormass::Registry::instance().element(name));
+  return linear ? linear->name : name;
 }
 
-/// The ideal shape of `e`: corners, then mid-edge nodes at edge midpoints.
+/// Sets node m of x to the mean of `nodes`.
+void place_at_mean(Coordinates& x, int m, const std::vector<int>& nodes) {
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0;
+    for (int n : nodes) sum += x[static_cast<std::size_t>(3 * n + c)];
+    x[static_cast<std::size_t>(3 * m + c)] = sum / static_cast<double>(nodes.size());
+  }
+}
+
+/// The ideal shape of `e`: corners, then mid-edge nodes at edge midpoints,
+/// face nodes at face centres, interior nodes at the centre.
 Coordinates ideal(const tm_element_info& e) {
   Coordinates x = ideal_corners(linear_of(e.name));
   x.resize(3 * static_cast<std::size_t>(e.nodes));
+  std::vector<bool> placed(static_cast<std::size_t>(e.nodes), false);
+  for (int n = 0; n < e.corner_count; ++n) placed[static_cast<std::size_t>(n)] = true;
   if (e.edge_size == 3)
     for (int k = 0; k < e.edge_count; ++k) {
       const int a = e.edges[3 * k], b = e.edges[3 * k + 1], m = e.edges[3 * k + 2];
-      for (int c = 0; c < 3; ++c)
-        x[static_cast<std::size_t>(3 * m + c)] =
-            0.5 * (x[static_cast<std::size_t>(3 * a + c)] + x[static_cast<std::size_t>(3 * b + c)]);
+      place_at_mean(x, m, {a, b});
+      placed[static_cast<std::size_t>(m)] = true;
     }
+  for (int f = 0; f < e.face_count; ++f) {
+    const int* face = e.faces + e.face_offsets[f];
+    const int last = face[e.face_sizes[f] - 1];
+    if (placed[static_cast<std::size_t>(last)]) continue;
+    place_at_mean(x, last, std::vector<int>(face, face + tensormass::face_corner_count(e, f)));
+    placed[static_cast<std::size_t>(last)] = true;
+  }
+  std::vector<int> corners(static_cast<std::size_t>(e.corner_count));
+  for (int n = 0; n < e.corner_count; ++n) corners[static_cast<std::size_t>(n)] = n;
+  for (int n = 0; n < e.nodes; ++n)
+    if (!placed[static_cast<std::size_t>(n)]) place_at_mean(x, n, corners);
   return x;
 }
 

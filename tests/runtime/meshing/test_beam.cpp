@@ -55,12 +55,17 @@ std::vector<BeamCase> cases() {
       {"prism6", 3, {5, 3, 2}, box, "prism6:1", 1},
       {"pyramid5", 3, {5, 3, 2}, box, "pyramid5:1", 1},
       {"hex20", 3, {3, 2, 2}, box, "hex8:1", 2},
+      {"hex27", 3, {3, 2, 2}, box, "hex27:1", 2},
+      {"quad9", 2, {5, 2, 0}, box, "quad9:1", 2},
+      {"tri6_quad9", 2, {10, 3, 0}, box, "tri3:0.3,quad9:0.7", 2},
       {"tet10_5", 3, {3, 2, 2}, box, "tet5:1", 2},
       {"tet10_6", 3, {3, 2, 2}, box, "tet6:1", 2},
       {"hex8_tet5", 3, {6, 3, 3}, box, "hex8:0.5,tet5:0.5", 1},
       {"tet5_hex8", 3, {6, 3, 3}, box, "tet5:0.5,hex8:0.5", 1},
       {"four_phases", 3, {8, 3, 3}, box, "tet6:0.25,pyramid5:0.25,prism6:0.25,hex8:0.25", 1},
       {"four_phases_back", 3, {8, 3, 3}, box, "hex8:0.25,prism6:0.25,pyramid5:0.25,tet6:0.25", 1},
+      {"four_phases_order2", 3, {8, 3, 3}, box, "tet6:0.25,pyramid5:0.25,prism6:0.25,hex8:0.25", 2},
+      {"hex20_tet10_transitions", 3, {6, 3, 3}, box, "hex8:0.5,tet5:0.5", 2},
       {"tet5_tet6", 3, {6, 3, 3}, box, "tet5:0.5,tet6:0.5", 1},
       {"tet6_tet5", 3, {5, 3, 3}, box, "tet6:0.4,tet5:0.6", 1},
       {"tet5_tet6_order2", 3, {4, 2, 3}, box, "tet5:0.5,tet6:0.5", 2},
@@ -246,9 +251,13 @@ TEST(BeamErrors, RejectBadSpecsWithClearMessages) {
   expect_input_error(spec_with(2, "tri3:0.5,tri3:0.5"), "appears twice");
   expect_input_error(spec_with(2, "tri3:-0.5,quad4:1.5"), "fraction");
   expect_input_error(spec_with(2, "tri3:0.01,quad4:0.99"), "gets no column");
-  expect_input_error(spec_with(3, "prism6:1", 2), "prism6 has no quadratic version");
-  expect_input_error(spec_with(3, "pyramid5:1", 2), "pyramid5 has no quadratic version");
-  expect_input_error(spec_with(3, "hex8:0.5,tet5:0.5", 2), "transition");
+  expect_input_error(spec_with(3, "hex27:0.5,tet5:0.5"), "hex27 has face-centre nodes");
+  BeamSpec linear_hex27 = spec_with(3, "hex8:1");
+  linear_hex27.quadratic = {"hex27"};
+  expect_input_error(linear_hex27, "hex27 needs order 2");
+  BeamSpec tet_hex27 = spec_with(3, "tet5:1", 2);
+  tet_hex27.quadratic = {"hex27"};
+  expect_input_error(tet_hex27, "hex27 is not a quadratic version of a cell this beam makes");
   expect_input_error(spec_with(2, "quad4:1", 3), "order must be 1 or 2");
   BeamSpec zero = spec_with(3, "hex8:1");
   zero.cells[2] = 0;

@@ -118,13 +118,20 @@ typedef struct tm_element_info {
   int face_count;
   const int* face_sizes;  ///< face_count
   const int* face_offsets;
-  const int* faces;               ///< concatenated, corners counter-clockwise from outside
+  /// Concatenated: corners counter-clockwise from outside, then the mid-edge
+  /// nodes of the face's edges c0-c1, c1-c2, ..., then the face-centre node.
+  const int* faces;
   const double* reference_nodes;  ///< nodes by dim
   int quadrature_points;          ///< of the default rule
   const double* weights;          ///< quadrature_points
   const double* shape_values;     ///< quadrature_points by nodes
   const char* calculix_type;      ///< "" when CalculiX has no such element
   const int* calculix_order;
+  /// Nodes 0 .. corner_count-1 are the corners; then come the mid-edge, the
+  /// face and the interior nodes, in this order (docs/adding-an-element.md).
+  int corner_count;
+  double reference_volume;        ///< measure of the reference element
+  const double* shape_gradients;  ///< quadrature_points by nodes by dim: dN/dr, dN/ds(, dN/dt)
 } tm_element_info;
 
 int tm_kernel_count(void);

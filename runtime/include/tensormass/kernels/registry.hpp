@@ -21,6 +21,16 @@ namespace tensormass {
 inline constexpr int kMaxCellNodes = 27;
 inline constexpr int kMaxCellDofs = 3 * kMaxCellNodes;
 
+/// How many corners face `face` of a 3D element has: its leading nodes below
+/// corner_count (a face lists its corners first).
+int face_corner_count(const tm_element_info& element, int face);
+
+/// The registry's first-order element whose nodes are the corners of
+/// `element` (same dimension, same reference coordinates): tet4 for tet10,
+/// quad4 for quad8 and quad9; `element` itself when it is of order 1;
+/// nullptr when there is none.
+const tm_element_info* linear_version(const tm_element_info& element);
+
 class Registry {
  public:
   /// The registry of the generated kernels linked into this program.

@@ -22,8 +22,13 @@
 /// a quad wins over a diagonal and the low-x cube's diagonal wins over the
 /// high-x cube's; a cube whose faces are not its native pattern becomes a
 /// transition cube: a centre node with a pyramid5 on each quad face and two
-/// tet4 on each split face. Order 2 therefore rejects hex8 next to a
-/// tetrahedral cut (pyramids have no quadratic version); tet5 next to tet6 works.
+/// tet4 on each split face.
+///
+/// Order 2 replaces every cell by the registry's quadratic element with its
+/// corners (BeamSpec::quadratic chooses among several, else the one with the
+/// fewest nodes): mid-edge nodes at edge midpoints, face nodes at face
+/// centres, interior nodes at the cell's centre; a cell type with no
+/// quadratic version in the registry is refused, naming it.
 ///
 /// Groups of the mesh, in this order:
 ///   clamp          facets (dim-1) and nodes at x = 0
@@ -47,7 +52,11 @@ namespace tensormass {
 
 /// A run of consecutive columns (along x) cut the same way.
 struct BeamPhase {
-  std::string cut;        ///< tri3, quad4 (2D); hex8, tet5, tet6, prism6, pyramid5 (3D)
+  /// tri3, quad4 (2D); hex8, tet5, tet6, prism6, pyramid5 (3D); or a
+  /// quadratic registry element with the corners of one of them (quad8,
+  /// quad9, hex20, hex27, prism15, pyramid13, ...): that cut at order 2,
+  /// making this element.
+  std::string cut;
   double fraction = 1.0;  ///< share of the nx columns, in (0, 1]; fractions sum to 1
 };
 
@@ -57,6 +66,10 @@ struct BeamSpec {
   std::array<double, 3> size{6.0, 1.0, 1.0};      ///< L, H, W (W unused in 2D)
   std::vector<BeamPhase> phases{{"quad4", 1.0}};  ///< from x = 0 to x = L (set it for 3D, e.g. {{"hex8", 1}})
   int order = 1;                                  ///< 1 linear, 2 quadratic
+  /// At order 2, the quadratic elements to make where the registry has
+  /// several with one linear element's corners (quad9 rather than quad8,
+  /// hex27 rather than hex20); the others get the one with the fewest nodes.
+  std::vector<std::string> quadratic;
 };
 
 /// The cut names valid in dimension `dim` (2 or 3).
