@@ -19,6 +19,7 @@ int beam_command(const Arguments& args);
 int mesh_info_command(const Arguments& args);
 int render_command(const Arguments& args);
 int mesh_command(const Arguments& args);
+int raise_order_command(const Arguments& args);
 /// Runs tensormass-bench (beside this binary, else in the install bindir)
 /// with `args` in place of this process: returns only when it cannot (exit
 /// 2, with a message).

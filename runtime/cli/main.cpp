@@ -32,6 +32,7 @@ constexpr const char* kUsage =
     "  mesh SURFACE --size H [OPTIONS] -o OUT.msh\n"
     "                                   hex-dominant volume mesh of a closed surface (tensormass mesh --help)\n"
     "  mesh-info FILE                   element counts per type, quality, inverted elements\n"
+    "  raise-order IN.msh -o OUT.msh    the mesh at order 2, by Gmsh (tensormass raise-order --help)\n"
     "  render FRAME.vtu -o IMAGE.png    draw a result coloured by criterion state or law\n"
     "  help                             this text\n";
 
@@ -52,6 +53,7 @@ int run(const std::string& command, const tensormass::cli::Arguments& args) {
   if (command == "beam") return tensormass::cli::beam_command(args);
   if (command == "mesh") return tensormass::cli::mesh_command(args);
   if (command == "mesh-info") return tensormass::cli::mesh_info_command(args);
+  if (command == "raise-order") return tensormass::cli::raise_order_command(args);
   if (command == "render") return tensormass::cli::render_command(args);
   if (command == "bench") return tensormass::cli::bench_command(args);
   return usage_error("unknown command '" + command + "'");
