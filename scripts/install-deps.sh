@@ -13,7 +13,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libeigen3-dev libsuitesparse-dev libyaml-cpp-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libopenblas0-openmp \
-  python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx
+  python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx python3-dolfinx
 # PETSc with OpenMPI (solver.linear.type: petsc, cmake/petsc.cmake; the build
 # goes on without it when missing), found through pkg-config.
 $SUDO apt-get install -y -qq --no-install-recommends pkg-config libpetsc-real-dev libopenmpi-dev openmpi-bin libscotch-dev
