@@ -229,9 +229,11 @@ Mesh macneal_harder_prism6() {
   return mesh;
 }
 
-/// The linear patch of a first-order element, or nullptr when there is none.
-Mesh (*linear_patch(const std::string& element))() {
-  static const std::map<std::string, Mesh (*)()> patches{
+using PatchMaker = Mesh (*)();
+
+/// The maker of a first-order element's patch, or nullptr when there is none.
+PatchMaker linear_patch(const std::string& element) {
+  static const std::map<std::string, PatchMaker> patches{
       {"hex8", macneal_harder_hex8},     {"tet4", macneal_harder_tet4},   {"pyramid5", macneal_harder_pyramid5},
       {"prism6", macneal_harder_prism6}, {"quad4", macneal_harder_quad4}, {"tri3", macneal_harder_tri3}};
   const auto found = patches.find(element);
@@ -244,7 +246,7 @@ Mesh (*linear_patch(const std::string& element))() {
 Mesh patch_for(const std::string& element) {
   const tm_element_info& info = *registry().element(element);
   const tm_element_info* linear = tensormass::linear_version(info);
-  const auto make = linear ? linear_patch(linear->name) : nullptr;
+  const PatchMaker make = linear ? linear_patch(linear->name) : nullptr;
   if (!make) return Mesh{info.dim, {}, {}};
   return info.order == 1 ? make() : with_quadratic_nodes(make(), info);
 }
