@@ -10,56 +10,24 @@ void tm_arruda_boyce_hex20_whole_gradient(const double*, const double*, double*)
 void tm_arruda_boyce_hex20_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_hex20_terms_energy(const double*, const double*);
-void tm_arruda_boyce_hex20_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_hex20_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex27_whole_energy(const double*, const double*);
 void tm_arruda_boyce_hex27_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex27_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_hex27_terms_energy(const double*, const double*);
-void tm_arruda_boyce_hex27_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_hex27_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_hex8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_hex8_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_hex8_terms_energy(const double*, const double*);
-void tm_arruda_boyce_hex8_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_hex8_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism15_whole_energy(const double*, const double*);
 void tm_arruda_boyce_prism15_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_prism15_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_prism15_terms_energy(const double*, const double*);
-void tm_arruda_boyce_prism15_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_prism15_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism6_whole_energy(const double*, const double*);
 void tm_arruda_boyce_prism6_whole_gradient(const double*, const double*, double*);
@@ -69,28 +37,12 @@ void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_prism6_terms_energy(const double*, const double*);
-void tm_arruda_boyce_prism6_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_prism6_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid13_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_pyramid13_terms_energy(const double*, const double*);
-void tm_arruda_boyce_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid5_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -100,14 +52,6 @@ void tm_arruda_boyce_pyramid5_whole_stress(const double*, const double*, double*
 void tm_arruda_boyce_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_pyramid5_terms_energy(const double*, const double*);
-void tm_arruda_boyce_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad4_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad4_whole_gradient(const double*, const double*, double*);
@@ -117,14 +61,6 @@ void tm_arruda_boyce_quad4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_quad4_terms_energy(const double*, const double*);
-void tm_arruda_boyce_quad4_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_quad4_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad8_whole_gradient(const double*, const double*, double*);
@@ -134,14 +70,6 @@ void tm_arruda_boyce_quad8_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_quad8_terms_energy(const double*, const double*);
-void tm_arruda_boyce_quad8_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_quad8_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad9_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad9_whole_gradient(const double*, const double*, double*);
@@ -151,28 +79,12 @@ void tm_arruda_boyce_quad9_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_quad9_terms_energy(const double*, const double*);
-void tm_arruda_boyce_quad9_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_quad9_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet10_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tet10_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_tet10_terms_energy(const double*, const double*);
-void tm_arruda_boyce_tet10_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_tet10_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tet4_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tet4_whole_gradient(const double*, const double*, double*);
@@ -182,14 +94,6 @@ void tm_arruda_boyce_tet4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_tet4_terms_energy(const double*, const double*);
-void tm_arruda_boyce_tet4_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_tet4_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri3_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri3_whole_gradient(const double*, const double*, double*);
@@ -199,14 +103,6 @@ void tm_arruda_boyce_tri3_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_tri3_terms_energy(const double*, const double*);
-void tm_arruda_boyce_tri3_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_tri3_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_arruda_boyce_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri6_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri6_whole_gradient(const double*, const double*, double*);
@@ -216,70 +112,30 @@ void tm_arruda_boyce_tri6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_arruda_boyce_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_tri6_terms_energy(const double*, const double*);
-void tm_arruda_boyce_tri6_terms_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_tri6_terms_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex20_whole_energy(const double*, const double*);
 void tm_corotational_hex20_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex20_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_hex20_terms_energy(const double*, const double*);
-void tm_corotational_hex20_terms_gradient(const double*, const double*, double*);
-void tm_corotational_hex20_terms_hessian(const double*, const double*, double*);
-void tm_corotational_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex27_whole_energy(const double*, const double*);
 void tm_corotational_hex27_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex27_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_hex27_terms_energy(const double*, const double*);
-void tm_corotational_hex27_terms_gradient(const double*, const double*, double*);
-void tm_corotational_hex27_terms_hessian(const double*, const double*, double*);
-void tm_corotational_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_hex8_whole_energy(const double*, const double*);
 void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_hex8_terms_energy(const double*, const double*);
-void tm_corotational_hex8_terms_gradient(const double*, const double*, double*);
-void tm_corotational_hex8_terms_hessian(const double*, const double*, double*);
-void tm_corotational_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism15_whole_energy(const double*, const double*);
 void tm_corotational_prism15_whole_gradient(const double*, const double*, double*);
 void tm_corotational_prism15_whole_hessian(const double*, const double*, double*);
 void tm_corotational_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_prism15_terms_energy(const double*, const double*);
-void tm_corotational_prism15_terms_gradient(const double*, const double*, double*);
-void tm_corotational_prism15_terms_hessian(const double*, const double*, double*);
-void tm_corotational_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism6_whole_energy(const double*, const double*);
 void tm_corotational_prism6_whole_gradient(const double*, const double*, double*);
@@ -289,28 +145,12 @@ void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_prism6_terms_energy(const double*, const double*);
-void tm_corotational_prism6_terms_gradient(const double*, const double*, double*);
-void tm_corotational_prism6_terms_hessian(const double*, const double*, double*);
-void tm_corotational_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid13_whole_energy(const double*, const double*);
 void tm_corotational_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_corotational_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_corotational_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_pyramid13_terms_energy(const double*, const double*);
-void tm_corotational_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_corotational_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_corotational_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid5_whole_energy(const double*, const double*);
 void tm_corotational_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -320,14 +160,6 @@ void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*
 void tm_corotational_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_pyramid5_terms_energy(const double*, const double*);
-void tm_corotational_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_corotational_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_corotational_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_whole_energy(const double*, const double*);
 void tm_corotational_quad4_whole_gradient(const double*, const double*, double*);
@@ -337,14 +169,6 @@ void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_quad4_terms_energy(const double*, const double*);
-void tm_corotational_quad4_terms_gradient(const double*, const double*, double*);
-void tm_corotational_quad4_terms_hessian(const double*, const double*, double*);
-void tm_corotational_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_whole_energy(const double*, const double*);
 void tm_corotational_quad8_whole_gradient(const double*, const double*, double*);
@@ -354,14 +178,6 @@ void tm_corotational_quad8_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_quad8_terms_energy(const double*, const double*);
-void tm_corotational_quad8_terms_gradient(const double*, const double*, double*);
-void tm_corotational_quad8_terms_hessian(const double*, const double*, double*);
-void tm_corotational_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad9_whole_energy(const double*, const double*);
 void tm_corotational_quad9_whole_gradient(const double*, const double*, double*);
@@ -371,28 +187,12 @@ void tm_corotational_quad9_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_quad9_terms_energy(const double*, const double*);
-void tm_corotational_quad9_terms_gradient(const double*, const double*, double*);
-void tm_corotational_quad9_terms_hessian(const double*, const double*, double*);
-void tm_corotational_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet10_whole_energy(const double*, const double*);
 void tm_corotational_tet10_whole_gradient(const double*, const double*, double*);
 void tm_corotational_tet10_whole_hessian(const double*, const double*, double*);
 void tm_corotational_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_tet10_terms_energy(const double*, const double*);
-void tm_corotational_tet10_terms_gradient(const double*, const double*, double*);
-void tm_corotational_tet10_terms_hessian(const double*, const double*, double*);
-void tm_corotational_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tet4_whole_energy(const double*, const double*);
 void tm_corotational_tet4_whole_gradient(const double*, const double*, double*);
@@ -402,14 +202,6 @@ void tm_corotational_tet4_whole_stress(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_tet4_terms_energy(const double*, const double*);
-void tm_corotational_tet4_terms_gradient(const double*, const double*, double*);
-void tm_corotational_tet4_terms_hessian(const double*, const double*, double*);
-void tm_corotational_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri3_whole_energy(const double*, const double*);
 void tm_corotational_tri3_whole_gradient(const double*, const double*, double*);
@@ -419,14 +211,6 @@ void tm_corotational_tri3_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_tri3_terms_energy(const double*, const double*);
-void tm_corotational_tri3_terms_gradient(const double*, const double*, double*);
-void tm_corotational_tri3_terms_hessian(const double*, const double*, double*);
-void tm_corotational_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_corotational_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_tri6_whole_energy(const double*, const double*);
 void tm_corotational_tri6_whole_gradient(const double*, const double*, double*);
@@ -436,70 +220,30 @@ void tm_corotational_tri6_whole_stress(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_corotational_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_corotational_tri6_terms_energy(const double*, const double*);
-void tm_corotational_tri6_terms_gradient(const double*, const double*, double*);
-void tm_corotational_tri6_terms_hessian(const double*, const double*, double*);
-void tm_corotational_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex20_whole_energy(const double*, const double*);
 void tm_gent_hex20_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex20_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_hex20_terms_energy(const double*, const double*);
-void tm_gent_hex20_terms_gradient(const double*, const double*, double*);
-void tm_gent_hex20_terms_hessian(const double*, const double*, double*);
-void tm_gent_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex27_whole_energy(const double*, const double*);
 void tm_gent_hex27_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex27_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_hex27_terms_energy(const double*, const double*);
-void tm_gent_hex27_terms_gradient(const double*, const double*, double*);
-void tm_gent_hex27_terms_hessian(const double*, const double*, double*);
-void tm_gent_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_hex8_whole_energy(const double*, const double*);
 void tm_gent_hex8_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex8_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_hex8_terms_energy(const double*, const double*);
-void tm_gent_hex8_terms_gradient(const double*, const double*, double*);
-void tm_gent_hex8_terms_hessian(const double*, const double*, double*);
-void tm_gent_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_prism15_whole_energy(const double*, const double*);
 void tm_gent_prism15_whole_gradient(const double*, const double*, double*);
 void tm_gent_prism15_whole_hessian(const double*, const double*, double*);
 void tm_gent_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_prism15_terms_energy(const double*, const double*);
-void tm_gent_prism15_terms_gradient(const double*, const double*, double*);
-void tm_gent_prism15_terms_hessian(const double*, const double*, double*);
-void tm_gent_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_prism6_whole_energy(const double*, const double*);
 void tm_gent_prism6_whole_gradient(const double*, const double*, double*);
@@ -509,28 +253,12 @@ void tm_gent_prism6_whole_stress(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_prism6_terms_energy(const double*, const double*);
-void tm_gent_prism6_terms_gradient(const double*, const double*, double*);
-void tm_gent_prism6_terms_hessian(const double*, const double*, double*);
-void tm_gent_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid13_whole_energy(const double*, const double*);
 void tm_gent_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_gent_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_gent_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_pyramid13_terms_energy(const double*, const double*);
-void tm_gent_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_gent_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_gent_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid5_whole_energy(const double*, const double*);
 void tm_gent_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -540,14 +268,6 @@ void tm_gent_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_pyramid5_terms_energy(const double*, const double*);
-void tm_gent_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_gent_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_gent_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad4_whole_energy(const double*, const double*);
 void tm_gent_quad4_whole_gradient(const double*, const double*, double*);
@@ -557,14 +277,6 @@ void tm_gent_quad4_whole_stress(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_quad4_terms_energy(const double*, const double*);
-void tm_gent_quad4_terms_gradient(const double*, const double*, double*);
-void tm_gent_quad4_terms_hessian(const double*, const double*, double*);
-void tm_gent_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad8_whole_energy(const double*, const double*);
 void tm_gent_quad8_whole_gradient(const double*, const double*, double*);
@@ -574,14 +286,6 @@ void tm_gent_quad8_whole_stress(const double*, const double*, double*);
 void tm_gent_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_quad8_terms_energy(const double*, const double*);
-void tm_gent_quad8_terms_gradient(const double*, const double*, double*);
-void tm_gent_quad8_terms_hessian(const double*, const double*, double*);
-void tm_gent_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad9_whole_energy(const double*, const double*);
 void tm_gent_quad9_whole_gradient(const double*, const double*, double*);
@@ -591,28 +295,12 @@ void tm_gent_quad9_whole_stress(const double*, const double*, double*);
 void tm_gent_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_quad9_terms_energy(const double*, const double*);
-void tm_gent_quad9_terms_gradient(const double*, const double*, double*);
-void tm_gent_quad9_terms_hessian(const double*, const double*, double*);
-void tm_gent_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tet10_whole_energy(const double*, const double*);
 void tm_gent_tet10_whole_gradient(const double*, const double*, double*);
 void tm_gent_tet10_whole_hessian(const double*, const double*, double*);
 void tm_gent_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_tet10_terms_energy(const double*, const double*);
-void tm_gent_tet10_terms_gradient(const double*, const double*, double*);
-void tm_gent_tet10_terms_hessian(const double*, const double*, double*);
-void tm_gent_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tet4_whole_energy(const double*, const double*);
 void tm_gent_tet4_whole_gradient(const double*, const double*, double*);
@@ -622,14 +310,6 @@ void tm_gent_tet4_whole_stress(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_tet4_terms_energy(const double*, const double*);
-void tm_gent_tet4_terms_gradient(const double*, const double*, double*);
-void tm_gent_tet4_terms_hessian(const double*, const double*, double*);
-void tm_gent_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri3_whole_energy(const double*, const double*);
 void tm_gent_tri3_whole_gradient(const double*, const double*, double*);
@@ -639,14 +319,6 @@ void tm_gent_tri3_whole_stress(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_tri3_terms_energy(const double*, const double*);
-void tm_gent_tri3_terms_gradient(const double*, const double*, double*);
-void tm_gent_tri3_terms_hessian(const double*, const double*, double*);
-void tm_gent_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_gent_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri6_whole_energy(const double*, const double*);
 void tm_gent_tri6_whole_gradient(const double*, const double*, double*);
@@ -656,56 +328,24 @@ void tm_gent_tri6_whole_stress(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_gent_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_gent_tri6_terms_energy(const double*, const double*);
-void tm_gent_tri6_terms_gradient(const double*, const double*, double*);
-void tm_gent_tri6_terms_hessian(const double*, const double*, double*);
-void tm_gent_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex20_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_hex20_terms_energy(const double*, const double*);
-void tm_hooke_hex20_terms_gradient(const double*, const double*, double*);
-void tm_hooke_hex20_terms_hessian(const double*, const double*, double*);
-void tm_hooke_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex27_whole_energy(const double*, const double*);
 void tm_hooke_hex27_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex27_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_hex27_terms_energy(const double*, const double*);
-void tm_hooke_hex27_terms_gradient(const double*, const double*, double*);
-void tm_hooke_hex27_terms_hessian(const double*, const double*, double*);
-void tm_hooke_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_whole_energy(const double*, const double*);
 void tm_hooke_hex8_whole_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_whole_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_hex8_terms_energy(const double*, const double*);
-void tm_hooke_hex8_terms_gradient(const double*, const double*, double*);
-void tm_hooke_hex8_terms_hessian(const double*, const double*, double*);
-void tm_hooke_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex8_tensor_energy(const double*, const double*);
 void tm_hooke_hex8_tensor_gradient(const double*, const double*, double*);
@@ -718,14 +358,6 @@ void tm_hooke_prism15_whole_gradient(const double*, const double*, double*);
 void tm_hooke_prism15_whole_hessian(const double*, const double*, double*);
 void tm_hooke_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_prism15_terms_energy(const double*, const double*);
-void tm_hooke_prism15_terms_gradient(const double*, const double*, double*);
-void tm_hooke_prism15_terms_hessian(const double*, const double*, double*);
-void tm_hooke_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_whole_energy(const double*, const double*);
 void tm_hooke_prism6_whole_gradient(const double*, const double*, double*);
@@ -735,14 +367,6 @@ void tm_hooke_prism6_whole_stress(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_prism6_terms_energy(const double*, const double*);
-void tm_hooke_prism6_terms_gradient(const double*, const double*, double*);
-void tm_hooke_prism6_terms_hessian(const double*, const double*, double*);
-void tm_hooke_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism6_tensor_energy(const double*, const double*);
 void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
@@ -755,14 +379,6 @@ void tm_hooke_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_hooke_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_pyramid13_terms_energy(const double*, const double*);
-void tm_hooke_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_hooke_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_hooke_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_whole_energy(const double*, const double*);
 void tm_hooke_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -772,14 +388,6 @@ void tm_hooke_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_pyramid5_terms_energy(const double*, const double*);
-void tm_hooke_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_hooke_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_hooke_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid5_tensor_energy(const double*, const double*);
 void tm_hooke_pyramid5_tensor_gradient(const double*, const double*, double*);
@@ -795,14 +403,6 @@ void tm_hooke_quad4_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_quad4_terms_energy(const double*, const double*);
-void tm_hooke_quad4_terms_gradient(const double*, const double*, double*);
-void tm_hooke_quad4_terms_hessian(const double*, const double*, double*);
-void tm_hooke_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_tensor_energy(const double*, const double*);
 void tm_hooke_quad4_tensor_gradient(const double*, const double*, double*);
@@ -818,14 +418,6 @@ void tm_hooke_quad8_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_quad8_terms_energy(const double*, const double*);
-void tm_hooke_quad8_terms_gradient(const double*, const double*, double*);
-void tm_hooke_quad8_terms_hessian(const double*, const double*, double*);
-void tm_hooke_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad9_whole_energy(const double*, const double*);
 void tm_hooke_quad9_whole_gradient(const double*, const double*, double*);
@@ -835,28 +427,12 @@ void tm_hooke_quad9_whole_stress(const double*, const double*, double*);
 void tm_hooke_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_quad9_terms_energy(const double*, const double*);
-void tm_hooke_quad9_terms_gradient(const double*, const double*, double*);
-void tm_hooke_quad9_terms_hessian(const double*, const double*, double*);
-void tm_hooke_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet10_whole_energy(const double*, const double*);
 void tm_hooke_tet10_whole_gradient(const double*, const double*, double*);
 void tm_hooke_tet10_whole_hessian(const double*, const double*, double*);
 void tm_hooke_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_tet10_terms_energy(const double*, const double*);
-void tm_hooke_tet10_terms_gradient(const double*, const double*, double*);
-void tm_hooke_tet10_terms_hessian(const double*, const double*, double*);
-void tm_hooke_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_whole_energy(const double*, const double*);
 void tm_hooke_tet4_whole_gradient(const double*, const double*, double*);
@@ -866,14 +442,6 @@ void tm_hooke_tet4_whole_stress(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_tet4_terms_energy(const double*, const double*);
-void tm_hooke_tet4_terms_gradient(const double*, const double*, double*);
-void tm_hooke_tet4_terms_hessian(const double*, const double*, double*);
-void tm_hooke_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tet4_tensor_energy(const double*, const double*);
 void tm_hooke_tet4_tensor_gradient(const double*, const double*, double*);
@@ -889,14 +457,6 @@ void tm_hooke_tri3_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_tri3_terms_energy(const double*, const double*);
-void tm_hooke_tri3_terms_gradient(const double*, const double*, double*);
-void tm_hooke_tri3_terms_hessian(const double*, const double*, double*);
-void tm_hooke_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_hooke_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_tensor_energy(const double*, const double*);
 void tm_hooke_tri3_tensor_gradient(const double*, const double*, double*);
@@ -912,70 +472,30 @@ void tm_hooke_tri6_whole_stress(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_hooke_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_hooke_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_hooke_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_hooke_tri6_terms_energy(const double*, const double*);
-void tm_hooke_tri6_terms_gradient(const double*, const double*, double*);
-void tm_hooke_tri6_terms_hessian(const double*, const double*, double*);
-void tm_hooke_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex20_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex20_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_hex20_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_hex20_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_hex20_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex27_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex27_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex27_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_hex27_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_hex27_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_hex27_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_hex8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_hex8_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_hex8_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_hex8_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism15_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_prism15_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_prism15_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_prism15_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_prism15_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_prism15_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism6_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_prism6_whole_gradient(const double*, const double*, double*);
@@ -985,28 +505,12 @@ void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*)
 void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_prism6_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_prism6_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_prism6_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_pyramid13_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid5_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1016,14 +520,6 @@ void tm_mooney_rivlin_pyramid5_whole_stress(const double*, const double*, double
 void tm_mooney_rivlin_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_pyramid5_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad4_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad4_whole_gradient(const double*, const double*, double*);
@@ -1033,14 +529,6 @@ void tm_mooney_rivlin_quad4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_quad4_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_quad4_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_quad4_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad8_whole_gradient(const double*, const double*, double*);
@@ -1050,14 +538,6 @@ void tm_mooney_rivlin_quad8_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_quad8_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_quad8_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_quad8_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad9_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad9_whole_gradient(const double*, const double*, double*);
@@ -1067,28 +547,12 @@ void tm_mooney_rivlin_quad9_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_quad9_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_quad9_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_quad9_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet10_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tet10_whole_gradient(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_tet10_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_tet10_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_tet10_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tet4_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tet4_whole_gradient(const double*, const double*, double*);
@@ -1098,14 +562,6 @@ void tm_mooney_rivlin_tet4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_tet4_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_tet4_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_tet4_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri3_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri3_whole_gradient(const double*, const double*, double*);
@@ -1115,14 +571,6 @@ void tm_mooney_rivlin_tri3_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_tri3_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_tri3_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_tri3_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_mooney_rivlin_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri6_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri6_whole_gradient(const double*, const double*, double*);
@@ -1132,70 +580,30 @@ void tm_mooney_rivlin_tri6_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_mooney_rivlin_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_tri6_terms_energy(const double*, const double*);
-void tm_mooney_rivlin_tri6_terms_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_tri6_terms_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_hex20_terms_energy(const double*, const double*);
-void tm_neohookean_hex20_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_hex20_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex27_whole_energy(const double*, const double*);
 void tm_neohookean_hex27_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex27_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_hex27_terms_energy(const double*, const double*);
-void tm_neohookean_hex27_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_hex27_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_hex8_terms_energy(const double*, const double*);
-void tm_neohookean_hex8_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_hex8_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism15_whole_energy(const double*, const double*);
 void tm_neohookean_prism15_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_prism15_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_prism15_terms_energy(const double*, const double*);
-void tm_neohookean_prism15_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_prism15_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_neohookean_prism6_whole_gradient(const double*, const double*, double*);
@@ -1205,28 +613,12 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_prism6_terms_energy(const double*, const double*);
-void tm_neohookean_prism6_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_prism6_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_pyramid13_terms_energy(const double*, const double*);
-void tm_neohookean_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1236,14 +628,6 @@ void tm_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_pyramid5_terms_energy(const double*, const double*);
-void tm_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -1253,14 +637,6 @@ void tm_neohookean_quad4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_quad4_terms_energy(const double*, const double*);
-void tm_neohookean_quad4_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_quad4_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -1270,14 +646,6 @@ void tm_neohookean_quad8_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_quad8_terms_energy(const double*, const double*);
-void tm_neohookean_quad8_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_quad8_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad9_whole_energy(const double*, const double*);
 void tm_neohookean_quad9_whole_gradient(const double*, const double*, double*);
@@ -1287,28 +655,12 @@ void tm_neohookean_quad9_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_quad9_terms_energy(const double*, const double*);
-void tm_neohookean_quad9_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_quad9_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_tet10_terms_energy(const double*, const double*);
-void tm_neohookean_tet10_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_tet10_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_neohookean_tet4_whole_gradient(const double*, const double*, double*);
@@ -1318,14 +670,6 @@ void tm_neohookean_tet4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_tet4_terms_energy(const double*, const double*);
-void tm_neohookean_tet4_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_tet4_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -1335,14 +679,6 @@ void tm_neohookean_tri3_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_tri3_terms_energy(const double*, const double*);
-void tm_neohookean_tri3_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_tri3_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -1352,70 +688,30 @@ void tm_neohookean_tri6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_neohookean_tri6_terms_energy(const double*, const double*);
-void tm_neohookean_tri6_terms_gradient(const double*, const double*, double*);
-void tm_neohookean_tri6_terms_hessian(const double*, const double*, double*);
-void tm_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex20_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_hex20_terms_energy(const double*, const double*);
-void tm_stable_neohookean_hex20_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_hex20_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex27_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex27_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex27_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_hex27_terms_energy(const double*, const double*);
-void tm_stable_neohookean_hex27_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_hex27_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_hex8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_hex8_terms_energy(const double*, const double*);
-void tm_stable_neohookean_hex8_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_hex8_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism15_whole_energy(const double*, const double*);
 void tm_stable_neohookean_prism15_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_prism15_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_prism15_terms_energy(const double*, const double*);
-void tm_stable_neohookean_prism15_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_prism15_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_prism6_whole_gradient(const double*, const double*, double*);
@@ -1425,28 +721,12 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_prism6_terms_energy(const double*, const double*);
-void tm_stable_neohookean_prism6_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_prism6_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_pyramid13_terms_energy(const double*, const double*);
-void tm_stable_neohookean_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid5_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1456,14 +736,6 @@ void tm_stable_neohookean_pyramid5_whole_stress(const double*, const double*, do
 void tm_stable_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_pyramid5_terms_energy(const double*, const double*);
-void tm_stable_neohookean_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -1473,14 +745,6 @@ void tm_stable_neohookean_quad4_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_quad4_terms_energy(const double*, const double*);
-void tm_stable_neohookean_quad4_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_quad4_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -1490,14 +754,6 @@ void tm_stable_neohookean_quad8_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_quad8_terms_energy(const double*, const double*);
-void tm_stable_neohookean_quad8_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_quad8_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad9_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad9_whole_gradient(const double*, const double*, double*);
@@ -1507,28 +763,12 @@ void tm_stable_neohookean_quad9_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_quad9_terms_energy(const double*, const double*);
-void tm_stable_neohookean_quad9_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_quad9_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet10_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_tet10_terms_energy(const double*, const double*);
-void tm_stable_neohookean_tet10_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_tet10_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tet4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tet4_whole_gradient(const double*, const double*, double*);
@@ -1538,14 +778,6 @@ void tm_stable_neohookean_tet4_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_tet4_terms_energy(const double*, const double*);
-void tm_stable_neohookean_tet4_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_tet4_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -1555,14 +787,6 @@ void tm_stable_neohookean_tri3_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_tri3_terms_energy(const double*, const double*);
-void tm_stable_neohookean_tri3_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_tri3_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stable_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -1572,56 +796,24 @@ void tm_stable_neohookean_tri6_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stable_neohookean_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_tri6_terms_energy(const double*, const double*);
-void tm_stable_neohookean_tri6_terms_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_tri6_terms_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex20_whole_energy(const double*, const double*);
 void tm_stvk_hex20_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex20_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_hex20_terms_energy(const double*, const double*);
-void tm_stvk_hex20_terms_gradient(const double*, const double*, double*);
-void tm_stvk_hex20_terms_hessian(const double*, const double*, double*);
-void tm_stvk_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex27_whole_energy(const double*, const double*);
 void tm_stvk_hex27_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex27_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_hex27_terms_energy(const double*, const double*);
-void tm_stvk_hex27_terms_gradient(const double*, const double*, double*);
-void tm_stvk_hex27_terms_hessian(const double*, const double*, double*);
-void tm_stvk_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_whole_energy(const double*, const double*);
 void tm_stvk_hex8_whole_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_hex8_terms_energy(const double*, const double*);
-void tm_stvk_hex8_terms_gradient(const double*, const double*, double*);
-void tm_stvk_hex8_terms_hessian(const double*, const double*, double*);
-void tm_stvk_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_hex8_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_hex8_tensor_energy(const double*, const double*);
 void tm_stvk_hex8_tensor_gradient(const double*, const double*, double*);
@@ -1634,14 +826,6 @@ void tm_stvk_prism15_whole_gradient(const double*, const double*, double*);
 void tm_stvk_prism15_whole_hessian(const double*, const double*, double*);
 void tm_stvk_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_prism15_terms_energy(const double*, const double*);
-void tm_stvk_prism15_terms_gradient(const double*, const double*, double*);
-void tm_stvk_prism15_terms_hessian(const double*, const double*, double*);
-void tm_stvk_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_whole_energy(const double*, const double*);
 void tm_stvk_prism6_whole_gradient(const double*, const double*, double*);
@@ -1651,14 +835,6 @@ void tm_stvk_prism6_whole_stress(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_prism6_terms_energy(const double*, const double*);
-void tm_stvk_prism6_terms_gradient(const double*, const double*, double*);
-void tm_stvk_prism6_terms_hessian(const double*, const double*, double*);
-void tm_stvk_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_prism6_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism6_tensor_energy(const double*, const double*);
 void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
@@ -1671,14 +847,6 @@ void tm_stvk_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_stvk_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_pyramid13_terms_energy(const double*, const double*);
-void tm_stvk_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_stvk_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_stvk_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_whole_energy(const double*, const double*);
 void tm_stvk_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1688,14 +856,6 @@ void tm_stvk_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_pyramid5_terms_energy(const double*, const double*);
-void tm_stvk_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_stvk_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_stvk_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_pyramid5_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid5_tensor_energy(const double*, const double*);
 void tm_stvk_pyramid5_tensor_gradient(const double*, const double*, double*);
@@ -1711,14 +871,6 @@ void tm_stvk_quad4_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_quad4_terms_energy(const double*, const double*);
-void tm_stvk_quad4_terms_gradient(const double*, const double*, double*);
-void tm_stvk_quad4_terms_hessian(const double*, const double*, double*);
-void tm_stvk_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_quad4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_tensor_energy(const double*, const double*);
 void tm_stvk_quad4_tensor_gradient(const double*, const double*, double*);
@@ -1734,14 +886,6 @@ void tm_stvk_quad8_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_quad8_terms_energy(const double*, const double*);
-void tm_stvk_quad8_terms_gradient(const double*, const double*, double*);
-void tm_stvk_quad8_terms_hessian(const double*, const double*, double*);
-void tm_stvk_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad9_whole_energy(const double*, const double*);
 void tm_stvk_quad9_whole_gradient(const double*, const double*, double*);
@@ -1751,28 +895,12 @@ void tm_stvk_quad9_whole_stress(const double*, const double*, double*);
 void tm_stvk_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_quad9_terms_energy(const double*, const double*);
-void tm_stvk_quad9_terms_gradient(const double*, const double*, double*);
-void tm_stvk_quad9_terms_hessian(const double*, const double*, double*);
-void tm_stvk_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet10_whole_energy(const double*, const double*);
 void tm_stvk_tet10_whole_gradient(const double*, const double*, double*);
 void tm_stvk_tet10_whole_hessian(const double*, const double*, double*);
 void tm_stvk_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_tet10_terms_energy(const double*, const double*);
-void tm_stvk_tet10_terms_gradient(const double*, const double*, double*);
-void tm_stvk_tet10_terms_hessian(const double*, const double*, double*);
-void tm_stvk_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_whole_energy(const double*, const double*);
 void tm_stvk_tet4_whole_gradient(const double*, const double*, double*);
@@ -1782,14 +910,6 @@ void tm_stvk_tet4_whole_stress(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_tet4_terms_energy(const double*, const double*);
-void tm_stvk_tet4_terms_gradient(const double*, const double*, double*);
-void tm_stvk_tet4_terms_hessian(const double*, const double*, double*);
-void tm_stvk_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_tet4_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tet4_tensor_energy(const double*, const double*);
 void tm_stvk_tet4_tensor_gradient(const double*, const double*, double*);
@@ -1805,14 +925,6 @@ void tm_stvk_tri3_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_tri3_terms_energy(const double*, const double*);
-void tm_stvk_tri3_terms_gradient(const double*, const double*, double*);
-void tm_stvk_tri3_terms_hessian(const double*, const double*, double*);
-void tm_stvk_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_stvk_tri3_tensor_precompute(const double*, const double*, int, double*);
 double tm_stvk_tri3_tensor_energy(const double*, const double*);
 void tm_stvk_tri3_tensor_gradient(const double*, const double*, double*);
@@ -1828,70 +940,30 @@ void tm_stvk_tri6_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_stvk_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_stvk_tri6_terms_energy(const double*, const double*);
-void tm_stvk_tri6_terms_gradient(const double*, const double*, double*);
-void tm_stvk_tri6_terms_hessian(const double*, const double*, double*);
-void tm_stvk_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex20_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex20_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_hex20_terms_energy(const double*, const double*);
-void tm_veronda_westmann_hex20_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_hex20_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex27_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex27_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex27_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_hex27_terms_energy(const double*, const double*);
-void tm_veronda_westmann_hex27_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_hex27_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex8_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_hex8_terms_energy(const double*, const double*);
-void tm_veronda_westmann_hex8_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_hex8_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism15_whole_energy(const double*, const double*);
 void tm_veronda_westmann_prism15_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_prism15_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_prism15_terms_energy(const double*, const double*);
-void tm_veronda_westmann_prism15_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_prism15_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism6_whole_energy(const double*, const double*);
 void tm_veronda_westmann_prism6_whole_gradient(const double*, const double*, double*);
@@ -1901,28 +973,12 @@ void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, doubl
 void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_prism6_terms_energy(const double*, const double*);
-void tm_veronda_westmann_prism6_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_prism6_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid13_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_pyramid13_terms_energy(const double*, const double*);
-void tm_veronda_westmann_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid5_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -1932,14 +988,6 @@ void tm_veronda_westmann_pyramid5_whole_stress(const double*, const double*, dou
 void tm_veronda_westmann_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_pyramid5_terms_energy(const double*, const double*);
-void tm_veronda_westmann_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad4_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad4_whole_gradient(const double*, const double*, double*);
@@ -1949,14 +997,6 @@ void tm_veronda_westmann_quad4_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_quad4_terms_energy(const double*, const double*);
-void tm_veronda_westmann_quad4_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_quad4_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad8_whole_gradient(const double*, const double*, double*);
@@ -1966,14 +1006,6 @@ void tm_veronda_westmann_quad8_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_quad8_terms_energy(const double*, const double*);
-void tm_veronda_westmann_quad8_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_quad8_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad9_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad9_whole_gradient(const double*, const double*, double*);
@@ -1983,28 +1015,12 @@ void tm_veronda_westmann_quad9_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_quad9_terms_energy(const double*, const double*);
-void tm_veronda_westmann_quad9_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_quad9_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet10_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tet10_whole_gradient(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_tet10_terms_energy(const double*, const double*);
-void tm_veronda_westmann_tet10_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_tet10_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tet4_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tet4_whole_gradient(const double*, const double*, double*);
@@ -2014,14 +1030,6 @@ void tm_veronda_westmann_tet4_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_tet4_terms_energy(const double*, const double*);
-void tm_veronda_westmann_tet4_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_tet4_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri3_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri3_whole_gradient(const double*, const double*, double*);
@@ -2031,14 +1039,6 @@ void tm_veronda_westmann_tri3_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_tri3_terms_energy(const double*, const double*);
-void tm_veronda_westmann_tri3_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_tri3_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_veronda_westmann_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri6_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri6_whole_gradient(const double*, const double*, double*);
@@ -2048,70 +1048,30 @@ void tm_veronda_westmann_tri6_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_veronda_westmann_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_tri6_terms_energy(const double*, const double*);
-void tm_veronda_westmann_tri6_terms_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_tri6_terms_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_tri6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex20_whole_energy(const double*, const double*);
 void tm_yeoh_hex20_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex20_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex20_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_hex20_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_hex20_terms_energy(const double*, const double*);
-void tm_yeoh_hex20_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_hex20_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_hex20_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_hex20_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_hex27_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex27_whole_energy(const double*, const double*);
 void tm_yeoh_hex27_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex27_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex27_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_hex27_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_hex27_terms_energy(const double*, const double*);
-void tm_yeoh_hex27_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_hex27_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_hex27_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_hex27_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_hex8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex8_whole_energy(const double*, const double*);
 void tm_yeoh_hex8_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex8_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_hex8_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_hex8_terms_energy(const double*, const double*);
-void tm_yeoh_hex8_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_hex8_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_hex8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_hex8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism15_whole_energy(const double*, const double*);
 void tm_yeoh_prism15_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_prism15_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_prism15_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_prism15_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_prism15_terms_energy(const double*, const double*);
-void tm_yeoh_prism15_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_prism15_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_prism15_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_prism15_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_prism6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism6_whole_energy(const double*, const double*);
 void tm_yeoh_prism6_whole_gradient(const double*, const double*, double*);
@@ -2121,28 +1081,12 @@ void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_prism6_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_prism6_terms_energy(const double*, const double*);
-void tm_yeoh_prism6_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_prism6_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_prism6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_prism6_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid13_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid13_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_pyramid13_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_pyramid13_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_pyramid13_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_pyramid13_terms_energy(const double*, const double*);
-void tm_yeoh_pyramid13_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_pyramid13_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_pyramid13_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_pyramid13_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_pyramid5_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid5_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid5_whole_gradient(const double*, const double*, double*);
@@ -2152,14 +1096,6 @@ void tm_yeoh_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_pyramid5_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_pyramid5_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_pyramid5_terms_energy(const double*, const double*);
-void tm_yeoh_pyramid5_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_pyramid5_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_pyramid5_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_pyramid5_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad4_whole_energy(const double*, const double*);
 void tm_yeoh_quad4_whole_gradient(const double*, const double*, double*);
@@ -2169,14 +1105,6 @@ void tm_yeoh_quad4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_quad4_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_quad4_terms_energy(const double*, const double*);
-void tm_yeoh_quad4_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_quad4_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_quad4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_quad4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad8_whole_energy(const double*, const double*);
 void tm_yeoh_quad8_whole_gradient(const double*, const double*, double*);
@@ -2186,14 +1114,6 @@ void tm_yeoh_quad8_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad8_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad8_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_quad8_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_quad8_terms_energy(const double*, const double*);
-void tm_yeoh_quad8_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_quad8_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_quad8_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_quad8_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_quad9_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad9_whole_energy(const double*, const double*);
 void tm_yeoh_quad9_whole_gradient(const double*, const double*, double*);
@@ -2203,28 +1123,12 @@ void tm_yeoh_quad9_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad9_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad9_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_quad9_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_quad9_terms_energy(const double*, const double*);
-void tm_yeoh_quad9_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_quad9_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_quad9_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_quad9_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_tet10_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet10_whole_energy(const double*, const double*);
 void tm_yeoh_tet10_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_tet10_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_tet10_whole_stress(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_tet10_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_tet10_terms_energy(const double*, const double*);
-void tm_yeoh_tet10_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_tet10_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_tet10_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_tet10_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_tet4_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tet4_whole_energy(const double*, const double*);
 void tm_yeoh_tet4_whole_gradient(const double*, const double*, double*);
@@ -2234,14 +1138,6 @@ void tm_yeoh_tet4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tet4_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_tet4_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_tet4_terms_energy(const double*, const double*);
-void tm_yeoh_tet4_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_tet4_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_tet4_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_tet4_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri3_whole_energy(const double*, const double*);
 void tm_yeoh_tri3_whole_gradient(const double*, const double*, double*);
@@ -2251,14 +1147,6 @@ void tm_yeoh_tri3_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tri3_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_tri3_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_tri3_terms_energy(const double*, const double*);
-void tm_yeoh_tri3_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_tri3_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_tri3_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_tri3_terms_stress(const double*, const double*, double*);
-#endif
 int tm_yeoh_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri6_whole_energy(const double*, const double*);
 void tm_yeoh_tri6_whole_gradient(const double*, const double*, double*);
@@ -2268,14 +1156,6 @@ void tm_yeoh_tri6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tri6_whole_stress_batch(const double*, const double*, double*);
-#if TENSORMASS_TERMS_SPLIT
-int tm_yeoh_tri6_terms_precompute(const double*, const double*, int, double*);
-double tm_yeoh_tri6_terms_energy(const double*, const double*);
-void tm_yeoh_tri6_terms_gradient(const double*, const double*, double*);
-void tm_yeoh_tri6_terms_hessian(const double*, const double*, double*);
-void tm_yeoh_tri6_terms_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_tri6_terms_stress(const double*, const double*, double*);
-#endif
 }
 
 namespace {
@@ -2307,27 +1187,11 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_terms_precompute, tm_arruda_boyce_hex20_terms_energy, tm_arruda_boyce_hex20_terms_gradient,
-   tm_arruda_boyce_hex20_terms_hessian, tm_arruda_boyce_hex20_terms_gradient_hessian, tm_arruda_boyce_hex20_terms_stress, 12798, 110565, 995760,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_whole_precompute, tm_arruda_boyce_hex27_whole_energy, tm_arruda_boyce_hex27_whole_gradient,
    tm_arruda_boyce_hex27_whole_hessian, tm_arruda_boyce_hex27_whole_gradient_hessian, tm_arruda_boyce_hex27_whole_stress, 16200, 36693, 826335,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_terms_precompute, tm_arruda_boyce_hex27_terms_energy, tm_arruda_boyce_hex27_terms_gradient,
-   tm_arruda_boyce_hex27_terms_hessian, tm_arruda_boyce_hex27_terms_gradient_hessian, tm_arruda_boyce_hex27_terms_stress, 16200, 225261, 1836108,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
@@ -2335,27 +1199,11 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_terms_precompute, tm_arruda_boyce_hex8_terms_energy, tm_arruda_boyce_hex8_terms_gradient,
-   tm_arruda_boyce_hex8_terms_hessian, tm_arruda_boyce_hex8_terms_gradient_hessian, tm_arruda_boyce_hex8_terms_stress, 2064, 9648, 60416,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
    tm_arruda_boyce_prism15_whole_hessian, tm_arruda_boyce_prism15_whole_gradient_hessian, tm_arruda_boyce_prism15_whole_stress, 6912, 16686, 200970,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_terms_precompute, tm_arruda_boyce_prism15_terms_energy, tm_arruda_boyce_prism15_terms_gradient,
-   tm_arruda_boyce_prism15_terms_hessian, tm_arruda_boyce_prism15_terms_gradient_hessian, tm_arruda_boyce_prism15_terms_stress, 6912, 40338, 375300,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
@@ -2364,27 +1212,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_terms_precompute, tm_arruda_boyce_prism6_terms_energy, tm_arruda_boyce_prism6_terms_gradient,
-   tm_arruda_boyce_prism6_terms_hessian, tm_arruda_boyce_prism6_terms_gradient_hessian, tm_arruda_boyce_prism6_terms_stress, 1332, 6588, 32838,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
    tm_arruda_boyce_pyramid13_whole_hessian, tm_arruda_boyce_pyramid13_whole_gradient_hessian, tm_arruda_boyce_pyramid13_whole_stress, 9396, 23085, 241191,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_terms_precompute, tm_arruda_boyce_pyramid13_terms_energy, tm_arruda_boyce_pyramid13_terms_gradient,
-   tm_arruda_boyce_pyramid13_terms_hessian, tm_arruda_boyce_pyramid13_terms_gradient_hessian, tm_arruda_boyce_pyramid13_terms_stress, 9396, 39852, 410859,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
@@ -2393,28 +1225,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
    tm_arruda_boyce_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_terms_precompute, tm_arruda_boyce_pyramid5_terms_energy, tm_arruda_boyce_pyramid5_terms_gradient,
-   tm_arruda_boyce_pyramid5_terms_hessian, tm_arruda_boyce_pyramid5_terms_gradient_hessian, tm_arruda_boyce_pyramid5_terms_stress, 1632, 8352, 37160,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
    tm_arruda_boyce_quad4_whole_hessian, tm_arruda_boyce_quad4_whole_gradient_hessian, tm_arruda_boyce_quad4_whole_stress, 460, 1000, 3228,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_terms_precompute, tm_arruda_boyce_quad4_terms_energy, tm_arruda_boyce_quad4_terms_gradient,
-   tm_arruda_boyce_quad4_terms_hessian, tm_arruda_boyce_quad4_terms_gradient_hessian, tm_arruda_boyce_quad4_terms_stress, 460, 1872, 4912,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
@@ -2423,14 +1239,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_terms_precompute, tm_arruda_boyce_quad8_terms_energy, tm_arruda_boyce_quad8_terms_gradient,
-   tm_arruda_boyce_quad8_terms_hessian, tm_arruda_boyce_quad8_terms_gradient_hessian, tm_arruda_boyce_quad8_terms_stress, 1323, 5076, 18396,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_whole_precompute, tm_arruda_boyce_quad9_whole_energy, tm_arruda_boyce_quad9_whole_gradient,
    tm_arruda_boyce_quad9_whole_hessian, tm_arruda_boyce_quad9_whole_gradient_hessian, tm_arruda_boyce_quad9_whole_stress, 1395, 2970, 15453,
@@ -2438,27 +1246,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad9_whole_gradient_batch, tm_arruda_boyce_quad9_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_terms_precompute, tm_arruda_boyce_quad9_terms_energy, tm_arruda_boyce_quad9_terms_gradient,
-   tm_arruda_boyce_quad9_terms_hessian, tm_arruda_boyce_quad9_terms_gradient_hessian, tm_arruda_boyce_quad9_terms_stress, 1395, 5292, 20907,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
    tm_arruda_boyce_tet10_whole_hessian, tm_arruda_boyce_tet10_whole_gradient_hessian, tm_arruda_boyce_tet10_whole_stress, 1176, 2988, 24500,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_terms_precompute, tm_arruda_boyce_tet10_terms_energy, tm_arruda_boyce_tet10_terms_gradient,
-   tm_arruda_boyce_tet10_terms_hessian, tm_arruda_boyce_tet10_terms_gradient_hessian, tm_arruda_boyce_tet10_terms_stress, 1176, 5256, 40780,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
@@ -2467,28 +1259,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
    tm_arruda_boyce_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_terms_precompute, tm_arruda_boyce_tet4_terms_energy, tm_arruda_boyce_tet4_terms_gradient,
-   tm_arruda_boyce_tet4_terms_hessian, tm_arruda_boyce_tet4_terms_gradient_hessian, tm_arruda_boyce_tet4_terms_stress, 186, 990, 3958,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
    tm_arruda_boyce_tri3_whole_hessian, tm_arruda_boyce_tri3_whole_gradient_hessian, tm_arruda_boyce_tri3_whole_stress, 107, 234, 697,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_terms_precompute, tm_arruda_boyce_tri3_terms_energy, tm_arruda_boyce_tri3_terms_gradient,
-   tm_arruda_boyce_tri3_terms_hessian, tm_arruda_boyce_tri3_terms_gradient_hessian, tm_arruda_boyce_tri3_terms_stress, 107, 444, 1099,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
@@ -2497,27 +1273,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"arruda_boyce", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_terms_precompute, tm_arruda_boyce_tri6_terms_energy, tm_arruda_boyce_tri6_terms_gradient,
-   tm_arruda_boyce_tri6_terms_hessian, tm_arruda_boyce_tri6_terms_gradient_hessian, tm_arruda_boyce_tri6_terms_stress, 393, 1548, 4728,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
    tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_terms_precompute, tm_corotational_hex20_terms_energy, tm_corotational_hex20_terms_gradient,
-   tm_corotational_hex20_terms_hessian, tm_corotational_hex20_terms_gradient_hessian, tm_corotational_hex20_terms_stress, 24381, 135000, 1086480,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_whole_precompute, tm_corotational_hex27_whole_energy, tm_corotational_hex27_whole_gradient,
@@ -2525,41 +1285,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_terms_precompute, tm_corotational_hex27_terms_energy, tm_corotational_hex27_terms_gradient,
-   tm_corotational_hex27_terms_hessian, tm_corotational_hex27_terms_gradient_hessian, tm_corotational_hex27_terms_stress, 27783, 269244, 1999404,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
    tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_terms_precompute, tm_corotational_hex8_terms_energy, tm_corotational_hex8_terms_gradient,
-   tm_corotational_hex8_terms_hessian, tm_corotational_hex8_terms_gradient_hessian, tm_corotational_hex8_terms_stress, 5496, 12544, 71168,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
    tm_corotational_prism15_whole_hessian, tm_corotational_prism15_whole_gradient_hessian, tm_corotational_prism15_whole_stress, 14634, 19944, 211662,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_terms_precompute, tm_corotational_prism15_terms_energy, tm_corotational_prism15_terms_gradient,
-   tm_corotational_prism15_terms_hessian, tm_corotational_prism15_terms_gradient_hessian, tm_corotational_prism15_terms_stress, 14634, 50112, 411588,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
@@ -2568,27 +1304,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_terms_precompute, tm_corotational_prism6_terms_energy, tm_corotational_prism6_terms_gradient,
-   tm_corotational_prism6_terms_hessian, tm_corotational_prism6_terms_gradient_hessian, tm_corotational_prism6_terms_stress, 3906, 8760, 40902,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
    tm_corotational_pyramid13_whole_hessian, tm_corotational_pyramid13_whole_gradient_hessian, tm_corotational_pyramid13_whole_stress, 20979, 27972, 257229,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_terms_precompute, tm_corotational_pyramid13_terms_energy, tm_corotational_pyramid13_terms_gradient,
-   tm_corotational_pyramid13_terms_hessian, tm_corotational_pyramid13_terms_gradient_hessian, tm_corotational_pyramid13_terms_stress, 20979, 49626, 447147,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
@@ -2597,28 +1317,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_terms_precompute, tm_corotational_pyramid5_terms_energy, tm_corotational_pyramid5_terms_gradient,
-   tm_corotational_pyramid5_terms_hessian, tm_corotational_pyramid5_terms_gradient_hessian, tm_corotational_pyramid5_terms_stress, 5064, 11248, 47912,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
    tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_terms_precompute, tm_corotational_quad4_terms_energy, tm_corotational_quad4_terms_gradient,
-   tm_corotational_quad4_terms_hessian, tm_corotational_quad4_terms_gradient_hessian, tm_corotational_quad4_terms_stress, 288, 776, 2800,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
@@ -2627,14 +1331,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
    tm_corotational_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_terms_precompute, tm_corotational_quad8_terms_energy, tm_corotational_quad8_terms_gradient,
-   tm_corotational_quad8_terms_hessian, tm_corotational_quad8_terms_gradient_hessian, tm_corotational_quad8_terms_stress, 936, 2610, 13644,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_whole_precompute, tm_corotational_quad9_whole_energy, tm_corotational_quad9_whole_gradient,
    tm_corotational_quad9_whole_hessian, tm_corotational_quad9_whole_gradient_hessian, tm_corotational_quad9_whole_stress, 1008, 1737, 12753,
@@ -2642,27 +1338,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad9_whole_gradient_batch, tm_corotational_quad9_whole_gradient_hessian_batch,
    tm_corotational_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_terms_precompute, tm_corotational_quad9_terms_energy, tm_corotational_quad9_terms_gradient,
-   tm_corotational_quad9_terms_hessian, tm_corotational_quad9_terms_gradient_hessian, tm_corotational_quad9_terms_stress, 1008, 2826, 16155,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
    tm_corotational_tet10_whole_hessian, tm_corotational_tet10_whole_gradient_hessian, tm_corotational_tet10_whole_stress, 2892, 3712, 26876,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_terms_precompute, tm_corotational_tet10_terms_energy, tm_corotational_tet10_terms_gradient,
-   tm_corotational_tet10_terms_hessian, tm_corotational_tet10_terms_gradient_hessian, tm_corotational_tet10_terms_stress, 2892, 6704, 46156,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
@@ -2671,28 +1351,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
    tm_corotational_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_terms_precompute, tm_corotational_tet4_terms_energy, tm_corotational_tet4_terms_gradient,
-   tm_corotational_tet4_terms_hessian, tm_corotational_tet4_terms_gradient_hessian, tm_corotational_tet4_terms_stress, 615, 1352, 5302,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
    tm_corotational_tri3_whole_hessian, tm_corotational_tri3_whole_gradient_hessian, tm_corotational_tri3_whole_stress, 64, 97, 397,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
    tm_corotational_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_terms_precompute, tm_corotational_tri3_terms_energy, tm_corotational_tri3_terms_gradient,
-   tm_corotational_tri3_terms_hessian, tm_corotational_tri3_terms_gradient_hessian, tm_corotational_tri3_terms_stress, 64, 170, 571,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
@@ -2701,27 +1365,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
    tm_corotational_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"corotational", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_terms_precompute, tm_corotational_tri6_terms_energy, tm_corotational_tri6_terms_gradient,
-   tm_corotational_tri6_terms_hessian, tm_corotational_tri6_terms_gradient_hessian, tm_corotational_tri6_terms_stress, 264, 726, 3144,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
    tm_gent_hex20_whole_hessian, tm_gent_hex20_whole_gradient_hessian, tm_gent_hex20_whole_stress, 11394, 25110, 478467,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
-   kGentParameters, kGentLimits, tm_gent_hex20_terms_precompute, tm_gent_hex20_terms_energy, tm_gent_hex20_terms_gradient,
-   tm_gent_hex20_terms_hessian, tm_gent_hex20_terms_gradient_hessian, tm_gent_hex20_terms_stress, 11394, 86670, 969300,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kGentParameters, kGentLimits, tm_gent_hex27_whole_precompute, tm_gent_hex27_whole_energy, tm_gent_hex27_whole_gradient,
@@ -2729,41 +1377,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
-   kGentParameters, kGentLimits, tm_gent_hex27_terms_precompute, tm_gent_hex27_terms_energy, tm_gent_hex27_terms_gradient,
-   tm_gent_hex27_terms_hessian, tm_gent_hex27_terms_gradient_hessian, tm_gent_hex27_terms_stress, 14796, 182250, 1788480,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
    tm_gent_hex8_whole_hessian, tm_gent_hex8_whole_gradient_hessian, tm_gent_hex8_whole_stress, 1648, 3984, 34632,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
-   kGentParameters, kGentLimits, tm_gent_hex8_terms_precompute, tm_gent_hex8_terms_energy, tm_gent_hex8_terms_gradient,
-   tm_gent_hex8_terms_hessian, tm_gent_hex8_terms_gradient_hessian, tm_gent_hex8_terms_stress, 1648, 6816, 57280,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
    tm_gent_prism15_whole_hessian, tm_gent_prism15_whole_gradient_hessian, tm_gent_prism15_whole_stress, 5976, 13500, 195858,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
-   kGentParameters, kGentLimits, tm_gent_prism15_terms_precompute, tm_gent_prism15_terms_energy, tm_gent_prism15_terms_gradient,
-   tm_gent_prism15_terms_hessian, tm_gent_prism15_terms_gradient_hessian, tm_gent_prism15_terms_stress, 5976, 30780, 364716,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
@@ -2772,27 +1396,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
-   kGentParameters, kGentLimits, tm_gent_prism6_terms_precompute, tm_gent_prism6_terms_energy, tm_gent_prism6_terms_gradient,
-   tm_gent_prism6_terms_hessian, tm_gent_prism6_terms_gradient_hessian, tm_gent_prism6_terms_stress, 1020, 4464, 30486,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
    tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
-   kGentParameters, kGentLimits, tm_gent_pyramid13_terms_precompute, tm_gent_pyramid13_terms_energy, tm_gent_pyramid13_terms_gradient,
-   tm_gent_pyramid13_terms_hessian, tm_gent_pyramid13_terms_gradient_hessian, tm_gent_pyramid13_terms_stress, 7992, 30294, 400275,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
@@ -2801,28 +1409,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
    tm_gent_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
-   kGentParameters, kGentLimits, tm_gent_pyramid5_terms_precompute, tm_gent_pyramid5_terms_energy, tm_gent_pyramid5_terms_gradient,
-   tm_gent_pyramid5_terms_hessian, tm_gent_pyramid5_terms_gradient_hessian, tm_gent_pyramid5_terms_stress, 1216, 5520, 34024,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
    tm_gent_quad4_whole_hessian, tm_gent_quad4_whole_gradient_hessian, tm_gent_quad4_whole_stress, 252, 504, 2292,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
    tm_gent_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
-   kGentParameters, kGentLimits, tm_gent_quad4_terms_precompute, tm_gent_quad4_terms_energy, tm_gent_quad4_terms_gradient,
-   tm_gent_quad4_terms_hessian, tm_gent_quad4_terms_gradient_hessian, tm_gent_quad4_terms_stress, 252, 880, 3368,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
@@ -2831,14 +1423,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
    tm_gent_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
-   kGentParameters, kGentLimits, tm_gent_quad8_terms_precompute, tm_gent_quad8_terms_energy, tm_gent_quad8_terms_gradient,
-   tm_gent_quad8_terms_hessian, tm_gent_quad8_terms_gradient_hessian, tm_gent_quad8_terms_stress, 855, 2844, 14922,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kGentParameters, kGentLimits, tm_gent_quad9_whole_precompute, tm_gent_quad9_whole_energy, tm_gent_quad9_whole_gradient,
    tm_gent_quad9_whole_hessian, tm_gent_quad9_whole_gradient_hessian, tm_gent_quad9_whole_stress, 927, 1854, 13347,
@@ -2846,27 +1430,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad9_whole_gradient_batch, tm_gent_quad9_whole_gradient_hessian_batch,
    tm_gent_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
-   kGentParameters, kGentLimits, tm_gent_quad9_terms_precompute, tm_gent_quad9_terms_energy, tm_gent_quad9_terms_gradient,
-   tm_gent_quad9_terms_hessian, tm_gent_quad9_terms_gradient_hessian, tm_gent_quad9_terms_stress, 927, 3060, 17433,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
    tm_gent_tet10_whole_hessian, tm_gent_tet10_whole_gradient_hessian, tm_gent_tet10_whole_stress, 968, 2280, 23364,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
-   kGentParameters, kGentLimits, tm_gent_tet10_terms_precompute, tm_gent_tet10_terms_energy, tm_gent_tet10_terms_gradient,
-   tm_gent_tet10_terms_hessian, tm_gent_tet10_terms_gradient_hessian, tm_gent_tet10_terms_stress, 968, 3840, 39212,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
@@ -2875,28 +1443,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
    tm_gent_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
-   kGentParameters, kGentLimits, tm_gent_tet4_terms_precompute, tm_gent_tet4_terms_energy, tm_gent_tet4_terms_gradient,
-   tm_gent_tet4_terms_hessian, tm_gent_tet4_terms_gradient_hessian, tm_gent_tet4_terms_stress, 134, 636, 3566,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
    tm_gent_tri3_whole_hessian, tm_gent_tri3_whole_gradient_hessian, tm_gent_tri3_whole_stress, 55, 110, 463,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
    tm_gent_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
-   kGentParameters, kGentLimits, tm_gent_tri3_terms_precompute, tm_gent_tri3_terms_energy, tm_gent_tri3_terms_gradient,
-   tm_gent_tri3_terms_hessian, tm_gent_tri3_terms_gradient_hessian, tm_gent_tri3_terms_stress, 55, 196, 713,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
@@ -2905,27 +1457,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
    tm_gent_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"gent", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
-   kGentParameters, kGentLimits, tm_gent_tri6_terms_precompute, tm_gent_tri6_terms_energy, tm_gent_tri6_terms_gradient,
-   tm_gent_tri6_terms_hessian, tm_gent_tri6_terms_gradient_hessian, tm_gent_tri6_terms_stress, 237, 804, 3570,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
    tm_hooke_hex20_whole_hessian, tm_hooke_hex20_whole_gradient_hessian, tm_hooke_hex20_whole_stress, 10341, 19818, 447606,
    1, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kHookeParameters, kHookeLimits, tm_hooke_hex20_terms_precompute, tm_hooke_hex20_terms_energy, tm_hooke_hex20_terms_gradient,
-   tm_hooke_hex20_terms_hessian, tm_hooke_hex20_terms_gradient_hessian, tm_hooke_hex20_terms_stress, 10341, 60210, 309015,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kHookeParameters, kHookeLimits, tm_hooke_hex27_whole_precompute, tm_hooke_hex27_whole_energy, tm_hooke_hex27_whole_gradient,
@@ -2933,27 +1469,11 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
-   kHookeParameters, kHookeLimits, tm_hooke_hex27_terms_precompute, tm_hooke_hex27_terms_energy, tm_hooke_hex27_terms_gradient,
-   tm_hooke_hex27_terms_hessian, tm_hooke_hex27_terms_gradient_hessian, tm_hooke_hex27_terms_stress, 13743, 134622, 591948,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
    tm_hooke_hex8_whole_hessian, tm_hooke_hex8_whole_gradient_hessian, tm_hooke_hex8_whole_stress, 1336, 2416, 25488,
    1, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kHookeParameters, kHookeLimits, tm_hooke_hex8_terms_precompute, tm_hooke_hex8_terms_energy, tm_hooke_hex8_terms_gradient,
-   tm_hooke_hex8_terms_hessian, tm_hooke_hex8_terms_gradient_hessian, tm_hooke_hex8_terms_stress, 1336, 3680, 14736,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
@@ -2967,28 +1487,12 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
-   kHookeParameters, kHookeLimits, tm_hooke_prism15_terms_precompute, tm_hooke_prism15_terms_energy, tm_hooke_prism15_terms_gradient,
-   tm_hooke_prism15_terms_hessian, tm_hooke_prism15_terms_gradient_hessian, tm_hooke_prism15_terms_stress, 5274, 20196, 112428,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
    tm_hooke_prism6_whole_hessian, tm_hooke_prism6_whole_gradient_hessian, tm_hooke_prism6_whole_stress, 786, 1380, 11772,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
    tm_hooke_prism6_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kHookeParameters, kHookeLimits, tm_hooke_prism6_terms_precompute, tm_hooke_prism6_terms_energy, tm_hooke_prism6_terms_gradient,
-   tm_hooke_prism6_terms_hessian, tm_hooke_prism6_terms_gradient_hessian, tm_hooke_prism6_terms_stress, 786, 2112, 6552,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
@@ -3002,28 +1506,12 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
-   kHookeParameters, kHookeLimits, tm_hooke_pyramid13_terms_precompute, tm_hooke_pyramid13_terms_energy, tm_hooke_pyramid13_terms_gradient,
-   tm_hooke_pyramid13_terms_hessian, tm_hooke_pyramid13_terms_gradient_hessian, tm_hooke_pyramid13_terms_stress, 6939, 19710, 123039,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
    tm_hooke_pyramid5_whole_hessian, tm_hooke_pyramid5_whole_gradient_hessian, tm_hooke_pyramid5_whole_stress, 904, 1552, 11664,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
    tm_hooke_pyramid5_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kHookeParameters, kHookeLimits, tm_hooke_pyramid5_terms_precompute, tm_hooke_pyramid5_terms_energy, tm_hooke_pyramid5_terms_gradient,
-   tm_hooke_pyramid5_terms_hessian, tm_hooke_pyramid5_terms_gradient_hessian, tm_hooke_pyramid5_terms_stress, 904, 2384, 6312,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
@@ -3038,14 +1526,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
    tm_hooke_quad4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kHookeParameters, kHookeLimits, tm_hooke_quad4_terms_precompute, tm_hooke_quad4_terms_energy, tm_hooke_quad4_terms_gradient,
-   tm_hooke_quad4_terms_hessian, tm_hooke_quad4_terms_gradient_hessian, tm_hooke_quad4_terms_stress, 180, 464, 960,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
    tm_hooke_quad4_tensor_hessian, tm_hooke_quad4_tensor_gradient_hessian, tm_hooke_quad4_tensor_stress, 144, 128, 0,
@@ -3059,14 +1539,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
    tm_hooke_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kHookeParameters, kHookeLimits, tm_hooke_quad8_terms_precompute, tm_hooke_quad8_terms_energy, tm_hooke_quad8_terms_gradient,
-   tm_hooke_quad8_terms_hessian, tm_hooke_quad8_terms_gradient_hessian, tm_hooke_quad8_terms_stress, 693, 1908, 7164,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kHookeParameters, kHookeLimits, tm_hooke_quad9_whole_precompute, tm_hooke_quad9_whole_energy, tm_hooke_quad9_whole_gradient,
    tm_hooke_quad9_whole_hessian, tm_hooke_quad9_whole_gradient_hessian, tm_hooke_quad9_whole_stress, 765, 1386, 10980,
@@ -3074,27 +1546,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad9_whole_gradient_batch, tm_hooke_quad9_whole_gradient_hessian_batch,
    tm_hooke_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
-   kHookeParameters, kHookeLimits, tm_hooke_quad9_terms_precompute, tm_hooke_quad9_terms_energy, tm_hooke_quad9_terms_gradient,
-   tm_hooke_quad9_terms_hessian, tm_hooke_quad9_terms_gradient_hessian, tm_hooke_quad9_terms_stress, 765, 2124, 8865,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
    tm_hooke_tet10_whole_hessian, tm_hooke_tet10_whole_gradient_hessian, tm_hooke_tet10_whole_stress, 812, 1496, 18792,
    1, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kHookeParameters, kHookeLimits, tm_hooke_tet10_terms_precompute, tm_hooke_tet10_terms_energy, tm_hooke_tet10_terms_gradient,
-   tm_hooke_tet10_terms_hessian, tm_hooke_tet10_terms_gradient_hessian, tm_hooke_tet10_terms_stress, 812, 2272, 11136,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
@@ -3102,14 +1558,6 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
    tm_hooke_tet4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kHookeParameters, kHookeLimits, tm_hooke_tet4_terms_precompute, tm_hooke_tet4_terms_energy, tm_hooke_tet4_terms_gradient,
-   tm_hooke_tet4_terms_hessian, tm_hooke_tet4_terms_gradient_hessian, tm_hooke_tet4_terms_stress, 95, 244, 534,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
@@ -3124,14 +1572,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
    tm_hooke_tri3_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kHookeParameters, kHookeLimits, tm_hooke_tri3_terms_precompute, tm_hooke_tri3_terms_energy, tm_hooke_tri3_terms_gradient,
-   tm_hooke_tri3_terms_hessian, tm_hooke_tri3_terms_gradient_hessian, tm_hooke_tri3_terms_stress, 37, 92, 151,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
    tm_hooke_tri3_tensor_hessian, tm_hooke_tri3_tensor_gradient_hessian, tm_hooke_tri3_tensor_stress, 84, 72, 0,
@@ -3145,27 +1585,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
    tm_hooke_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"hooke", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kHookeParameters, kHookeLimits, tm_hooke_tri6_terms_precompute, tm_hooke_tri6_terms_energy, tm_hooke_tri6_terms_gradient,
-   tm_hooke_tri6_terms_hessian, tm_hooke_tri6_terms_gradient_hessian, tm_hooke_tri6_terms_stress, 183, 492, 1434,
-   1, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
    tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 28863, 476118,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_terms_precompute, tm_mooney_rivlin_hex20_terms_energy, tm_mooney_rivlin_hex20_terms_gradient,
-   tm_mooney_rivlin_hex20_terms_hessian, tm_mooney_rivlin_hex20_terms_gradient_hessian, tm_mooney_rivlin_hex20_terms_stress, 12366, 105435, 955395,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_whole_precompute, tm_mooney_rivlin_hex27_whole_energy, tm_mooney_rivlin_hex27_whole_gradient,
@@ -3173,41 +1597,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_terms_precompute, tm_mooney_rivlin_hex27_terms_energy, tm_mooney_rivlin_hex27_terms_gradient,
-   tm_mooney_rivlin_hex27_terms_hessian, tm_mooney_rivlin_hex27_terms_gradient_hessian, tm_mooney_rivlin_hex27_terms_stress, 15768, 216027, 1763451,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
    tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 5096, 33936,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_terms_precompute, tm_mooney_rivlin_hex8_terms_energy, tm_mooney_rivlin_hex8_terms_gradient,
-   tm_mooney_rivlin_hex8_terms_hessian, tm_mooney_rivlin_hex8_terms_gradient_hessian, tm_mooney_rivlin_hex8_terms_stress, 1936, 9040, 55632,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
    tm_mooney_rivlin_prism15_whole_hessian, tm_mooney_rivlin_prism15_whole_gradient_hessian, tm_mooney_rivlin_prism15_whole_stress, 6624, 16002, 194292,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_terms_precompute, tm_mooney_rivlin_prism15_terms_energy, tm_mooney_rivlin_prism15_terms_gradient,
-   tm_mooney_rivlin_prism15_terms_hessian, tm_mooney_rivlin_prism15_terms_gradient_hessian, tm_mooney_rivlin_prism15_terms_stress, 6624, 38286, 359154,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
@@ -3216,27 +1616,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_terms_precompute, tm_mooney_rivlin_prism6_terms_energy, tm_mooney_rivlin_prism6_terms_gradient,
-   tm_mooney_rivlin_prism6_terms_hessian, tm_mooney_rivlin_prism6_terms_gradient_hessian, tm_mooney_rivlin_prism6_terms_stress, 1236, 6132, 29250,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
    tm_mooney_rivlin_pyramid13_whole_hessian, tm_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_mooney_rivlin_pyramid13_whole_stress, 8964, 22059, 231174,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_terms_precompute, tm_mooney_rivlin_pyramid13_terms_energy, tm_mooney_rivlin_pyramid13_terms_gradient,
-   tm_mooney_rivlin_pyramid13_terms_hessian, tm_mooney_rivlin_pyramid13_terms_gradient_hessian, tm_mooney_rivlin_pyramid13_terms_stress, 8964, 37800, 394713,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
@@ -3245,28 +1629,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_terms_precompute, tm_mooney_rivlin_pyramid5_terms_energy, tm_mooney_rivlin_pyramid5_terms_gradient,
-   tm_mooney_rivlin_pyramid5_terms_hessian, tm_mooney_rivlin_pyramid5_terms_gradient_hessian, tm_mooney_rivlin_pyramid5_terms_stress, 1504, 7744, 32376,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
    tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 720, 2384,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_terms_precompute, tm_mooney_rivlin_quad4_terms_energy, tm_mooney_rivlin_quad4_terms_gradient,
-   tm_mooney_rivlin_quad4_terms_hessian, tm_mooney_rivlin_quad4_terms_gradient_hessian, tm_mooney_rivlin_quad4_terms_stress, 316, 1312, 3488,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
@@ -3275,14 +1643,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_terms_precompute, tm_mooney_rivlin_quad8_terms_energy, tm_mooney_rivlin_quad8_terms_gradient,
-   tm_mooney_rivlin_quad8_terms_hessian, tm_mooney_rivlin_quad8_terms_gradient_hessian, tm_mooney_rivlin_quad8_terms_stress, 999, 3816, 15192,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_whole_precompute, tm_mooney_rivlin_quad9_whole_energy, tm_mooney_rivlin_quad9_whole_gradient,
    tm_mooney_rivlin_quad9_whole_hessian, tm_mooney_rivlin_quad9_whole_gradient_hessian, tm_mooney_rivlin_quad9_whole_stress, 1071, 2340, 13554,
@@ -3290,27 +1650,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad9_whole_gradient_batch, tm_mooney_rivlin_quad9_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_terms_precompute, tm_mooney_rivlin_quad9_terms_energy, tm_mooney_rivlin_quad9_terms_gradient,
-   tm_mooney_rivlin_quad9_terms_hessian, tm_mooney_rivlin_quad9_terms_gradient_hessian, tm_mooney_rivlin_quad9_terms_stress, 1071, 4032, 17703,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
    tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 2836, 23016,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_terms_precompute, tm_mooney_rivlin_tet10_terms_energy, tm_mooney_rivlin_tet10_terms_gradient,
-   tm_mooney_rivlin_tet10_terms_hessian, tm_mooney_rivlin_tet10_terms_gradient_hessian, tm_mooney_rivlin_tet10_terms_stress, 1112, 4952, 38388,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
@@ -3319,28 +1663,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_terms_precompute, tm_mooney_rivlin_tet4_terms_energy, tm_mooney_rivlin_tet4_terms_gradient,
-   tm_mooney_rivlin_tet4_terms_hessian, tm_mooney_rivlin_tet4_terms_gradient_hessian, tm_mooney_rivlin_tet4_terms_stress, 170, 914, 3360,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
    tm_mooney_rivlin_tri3_whole_hessian, tm_mooney_rivlin_tri3_whole_gradient_hessian, tm_mooney_rivlin_tri3_whole_stress, 71, 164, 486,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_terms_precompute, tm_mooney_rivlin_tri3_terms_energy, tm_mooney_rivlin_tri3_terms_gradient,
-   tm_mooney_rivlin_tri3_terms_hessian, tm_mooney_rivlin_tri3_terms_gradient_hessian, tm_mooney_rivlin_tri3_terms_stress, 71, 304, 743,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
@@ -3349,27 +1677,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"mooney_rivlin", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_terms_precompute, tm_mooney_rivlin_tri6_terms_energy, tm_mooney_rivlin_tri6_terms_gradient,
-   tm_mooney_rivlin_tri6_terms_hessian, tm_mooney_rivlin_tri6_terms_gradient_hessian, tm_mooney_rivlin_tri6_terms_stress, 285, 1128, 3660,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
    tm_neohookean_hex20_whole_hessian, tm_neohookean_hex20_whole_gradient_hessian, tm_neohookean_hex20_whole_stress, 11178, 22761, 461187,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_terms_precompute, tm_neohookean_hex20_terms_energy, tm_neohookean_hex20_terms_gradient,
-   tm_neohookean_hex20_terms_hessian, tm_neohookean_hex20_terms_gradient_hessian, tm_neohookean_hex20_terms_stress, 11178, 74925, 883035,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_whole_precompute, tm_neohookean_hex27_whole_energy, tm_neohookean_hex27_whole_gradient,
@@ -3377,41 +1689,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_terms_precompute, tm_neohookean_hex27_terms_energy, tm_neohookean_hex27_terms_gradient,
-   tm_neohookean_hex27_terms_hessian, tm_neohookean_hex27_terms_gradient_hessian, tm_neohookean_hex27_terms_stress, 14580, 161109, 1633203,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
    tm_neohookean_hex8_whole_hessian, tm_neohookean_hex8_whole_gradient_hessian, tm_neohookean_hex8_whole_stress, 1584, 3288, 29512,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_terms_precompute, tm_neohookean_hex8_terms_energy, tm_neohookean_hex8_terms_gradient,
-   tm_neohookean_hex8_terms_hessian, tm_neohookean_hex8_terms_gradient_hessian, tm_neohookean_hex8_terms_stress, 1584, 5424, 47056,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
    tm_neohookean_prism15_whole_hessian, tm_neohookean_prism15_whole_gradient_hessian, tm_neohookean_prism15_whole_stress, 5832, 11934, 184338,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_terms_precompute, tm_neohookean_prism15_terms_energy, tm_neohookean_prism15_terms_gradient,
-   tm_neohookean_prism15_terms_hessian, tm_neohookean_prism15_terms_gradient_hessian, tm_neohookean_prism15_terms_stress, 5832, 26082, 330210,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
@@ -3420,27 +1708,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_terms_precompute, tm_neohookean_prism6_terms_energy, tm_neohookean_prism6_terms_gradient,
-   tm_neohookean_prism6_terms_hessian, tm_neohookean_prism6_terms_gradient_hessian, tm_neohookean_prism6_terms_stress, 972, 3420, 22818,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
    tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_terms_precompute, tm_neohookean_pyramid13_terms_energy, tm_neohookean_pyramid13_terms_gradient,
-   tm_neohookean_pyramid13_terms_hessian, tm_neohookean_pyramid13_terms_gradient_hessian, tm_neohookean_pyramid13_terms_stress, 7776, 25596, 365769,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
@@ -3449,28 +1721,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_terms_precompute, tm_neohookean_pyramid5_terms_energy, tm_neohookean_pyramid5_terms_gradient,
-   tm_neohookean_pyramid5_terms_hessian, tm_neohookean_pyramid5_terms_gradient_hessian, tm_neohookean_pyramid5_terms_stress, 1152, 4128, 23800,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
    tm_neohookean_quad4_whole_hessian, tm_neohookean_quad4_whole_gradient_hessian, tm_neohookean_quad4_whole_stress, 216, 404, 1728,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_terms_precompute, tm_neohookean_quad4_terms_energy, tm_neohookean_quad4_terms_gradient,
-   tm_neohookean_quad4_terms_hessian, tm_neohookean_quad4_terms_gradient_hessian, tm_neohookean_quad4_terms_stress, 216, 680, 2224,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
@@ -3479,14 +1735,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
    tm_neohookean_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_terms_precompute, tm_neohookean_quad8_terms_energy, tm_neohookean_quad8_terms_gradient,
-   tm_neohookean_quad8_terms_hessian, tm_neohookean_quad8_terms_gradient_hessian, tm_neohookean_quad8_terms_stress, 774, 2394, 12348,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_whole_precompute, tm_neohookean_quad9_whole_energy, tm_neohookean_quad9_whole_gradient,
    tm_neohookean_quad9_whole_hessian, tm_neohookean_quad9_whole_gradient_hessian, tm_neohookean_quad9_whole_stress, 846, 1629, 12078,
@@ -3494,27 +1742,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad9_whole_gradient_batch, tm_neohookean_quad9_whole_gradient_hessian_batch,
    tm_neohookean_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_terms_precompute, tm_neohookean_quad9_terms_energy, tm_neohookean_quad9_terms_gradient,
-   tm_neohookean_quad9_terms_hessian, tm_neohookean_quad9_terms_gradient_hessian, tm_neohookean_quad9_terms_stress, 846, 2610, 14859,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
    tm_neohookean_tet10_whole_hessian, tm_neohookean_tet10_whole_gradient_hessian, tm_neohookean_tet10_whole_stress, 936, 1932, 20804,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_terms_precompute, tm_neohookean_tet10_terms_energy, tm_neohookean_tet10_terms_gradient,
-   tm_neohookean_tet10_terms_hessian, tm_neohookean_tet10_terms_gradient_hessian, tm_neohookean_tet10_terms_stress, 936, 3144, 34100,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
@@ -3523,28 +1755,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
    tm_neohookean_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_terms_precompute, tm_neohookean_tet4_terms_energy, tm_neohookean_tet4_terms_gradient,
-   tm_neohookean_tet4_terms_hessian, tm_neohookean_tet4_terms_gradient_hessian, tm_neohookean_tet4_terms_stress, 126, 462, 2288,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
    tm_neohookean_tri3_whole_hessian, tm_neohookean_tri3_whole_gradient_hessian, tm_neohookean_tri3_whole_stress, 46, 85, 322,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
    tm_neohookean_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_terms_precompute, tm_neohookean_tri3_terms_energy, tm_neohookean_tri3_terms_gradient,
-   tm_neohookean_tri3_terms_hessian, tm_neohookean_tri3_terms_gradient_hessian, tm_neohookean_tri3_terms_stress, 46, 146, 427,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
@@ -3553,27 +1769,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
    tm_neohookean_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_terms_precompute, tm_neohookean_tri6_terms_energy, tm_neohookean_tri6_terms_gradient,
-   tm_neohookean_tri6_terms_hessian, tm_neohookean_tri6_terms_gradient_hessian, tm_neohookean_tri6_terms_stress, 210, 654, 2712,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
    tm_stable_neohookean_hex20_whole_hessian, tm_stable_neohookean_hex20_whole_gradient_hessian, tm_stable_neohookean_hex20_whole_stress, 12069, 24408, 460647,
    0, 1,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_terms_precompute, tm_stable_neohookean_hex20_terms_energy, tm_stable_neohookean_hex20_terms_gradient,
-   tm_stable_neohookean_hex20_terms_hessian, tm_stable_neohookean_hex20_terms_gradient_hessian, tm_stable_neohookean_hex20_terms_stress, 12069, 83160, 880335,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_whole_precompute, tm_stable_neohookean_hex27_whole_energy, tm_stable_neohookean_hex27_whole_gradient,
@@ -3581,41 +1781,17 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_terms_precompute, tm_stable_neohookean_hex27_terms_energy, tm_stable_neohookean_hex27_terms_gradient,
-   tm_stable_neohookean_hex27_terms_hessian, tm_stable_neohookean_hex27_terms_gradient_hessian, tm_stable_neohookean_hex27_terms_stress, 15471, 175932, 1628343,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
    tm_stable_neohookean_hex8_whole_hessian, tm_stable_neohookean_hex8_whole_gradient_hessian, tm_stable_neohookean_hex8_whole_stress, 1848, 3776, 29352,
    0, 1,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_terms_precompute, tm_stable_neohookean_hex8_terms_energy, tm_stable_neohookean_hex8_terms_gradient,
-   tm_stable_neohookean_hex8_terms_hessian, tm_stable_neohookean_hex8_terms_gradient_hessian, tm_stable_neohookean_hex8_terms_stress, 1848, 6400, 46736,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
    tm_stable_neohookean_prism15_whole_hessian, tm_stable_neohookean_prism15_whole_gradient_hessian, tm_stable_neohookean_prism15_whole_stress, 6426, 13032, 183978,
    0, 1,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_terms_precompute, tm_stable_neohookean_prism15_terms_energy, tm_stable_neohookean_prism15_terms_gradient,
-   tm_stable_neohookean_prism15_terms_hessian, tm_stable_neohookean_prism15_terms_gradient_hessian, tm_stable_neohookean_prism15_terms_stress, 6426, 29376, 329130,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
@@ -3624,27 +1800,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_terms_precompute, tm_stable_neohookean_prism6_terms_energy, tm_stable_neohookean_prism6_terms_gradient,
-   tm_stable_neohookean_prism6_terms_hessian, tm_stable_neohookean_prism6_terms_gradient_hessian, tm_stable_neohookean_prism6_terms_stress, 1170, 4152, 22578,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
    tm_stable_neohookean_pyramid13_whole_hessian, tm_stable_neohookean_pyramid13_whole_gradient_hessian, tm_stable_neohookean_pyramid13_whole_stress, 8667, 17604, 215703,
    0, 1,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_terms_precompute, tm_stable_neohookean_pyramid13_terms_energy, tm_stable_neohookean_pyramid13_terms_gradient,
-   tm_stable_neohookean_pyramid13_terms_hessian, tm_stable_neohookean_pyramid13_terms_gradient_hessian, tm_stable_neohookean_pyramid13_terms_stress, 8667, 28890, 364689,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
@@ -3653,28 +1813,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_terms_precompute, tm_stable_neohookean_pyramid5_terms_energy, tm_stable_neohookean_pyramid5_terms_gradient,
-   tm_stable_neohookean_pyramid5_terms_hessian, tm_stable_neohookean_pyramid5_terms_gradient_hessian, tm_stable_neohookean_pyramid5_terms_stress, 1416, 5104, 23480,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
    tm_stable_neohookean_quad4_whole_hessian, tm_stable_neohookean_quad4_whole_gradient_hessian, tm_stable_neohookean_quad4_whole_stress, 308, 512, 1736,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_terms_precompute, tm_stable_neohookean_quad4_terms_energy, tm_stable_neohookean_quad4_terms_gradient,
-   tm_stable_neohookean_quad4_terms_hessian, tm_stable_neohookean_quad4_terms_gradient_hessian, tm_stable_neohookean_quad4_terms_stress, 308, 896, 2240,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
@@ -3683,14 +1827,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_terms_precompute, tm_stable_neohookean_quad8_terms_energy, tm_stable_neohookean_quad8_terms_gradient,
-   tm_stable_neohookean_quad8_terms_hessian, tm_stable_neohookean_quad8_terms_gradient_hessian, tm_stable_neohookean_quad8_terms_stress, 981, 2880, 12384,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_whole_precompute, tm_stable_neohookean_quad9_whole_energy, tm_stable_neohookean_quad9_whole_gradient,
    tm_stable_neohookean_quad9_whole_hessian, tm_stable_neohookean_quad9_whole_gradient_hessian, tm_stable_neohookean_quad9_whole_stress, 1053, 1872, 12096,
@@ -3698,27 +1834,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad9_whole_gradient_batch, tm_stable_neohookean_quad9_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_terms_precompute, tm_stable_neohookean_quad9_terms_energy, tm_stable_neohookean_quad9_terms_gradient,
-   tm_stable_neohookean_quad9_terms_hessian, tm_stable_neohookean_quad9_terms_gradient_hessian, tm_stable_neohookean_quad9_terms_stress, 1053, 3096, 14895,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
    tm_stable_neohookean_tet10_whole_hessian, tm_stable_neohookean_tet10_whole_gradient_hessian, tm_stable_neohookean_tet10_whole_stress, 1068, 2176, 20724,
    0, 1,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_terms_precompute, tm_stable_neohookean_tet10_terms_energy, tm_stable_neohookean_tet10_terms_gradient,
-   tm_stable_neohookean_tet10_terms_hessian, tm_stable_neohookean_tet10_terms_gradient_hessian, tm_stable_neohookean_tet10_terms_stress, 1068, 3632, 33940,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
@@ -3727,28 +1847,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
    tm_stable_neohookean_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_terms_precompute, tm_stable_neohookean_tet4_terms_energy, tm_stable_neohookean_tet4_terms_gradient,
-   tm_stable_neohookean_tet4_terms_hessian, tm_stable_neohookean_tet4_terms_gradient_hessian, tm_stable_neohookean_tet4_terms_stress, 159, 584, 2248,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
    tm_stable_neohookean_tri3_whole_hessian, tm_stable_neohookean_tri3_whole_gradient_hessian, tm_stable_neohookean_tri3_whole_stress, 69, 112, 324,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_terms_precompute, tm_stable_neohookean_tri3_terms_energy, tm_stable_neohookean_tri3_terms_gradient,
-   tm_stable_neohookean_tri3_terms_hessian, tm_stable_neohookean_tri3_terms_gradient_hessian, tm_stable_neohookean_tri3_terms_stress, 69, 200, 431,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
@@ -3757,27 +1861,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stable_neohookean", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_terms_precompute, tm_stable_neohookean_tri6_terms_energy, tm_stable_neohookean_tri6_terms_gradient,
-   tm_stable_neohookean_tri6_terms_hessian, tm_stable_neohookean_tri6_terms_gradient_hessian, tm_stable_neohookean_tri6_terms_stress, 279, 816, 2724,
-   0, 1,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
    tm_stvk_hex20_whole_hessian, tm_stvk_hex20_whole_gradient_hessian, tm_stvk_hex20_whole_stress, 11502, 23301, 459864,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "hex20", "terms", 3, 20, 60, 27, 2, 2, 1649,
-   kStvkParameters, kStvkLimits, tm_stvk_hex20_terms_precompute, tm_stvk_hex20_terms_energy, tm_stvk_hex20_terms_gradient,
-   tm_stvk_hex20_terms_hessian, tm_stvk_hex20_terms_gradient_hessian, tm_stvk_hex20_terms_stress, 11502, 77625, 870075,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStvkParameters, kStvkLimits, tm_stvk_hex27_whole_precompute, tm_stvk_hex27_whole_energy, tm_stvk_hex27_whole_gradient,
@@ -3785,27 +1873,11 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "hex27", "terms", 3, 27, 81, 27, 2, 2, 2216,
-   kStvkParameters, kStvkLimits, tm_stvk_hex27_terms_precompute, tm_stvk_hex27_terms_energy, tm_stvk_hex27_terms_gradient,
-   tm_stvk_hex27_terms_hessian, tm_stvk_hex27_terms_gradient_hessian, tm_stvk_hex27_terms_stress, 14904, 165969, 1609875,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
    tm_stvk_hex8_whole_hessian, tm_stvk_hex8_whole_gradient_hessian, tm_stvk_hex8_whole_stress, 1680, 3448, 29120,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "hex8", "terms", 3, 8, 24, 8, 2, 2, 202,
-   kStvkParameters, kStvkLimits, tm_stvk_hex8_terms_precompute, tm_stvk_hex8_terms_energy, tm_stvk_hex8_terms_gradient,
-   tm_stvk_hex8_terms_hessian, tm_stvk_hex8_terms_gradient_hessian, tm_stvk_hex8_terms_stress, 1680, 5744, 45520,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
@@ -3819,28 +1891,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "prism15", "terms", 3, 15, 45, 18, 2, 2, 830,
-   kStvkParameters, kStvkLimits, tm_stvk_prism15_terms_precompute, tm_stvk_prism15_terms_energy, tm_stvk_prism15_terms_gradient,
-   tm_stvk_prism15_terms_hessian, tm_stvk_prism15_terms_gradient_hessian, tm_stvk_prism15_terms_stress, 6048, 27162, 325026,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
    tm_stvk_prism6_whole_hessian, tm_stvk_prism6_whole_gradient_hessian, tm_stvk_prism6_whole_stress, 1044, 2154, 14496,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
    tm_stvk_prism6_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "prism6", "terms", 3, 6, 18, 6, 2, 2, 116,
-   kStvkParameters, kStvkLimits, tm_stvk_prism6_terms_precompute, tm_stvk_prism6_terms_energy, tm_stvk_prism6_terms_gradient,
-   tm_stvk_prism6_terms_hessian, tm_stvk_prism6_terms_gradient_hessian, tm_stvk_prism6_terms_stress, 1044, 3660, 21666,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
@@ -3854,28 +1910,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "pyramid13", "terms", 3, 13, 39, 27, 2, 2, 1082,
-   kStvkParameters, kStvkLimits, tm_stvk_pyramid13_terms_precompute, tm_stvk_pyramid13_terms_energy, tm_stvk_pyramid13_terms_gradient,
-   tm_stvk_pyramid13_terms_hessian, tm_stvk_pyramid13_terms_gradient_hessian, tm_stvk_pyramid13_terms_stress, 8100, 26676, 360585,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
    tm_stvk_pyramid5_whole_hessian, tm_stvk_pyramid5_whole_gradient_hessian, tm_stvk_pyramid5_whole_stress, 1248, 2584, 15296,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
    tm_stvk_pyramid5_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "pyramid5", "terms", 3, 5, 15, 8, 2, 2, 130,
-   kStvkParameters, kStvkLimits, tm_stvk_pyramid5_terms_precompute, tm_stvk_pyramid5_terms_energy, tm_stvk_pyramid5_terms_gradient,
-   tm_stvk_pyramid5_terms_hessian, tm_stvk_pyramid5_terms_gradient_hessian, tm_stvk_pyramid5_terms_stress, 1248, 4448, 22264,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
@@ -3890,14 +1930,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
    tm_stvk_quad4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "quad4", "terms", 2, 4, 8, 4, 2, 2, 38,
-   kStvkParameters, kStvkLimits, tm_stvk_quad4_terms_precompute, tm_stvk_quad4_terms_energy, tm_stvk_quad4_terms_gradient,
-   tm_stvk_quad4_terms_hessian, tm_stvk_quad4_terms_gradient_hessian, tm_stvk_quad4_terms_stress, 248, 816, 2168,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
    tm_stvk_quad4_tensor_hessian, tm_stvk_quad4_tensor_gradient_hessian, tm_stvk_quad4_tensor_stress, 574, 886, 3078,
@@ -3911,14 +1943,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
    tm_stvk_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "quad8", "terms", 2, 8, 16, 9, 2, 2, 155,
-   kStvkParameters, kStvkLimits, tm_stvk_quad8_terms_precompute, tm_stvk_quad8_terms_energy, tm_stvk_quad8_terms_gradient,
-   tm_stvk_quad8_terms_hessian, tm_stvk_quad8_terms_gradient_hessian, tm_stvk_quad8_terms_stress, 846, 2700, 12222,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStvkParameters, kStvkLimits, tm_stvk_quad9_whole_precompute, tm_stvk_quad9_whole_energy, tm_stvk_quad9_whole_gradient,
    tm_stvk_quad9_whole_hessian, tm_stvk_quad9_whole_gradient_hessian, tm_stvk_quad9_whole_stress, 918, 1782, 12096,
@@ -3926,27 +1950,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad9_whole_gradient_batch, tm_stvk_quad9_whole_gradient_hessian_batch,
    tm_stvk_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "quad9", "terms", 2, 9, 18, 9, 2, 2, 173,
-   kStvkParameters, kStvkLimits, tm_stvk_quad9_terms_precompute, tm_stvk_quad9_terms_energy, tm_stvk_quad9_terms_gradient,
-   tm_stvk_quad9_terms_hessian, tm_stvk_quad9_terms_gradient_hessian, tm_stvk_quad9_terms_stress, 918, 2916, 14733,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
    tm_stvk_tet10_whole_hessian, tm_stvk_tet10_whole_gradient_hessian, tm_stvk_tet10_whole_stress, 984, 2012, 20608,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "tet10", "terms", 3, 10, 30, 4, 2, 2, 126,
-   kStvkParameters, kStvkLimits, tm_stvk_tet10_terms_precompute, tm_stvk_tet10_terms_energy, tm_stvk_tet10_terms_gradient,
-   tm_stvk_tet10_terms_hessian, tm_stvk_tet10_terms_gradient_hessian, tm_stvk_tet10_terms_stress, 984, 3304, 33332,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
@@ -3954,14 +1962,6 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
    tm_stvk_tet4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "tet4", "terms", 3, 4, 12, 1, 2, 2, 15,
-   kStvkParameters, kStvkLimits, tm_stvk_tet4_terms_precompute, tm_stvk_tet4_terms_energy, tm_stvk_tet4_terms_gradient,
-   tm_stvk_tet4_terms_hessian, tm_stvk_tet4_terms_gradient_hessian, tm_stvk_tet4_terms_stress, 138, 502, 2096,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
@@ -3976,14 +1976,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
    tm_stvk_tri3_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "tri3", "terms", 2, 3, 6, 1, 2, 2, 9,
-   kStvkParameters, kStvkLimits, tm_stvk_tri3_terms_precompute, tm_stvk_tri3_terms_energy, tm_stvk_tri3_terms_gradient,
-   tm_stvk_tri3_terms_hessian, tm_stvk_tri3_terms_gradient_hessian, tm_stvk_tri3_terms_stress, 54, 180, 413,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
    tm_stvk_tri3_tensor_hessian, tm_stvk_tri3_tensor_gradient_hessian, tm_stvk_tri3_tensor_stress, 270, 414, 1206,
@@ -3997,27 +1989,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"stvk", "tri6", "terms", 2, 6, 12, 3, 2, 2, 41,
-   kStvkParameters, kStvkLimits, tm_stvk_tri6_terms_precompute, tm_stvk_tri6_terms_energy, tm_stvk_tri6_terms_gradient,
-   tm_stvk_tri6_terms_hessian, tm_stvk_tri6_terms_gradient_hessian, tm_stvk_tri6_terms_stress, 234, 756, 2670,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
    tm_veronda_westmann_hex20_whole_hessian, tm_veronda_westmann_hex20_whole_gradient_hessian, tm_veronda_westmann_hex20_whole_stress, 12501, 29106, 490347,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "hex20", "terms", 3, 20, 60, 27, 3, 3, 1650,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_terms_precompute, tm_veronda_westmann_hex20_terms_energy, tm_veronda_westmann_hex20_terms_gradient,
-   tm_veronda_westmann_hex20_terms_hessian, tm_veronda_westmann_hex20_terms_gradient_hessian, tm_veronda_westmann_hex20_terms_stress, 12501, 106650, 1026405,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_whole_precompute, tm_veronda_westmann_hex27_whole_energy, tm_veronda_westmann_hex27_whole_gradient,
@@ -4025,41 +2001,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "hex27", "terms", 3, 27, 81, 27, 3, 3, 2217,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_terms_precompute, tm_veronda_westmann_hex27_terms_energy, tm_veronda_westmann_hex27_terms_gradient,
-   tm_veronda_westmann_hex27_terms_hessian, tm_veronda_westmann_hex27_terms_gradient_hessian, tm_veronda_westmann_hex27_terms_stress, 15903, 218214, 1891269,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
    tm_veronda_westmann_hex8_whole_hessian, tm_veronda_westmann_hex8_whole_gradient_hessian, tm_veronda_westmann_hex8_whole_stress, 1976, 5168, 38152,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "hex8", "terms", 3, 8, 24, 8, 3, 3, 203,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_terms_precompute, tm_veronda_westmann_hex8_terms_energy, tm_veronda_westmann_hex8_terms_gradient,
-   tm_veronda_westmann_hex8_terms_hessian, tm_veronda_westmann_hex8_terms_gradient_hessian, tm_veronda_westmann_hex8_terms_stress, 1976, 9184, 64048,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
    tm_veronda_westmann_prism15_whole_hessian, tm_veronda_westmann_prism15_whole_gradient_hessian, tm_veronda_westmann_prism15_whole_stress, 6714, 16164, 203778,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "prism15", "terms", 3, 15, 45, 18, 3, 3, 831,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_terms_precompute, tm_veronda_westmann_prism15_terms_energy, tm_veronda_westmann_prism15_terms_gradient,
-   tm_veronda_westmann_prism15_terms_hessian, tm_veronda_westmann_prism15_terms_gradient_hessian, tm_veronda_westmann_prism15_terms_stress, 6714, 38772, 387558,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
@@ -4068,27 +2020,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "prism6", "terms", 3, 6, 18, 6, 3, 3, 117,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_terms_precompute, tm_veronda_westmann_prism6_terms_energy, tm_veronda_westmann_prism6_terms_gradient,
-   tm_veronda_westmann_prism6_terms_hessian, tm_veronda_westmann_prism6_terms_gradient_hessian, tm_veronda_westmann_prism6_terms_stress, 1266, 6240, 35562,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
    tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "pyramid13", "terms", 3, 13, 39, 27, 3, 3, 1083,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_terms_precompute, tm_veronda_westmann_pyramid13_terms_energy, tm_veronda_westmann_pyramid13_terms_gradient,
-   tm_veronda_westmann_pyramid13_terms_hessian, tm_veronda_westmann_pyramid13_terms_gradient_hessian, tm_veronda_westmann_pyramid13_terms_stress, 9099, 38286, 423117,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
@@ -4097,28 +2033,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
    tm_veronda_westmann_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "pyramid5", "terms", 3, 5, 15, 8, 3, 3, 131,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_terms_precompute, tm_veronda_westmann_pyramid5_terms_energy, tm_veronda_westmann_pyramid5_terms_gradient,
-   tm_veronda_westmann_pyramid5_terms_hessian, tm_veronda_westmann_pyramid5_terms_gradient_hessian, tm_veronda_westmann_pyramid5_terms_stress, 1544, 7888, 40792,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
    tm_veronda_westmann_quad4_whole_hessian, tm_veronda_westmann_quad4_whole_gradient_hessian, tm_veronda_westmann_quad4_whole_stress, 336, 772, 2776,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "quad4", "terms", 2, 4, 8, 4, 3, 3, 39,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_terms_precompute, tm_veronda_westmann_quad4_terms_energy, tm_veronda_westmann_quad4_terms_gradient,
-   tm_veronda_westmann_quad4_terms_hessian, tm_veronda_westmann_quad4_terms_gradient_hessian, tm_veronda_westmann_quad4_terms_stress, 336, 1416, 4224,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
@@ -4127,14 +2047,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "quad8", "terms", 2, 8, 16, 9, 3, 3, 156,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_terms_precompute, tm_veronda_westmann_quad8_terms_energy, tm_veronda_westmann_quad8_terms_gradient,
-   tm_veronda_westmann_quad8_terms_hessian, tm_veronda_westmann_quad8_terms_gradient_hessian, tm_veronda_westmann_quad8_terms_stress, 1044, 4050, 16848,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_whole_precompute, tm_veronda_westmann_quad9_whole_energy, tm_veronda_westmann_quad9_whole_gradient,
    tm_veronda_westmann_quad9_whole_hessian, tm_veronda_westmann_quad9_whole_gradient_hessian, tm_veronda_westmann_quad9_whole_stress, 1116, 2457, 14436,
@@ -4142,27 +2054,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad9_whole_gradient_batch, tm_veronda_westmann_quad9_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "quad9", "terms", 2, 9, 18, 9, 3, 3, 174,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_terms_precompute, tm_veronda_westmann_quad9_terms_energy, tm_veronda_westmann_quad9_terms_gradient,
-   tm_veronda_westmann_quad9_terms_hessian, tm_veronda_westmann_quad9_terms_gradient_hessian, tm_veronda_westmann_quad9_terms_stress, 1116, 4266, 19359,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
    tm_veronda_westmann_tet10_whole_hessian, tm_veronda_westmann_tet10_whole_gradient_hessian, tm_veronda_westmann_tet10_whole_stress, 1132, 2872, 25124,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "tet10", "terms", 3, 10, 30, 4, 3, 3, 127,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_terms_precompute, tm_veronda_westmann_tet10_terms_energy, tm_veronda_westmann_tet10_terms_gradient,
-   tm_veronda_westmann_tet10_terms_hessian, tm_veronda_westmann_tet10_terms_gradient_hessian, tm_veronda_westmann_tet10_terms_stress, 1132, 5024, 42596,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
@@ -4171,28 +2067,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
    tm_veronda_westmann_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "tet4", "terms", 3, 4, 12, 1, 3, 3, 16,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_terms_precompute, tm_veronda_westmann_tet4_terms_energy, tm_veronda_westmann_tet4_terms_gradient,
-   tm_veronda_westmann_tet4_terms_hessian, tm_veronda_westmann_tet4_terms_gradient_hessian, tm_veronda_westmann_tet4_terms_stress, 175, 932, 4412,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
    tm_veronda_westmann_tri3_whole_hessian, tm_veronda_westmann_tri3_whole_gradient_hessian, tm_veronda_westmann_tri3_whole_stress, 76, 177, 584,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri3_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "tri3", "terms", 2, 3, 6, 1, 3, 3, 10,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_terms_precompute, tm_veronda_westmann_tri3_terms_energy, tm_veronda_westmann_tri3_terms_gradient,
-   tm_veronda_westmann_tri3_terms_hessian, tm_veronda_westmann_tri3_terms_gradient_hessian, tm_veronda_westmann_tri3_terms_stress, 76, 330, 927,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
@@ -4201,27 +2081,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"veronda_westmann", "tri6", "terms", 2, 6, 12, 3, 3, 3, 42,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_terms_precompute, tm_veronda_westmann_tri6_terms_energy, tm_veronda_westmann_tri6_terms_gradient,
-   tm_veronda_westmann_tri6_terms_hessian, tm_veronda_westmann_tri6_terms_gradient_hessian, tm_veronda_westmann_tri6_terms_stress, 300, 1206, 4212,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
    tm_yeoh_hex20_whole_hessian, tm_yeoh_hex20_whole_gradient_hessian, tm_yeoh_hex20_whole_stress, 11421, 26649, 474579,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "hex20", "terms", 3, 20, 60, 27, 4, 4, 1651,
-   kYeohParameters, kYeohLimits, tm_yeoh_hex20_terms_precompute, tm_yeoh_hex20_terms_energy, tm_yeoh_hex20_terms_gradient,
-   tm_yeoh_hex20_terms_hessian, tm_yeoh_hex20_terms_gradient_hessian, tm_yeoh_hex20_terms_stress, 11421, 94365, 944730,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"yeoh", "hex27", "whole", 3, 27, 81, 27, 4, 4, 2218,
    kYeohParameters, kYeohLimits, tm_yeoh_hex27_whole_precompute, tm_yeoh_hex27_whole_energy, tm_yeoh_hex27_whole_gradient,
@@ -4229,41 +2093,17 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "hex27", "terms", 3, 27, 81, 27, 4, 4, 2218,
-   kYeohParameters, kYeohLimits, tm_yeoh_hex27_terms_precompute, tm_yeoh_hex27_terms_energy, tm_yeoh_hex27_terms_gradient,
-   tm_yeoh_hex27_terms_hessian, tm_yeoh_hex27_terms_gradient_hessian, tm_yeoh_hex27_terms_stress, 14823, 196101, 1744254,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
    tm_yeoh_hex8_whole_hessian, tm_yeoh_hex8_whole_gradient_hessian, tm_yeoh_hex8_whole_stress, 1656, 4440, 33480,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "hex8", "terms", 3, 8, 24, 8, 4, 4, 204,
-   kYeohParameters, kYeohLimits, tm_yeoh_hex8_terms_precompute, tm_yeoh_hex8_terms_energy, tm_yeoh_hex8_terms_gradient,
-   tm_yeoh_hex8_terms_hessian, tm_yeoh_hex8_terms_gradient_hessian, tm_yeoh_hex8_terms_stress, 1656, 7728, 54368,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
    kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
    tm_yeoh_prism15_whole_hessian, tm_yeoh_prism15_whole_gradient_hessian, tm_yeoh_prism15_whole_stress, 5994, 14526, 193266,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "prism15", "terms", 3, 15, 45, 18, 4, 4, 832,
-   kYeohParameters, kYeohLimits, tm_yeoh_prism15_terms_precompute, tm_yeoh_prism15_terms_energy, tm_yeoh_prism15_terms_gradient,
-   tm_yeoh_prism15_terms_hessian, tm_yeoh_prism15_terms_gradient_hessian, tm_yeoh_prism15_terms_stress, 5994, 33858, 354888,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
@@ -4272,27 +2112,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "prism6", "terms", 3, 6, 18, 6, 4, 4, 118,
-   kYeohParameters, kYeohLimits, tm_yeoh_prism6_terms_precompute, tm_yeoh_prism6_terms_energy, tm_yeoh_prism6_terms_gradient,
-   tm_yeoh_prism6_terms_hessian, tm_yeoh_prism6_terms_gradient_hessian, tm_yeoh_prism6_terms_stress, 1026, 5148, 28302,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
    tm_yeoh_pyramid13_whole_hessian, tm_yeoh_pyramid13_whole_gradient_hessian, tm_yeoh_pyramid13_whole_stress, 8019, 19845, 229635,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "pyramid13", "terms", 3, 13, 39, 27, 4, 4, 1084,
-   kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_terms_precompute, tm_yeoh_pyramid13_terms_energy, tm_yeoh_pyramid13_terms_gradient,
-   tm_yeoh_pyramid13_terms_hessian, tm_yeoh_pyramid13_terms_gradient_hessian, tm_yeoh_pyramid13_terms_stress, 8019, 33372, 390447,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
@@ -4301,28 +2125,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
    tm_yeoh_pyramid5_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "pyramid5", "terms", 3, 5, 15, 8, 4, 4, 132,
-   kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_terms_precompute, tm_yeoh_pyramid5_terms_energy, tm_yeoh_pyramid5_terms_gradient,
-   tm_yeoh_pyramid5_terms_hessian, tm_yeoh_pyramid5_terms_gradient_hessian, tm_yeoh_pyramid5_terms_stress, 1224, 6432, 31112,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
    tm_yeoh_quad4_whole_hessian, tm_yeoh_quad4_whole_gradient_hessian, tm_yeoh_quad4_whole_stress, 256, 612, 2452,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
    tm_yeoh_quad4_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "quad4", "terms", 2, 4, 8, 4, 4, 4, 40,
-   kYeohParameters, kYeohLimits, tm_yeoh_quad4_terms_precompute, tm_yeoh_quad4_terms_energy, tm_yeoh_quad4_terms_gradient,
-   tm_yeoh_quad4_terms_hessian, tm_yeoh_quad4_terms_gradient_hessian, tm_yeoh_quad4_terms_stress, 256, 1096, 3536,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
@@ -4331,14 +2139,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
    tm_yeoh_quad8_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "quad8", "terms", 2, 8, 16, 9, 4, 4, 157,
-   kYeohParameters, kYeohLimits, tm_yeoh_quad8_terms_precompute, tm_yeoh_quad8_terms_energy, tm_yeoh_quad8_terms_gradient,
-   tm_yeoh_quad8_terms_hessian, tm_yeoh_quad8_terms_gradient_hessian, tm_yeoh_quad8_terms_stress, 864, 3330, 15300,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "quad9", "whole", 2, 9, 18, 9, 4, 4, 175,
    kYeohParameters, kYeohLimits, tm_yeoh_quad9_whole_precompute, tm_yeoh_quad9_whole_energy, tm_yeoh_quad9_whole_gradient,
    tm_yeoh_quad9_whole_hessian, tm_yeoh_quad9_whole_gradient_hessian, tm_yeoh_quad9_whole_stress, 936, 2097, 13707,
@@ -4346,27 +2146,11 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad9_whole_gradient_batch, tm_yeoh_quad9_whole_gradient_hessian_batch,
    tm_yeoh_quad9_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "quad9", "terms", 2, 9, 18, 9, 4, 4, 175,
-   kYeohParameters, kYeohLimits, tm_yeoh_quad9_terms_precompute, tm_yeoh_quad9_terms_energy, tm_yeoh_quad9_terms_gradient,
-   tm_yeoh_quad9_terms_hessian, tm_yeoh_quad9_terms_gradient_hessian, tm_yeoh_quad9_terms_stress, 936, 3546, 17811,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
    tm_yeoh_tet10_whole_hessian, tm_yeoh_tet10_whole_gradient_hessian, tm_yeoh_tet10_whole_stress, 972, 2508, 22788,
    0, 0,
    0, nullptr, nullptr, nullptr},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "tet10", "terms", 3, 10, 30, 4, 4, 4, 128,
-   kYeohParameters, kYeohLimits, tm_yeoh_tet10_terms_precompute, tm_yeoh_tet10_terms_energy, tm_yeoh_tet10_terms_gradient,
-   tm_yeoh_tet10_terms_hessian, tm_yeoh_tet10_terms_gradient_hessian, tm_yeoh_tet10_terms_stress, 972, 4296, 37756,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
   {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
@@ -4375,14 +2159,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
    tm_yeoh_tet4_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "tet4", "terms", 3, 4, 12, 1, 4, 4, 17,
-   kYeohParameters, kYeohLimits, tm_yeoh_tet4_terms_precompute, tm_yeoh_tet4_terms_energy, tm_yeoh_tet4_terms_gradient,
-   tm_yeoh_tet4_terms_hessian, tm_yeoh_tet4_terms_gradient_hessian, tm_yeoh_tet4_terms_stress, 135, 750, 3202,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
    tm_yeoh_tri3_whole_hessian, tm_yeoh_tri3_whole_gradient_hessian, tm_yeoh_tri3_whole_stress, 56, 137, 503,
@@ -4390,28 +2166,12 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
    tm_yeoh_tri3_whole_stress_batch},
 
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "tri3", "terms", 2, 3, 6, 1, 4, 4, 11,
-   kYeohParameters, kYeohLimits, tm_yeoh_tri3_terms_precompute, tm_yeoh_tri3_terms_energy, tm_yeoh_tri3_terms_gradient,
-   tm_yeoh_tri3_terms_hessian, tm_yeoh_tri3_terms_gradient_hessian, tm_yeoh_tri3_terms_stress, 56, 250, 755,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
-
   {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
    tm_yeoh_tri6_whole_hessian, tm_yeoh_tri6_whole_gradient_hessian, tm_yeoh_tri6_whole_stress, 240, 555, 2715,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
    tm_yeoh_tri6_whole_stress_batch},
-
-#if TENSORMASS_TERMS_SPLIT
-  {"yeoh", "tri6", "terms", 2, 6, 12, 3, 4, 4, 43,
-   kYeohParameters, kYeohLimits, tm_yeoh_tri6_terms_precompute, tm_yeoh_tri6_terms_energy, tm_yeoh_tri6_terms_gradient,
-   tm_yeoh_tri6_terms_hessian, tm_yeoh_tri6_terms_gradient_hessian, tm_yeoh_tri6_terms_stress, 240, 966, 3696,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-#endif
 
 };
 constexpr int kKernelCount = static_cast<int>(sizeof(kKernels) / sizeof(kKernels[0]));

@@ -1,4 +1,4 @@
-"""Command line: python3 -m generator [--law L] [--element E] [--force | --check] [--verbose].
+"""Command line: python3 -m generator [--law L] [--element E] [--force | --check] [--splits LIST] [--verbose].
 
 Brings generated/ up to date with elements/, laws/, templates/ and the
 generator: only the (law, element) pairs whose inputs changed are
@@ -11,6 +11,8 @@ import argparse
 import sys
 import time
 from pathlib import Path
+
+from . import stale
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -35,8 +37,15 @@ def main(argv: list[str] | None = None) -> int:
                         help="derive every law afresh instead of reading generator/__pycache__/laws")
     parser.add_argument("--tensor-limit", type=int, default=None,
                         help="largest coefficient count per element the tensor split accepts")
+    parser.add_argument("--splits", default=",".join(stale.DEFAULT_SPLITS), metavar="LIST",
+                        help="the splits to emit, comma-separated (default %(default)s; all: "
+                             + ",".join(stale.SPLITS) + ")")
     parser.add_argument("--verbose", "-v", action="store_true", help="print stage times and refused splits")
     args = parser.parse_args(argv)
+    try:
+        splits = stale.split_selection([name for name in args.splits.split(",") if name])
+    except ValueError as error:
+        parser.error(f"--splits: {error}")
     root = args.root.resolve()
     output = (args.output or root / "generated").resolve()
 
@@ -46,12 +55,12 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.check:
             _require_sympy()
-            files, report = compiler.generate(root, args.tensor_limit, args.jobs, cache)
+            files, report = compiler.generate(root, args.tensor_limit, args.jobs, cache, splits)
         else:
             if args.law or args.element or args.force:
                 _require_sympy()
             report = compiler.update(root, output, args.tensor_limit, args.law, args.element, args.force,
-                                     args.jobs, cache)
+                                     args.jobs, cache, splits)
     except ImportError as error:
         print(f"generator: {error.name} is missing; install python3-sympy and python3-jinja2 "
               f"and run the generator with /usr/bin/python3 (now {sys.executable})", file=sys.stderr)

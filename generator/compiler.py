@@ -193,13 +193,14 @@ def _element_phase(element_path: Path, cache: Optional[Path], full: bool = True)
     return result
 
 
-@_timed(lambda root, law_results, elements, limit: f"kernels {law_results[0].law.name} {law_results[0].dim}D "
+@_timed(lambda root, law_results, elements, limit, splits: f"kernels {law_results[0].law.name} {law_results[0].dim}D "
         f"({len(elements)} elements)")
-def _kernels_phase(root: Path, law_results: tuple, elements: list[tuple], tensor_limit: int) -> _TaskResult:
-    """Stages 4-6 of one law in one dimension on its elements: every split's files, rows and refusals."""
+def _kernels_phase(root: Path, law_results: tuple, elements: list[tuple], tensor_limit: int,
+                   splits: tuple[str, ...]) -> _TaskResult:
+    """Stages 4-6 of one law in one dimension on its elements: the files, rows and refusals of `splits`."""
     from .emit import emit_kernel, environment, refusal_row, reuse_printed_law_blocks
     from .ir import Refusal
-    from .lower import SPLITS, SplitRefused, build_kernel_ir
+    from .lower import SplitRefused, build_kernel_ir
     from .model import Inputs, OptimisedIR, SymbolicIR
 
     result = _TaskResult()
@@ -212,7 +213,7 @@ def _kernels_phase(root: Path, law_results: tuple, elements: list[tuple], tensor
     optimised = OptimisedIR(symbolic=symbolic, laws=(law_ir,))
     env = environment(root / "templates")
     for element in specs:
-        for split in SPLITS:
+        for split in splits:
             with _Timer(result.timings, "lower"):
                 try:
                     kernel = build_kernel_ir(optimised, law, element, split, tensor_limit)
@@ -280,7 +281,8 @@ def _dimension(path: Path) -> int:
 
 
 def _run(root: Path, pairs: list[tuple[str, str]], with_elements: bool, tensor_limit: int,
-         jobs: Optional[int], cache: Optional[Path], report: Report) -> list[_TaskResult]:
+         jobs: Optional[int], cache: Optional[Path], report: Report,
+         splits: tuple[str, ...] = stale.DEFAULT_SPLITS) -> list[_TaskResult]:
     """The tasks of the given pairs and of elements.cpp, in parallel.
 
     First phase: each needed (law, dim) derived and optimised, each needed
@@ -321,7 +323,7 @@ def _run(root: Path, pairs: list[tuple[str, str]], with_elements: bool, tensor_l
                 if all(name in ready_elements for name in groups[group]):
                     started.add(group)
                     second.append(pool.submit(_kernels_phase, root, ready_laws[group],
-                                              [ready_elements[name] for name in groups[group]], tensor_limit))
+                                              [ready_elements[name] for name in groups[group]], tensor_limit, splits))
             if with_elements and "elements.cpp" not in started and len(ready_elements) == len(element_names):
                 started.add("elements.cpp")
                 second.append(pool.submit(_elements_file, root, [ready_elements[name][2] for name in element_names]))
@@ -381,31 +383,33 @@ def _all_pairs(root: Path) -> list[tuple[str, str]]:
 
 
 def generate(root: Path, tensor_limit: Optional[int] = None, jobs: Optional[int] = None,
-             cache: Optional[Path] = DEFAULT_CACHE) -> tuple[dict[str, str], Report]:
-    """Every file of the project at root, in memory: all pairs, the tables and the input hashes."""
+             cache: Optional[Path] = DEFAULT_CACHE,
+             splits: tuple[str, ...] = stale.DEFAULT_SPLITS) -> tuple[dict[str, str], Report]:
+    """Every file of the project at root, in memory: all pairs with `splits`, the tables and the input hashes."""
     from .lower import DEFAULT_TENSOR_LIMIT
     _check_names(root)
     report = Report()
     pairs = _all_pairs(root)
-    results = _run(root, pairs, True, tensor_limit or DEFAULT_TENSOR_LIMIT, jobs, cache, report)
+    results = _run(root, pairs, True, tensor_limit or DEFAULT_TENSOR_LIMIT, jobs, cache, report, splits)
     files, rows, refused = _collect(results, report)
     files.update(_tables(root, rows, refused, report))
-    files[stale.HASH_FILE] = stale.format_hashes(stale.expected_hashes(root))
+    files[stale.HASH_FILE] = stale.format_hashes(stale.expected_hashes(root, splits))
     report.pairs, report.elements = pairs, True
     return files, report
 
 
 def update(root: Path, output: Path, tensor_limit: Optional[int] = None, laws: Optional[list[str]] = None,
            elements: Optional[list[str]] = None, force: bool = False, jobs: Optional[int] = None,
-           cache: Optional[Path] = DEFAULT_CACHE) -> Report:
+           cache: Optional[Path] = DEFAULT_CACHE, splits: tuple[str, ...] = stale.DEFAULT_SPLITS) -> Report:
     """Brings output up to date with the project at root, regenerating only what changed.
 
     laws / elements: generate just the pairs of these laws and elements (all of
     one kind when its list is empty or None), stale or not; otherwise the stale
     pairs (every pair with force). The tables always list exactly the kernels
-    whose files are in output. Returns without importing SymPy when nothing changed."""
+    whose files are in output; the pairs get the kernels of `splits`. Returns
+    without importing SymPy when nothing changed."""
     report = Report()
-    expected = stale.expected_hashes(root)
+    expected = stale.expected_hashes(root, splits)
     recorded = {} if force else stale.recorded_hashes(output)
     previous = _previous_manifest(output)
     for key in _incomplete_pairs(previous, output) | (set() if previous else set(recorded)):
@@ -431,7 +435,7 @@ def update(root: Path, output: Path, tensor_limit: Optional[int] = None, laws: O
         return report
     _check_names(root)
     from .lower import DEFAULT_TENSOR_LIMIT
-    results = _run(root, pairs, with_elements, tensor_limit or DEFAULT_TENSOR_LIMIT, jobs, cache, report)
+    results = _run(root, pairs, with_elements, tensor_limit or DEFAULT_TENSOR_LIMIT, jobs, cache, report, splits)
     files, rows, refused = _collect(results, report)
     rebuilt = {stale.pair_key(*pair) for pair in pairs}
     kept = {key for key in recorded if key in expected and key not in rebuilt and key != stale.ELEMENTS_KEY}

@@ -26,7 +26,7 @@ from .model import ElementSpec, LawSpec, OptimisedIR
 from .splits import tensor, terms, whole
 from .splits.common import SplitRefused, Triple, point_stride
 
-SPLITS = ("whole", "terms", "tensor")
+from .stale import SPLITS
 _LOWERINGS = {"whole": whole.lower, "terms": terms.lower, "tensor": tensor.lower}
 DEFAULT_TENSOR_LIMIT = tensor.DEFAULT_LIMIT
 

@@ -4,7 +4,8 @@ is recognised without importing SymPy).
 `generated/INPUTS.sha256` holds one line `HASH  KEY` per generated (law,
 element) pair, KEY = `law/element`, and one line for the element tables,
 KEY = `elements`. A pair's hash covers its law file, its element file, the
-templates and the generator's own sources; the element tables' hash covers
+templates, the generator's own sources and the splits emitted (`--splits`);
+the element tables' hash covers
 every element file, the templates and the generator. A pair is stale when
 its line is missing or differs; registry.cpp, sources.cmake and
 manifest.json are rewritten whenever any pair or the element tables are.
@@ -51,13 +52,30 @@ def element_files(root: Path) -> dict[str, Path]:
     return {p.stem: p for p in sorted((root / "elements").glob("*.toml"))}
 
 
+# Every split the generator lowers (lower.SPLITS, kept here for the path
+# that imports no SymPy) and those it emits by default: `terms` is no default
+# path's split and is generated on request (`--splits`, the CMake option
+# TENSORMASS_TERMS_SPLIT, which generates into the build tree).
+SPLITS = ("whole", "terms", "tensor")
+DEFAULT_SPLITS = ("whole", "tensor")
+
+
+def split_selection(names: list[str]) -> tuple[str, ...]:
+    """The named splits in SPLITS order; ValueError for an unknown name."""
+    unknown = [name for name in names if name not in SPLITS]
+    if unknown:
+        raise ValueError(f"unknown split {unknown[0]!r} (splits: {', '.join(SPLITS)})")
+    return tuple(split for split in SPLITS if split in names)
+
+
 def pair_key(law: str, element: str) -> str:
     return f"{law}/{element}"
 
 
-def expected_hashes(root: Path) -> dict[str, str]:
-    """{KEY: hash} of every (law, element) pair of the project and of the element tables."""
-    shared = shared_hash(root).encode()
+def expected_hashes(root: Path, splits: tuple[str, ...] = DEFAULT_SPLITS) -> dict[str, str]:
+    """{KEY: hash} of every (law, element) pair of the project, generated
+    with `splits`, and of the element tables."""
+    shared = (shared_hash(root) + " " + ",".join(splits)).encode()
     laws, elements = law_files(root), element_files(root)
     law_bytes = {name: _read(path) for name, path in laws.items()}
     element_bytes = {name: _read(path) for name, path in elements.items()}
@@ -84,6 +102,6 @@ def format_hashes(hashes: dict[str, str]) -> str:
     return "".join(f"{hashes[key]}  {key}\n" for key in sorted(hashes))
 
 
-def is_current(root: Path, output: Path) -> bool:
+def is_current(root: Path, output: Path, splits: tuple[str, ...] = DEFAULT_SPLITS) -> bool:
     """True when every pair and the element tables were generated from the inputs as they are."""
-    return recorded_hashes(output) == expected_hashes(root)
+    return recorded_hashes(output) == expected_hashes(root, splits)

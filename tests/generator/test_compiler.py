@@ -38,7 +38,7 @@ def test_registry_covers_every_pair_and_refuses_with_reasons(regenerated):
     for law in laws:
         for element in elements:
             assert (law, element, "whole") in kernels
-            assert (law, element, "terms") in kernels
+            assert (law, element, "terms") not in kernels  # generated on request only
     for law, element, split, why in report.refused:
         assert split == "tensor" and why
     for element in ("tri3", "quad4", "tet4", "hex8", "prism6", "pyramid5"):
@@ -152,6 +152,28 @@ def test_selected_pairs_are_generated_stale_or_not_and_a_lost_file_is_regenerate
     from generator.load import GeneratorInputError
     with pytest.raises(GeneratorInputError, match="--law nope"):
         _update(project, output, laws=["nope"])
+
+
+def test_terms_split_is_generated_on_request_and_its_files_go_without_it(tmp_path):
+    """--splits whole,terms,tensor adds the terms kernels of every pair (the hashes cover
+    the splits, so every pair is stale); back to the default, their files are removed."""
+    from generator.compiler import generate
+    project, output = tmp_path / "project", tmp_path / "generated"
+    project.mkdir()
+    _small_project(project)
+    _update(project, output)
+    assert not any("_terms" in p.name for p in (output / "kernels").iterdir())
+    with_terms = _update(project, output, splits=stale.SPLITS)
+    assert len(with_terms.pairs) == 4
+    assert {(law, element) for law, element, split in with_terms.kernels if split == "terms"} == \
+        {(law, element) for law in ("hooke", "stvk") for element in ("tet4", "tri3")}
+    assert stale.is_current(project, output, stale.SPLITS) and not stale.is_current(project, output)
+    assert not differences(generate(project, cache=None, splits=stale.SPLITS)[0], output)
+    without = _update(project, output)
+    assert len(without.pairs) == 4 and any("_terms" in name for name in without.removed)
+    assert not any("_terms" in p.name for p in (output / "kernels").iterdir())
+    with pytest.raises(ValueError, match="unknown split 'nope'"):
+        stale.split_selection(["whole", "nope"])
 
 
 def test_workers_and_the_cache_do_not_change_a_byte(tmp_path):
