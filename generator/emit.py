@@ -202,6 +202,7 @@ def element_context(e: ElementIR) -> dict:
         "corner_count": e.corner_count,
         "reference_volume": _literals((e.reference_volume,))[0],
         "shape_gradients": _literals(e.shape_gradients),
+        "corner_gradients": _literals(e.corner_gradients),
     }
 
 

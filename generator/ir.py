@@ -135,8 +135,8 @@ class KernelIR:
 class ElementIR:
     """Reference-element facts for elements.cpp (meshes, criteria, outputs).
 
-    reference_nodes, shape_values and shape_gradients are flattened row-major
-    (nodes by dim, points by nodes, points by nodes by dim); face_offsets[f] is where face f starts in the
+    reference_nodes, shape_values, shape_gradients and corner_gradients are flattened row-major
+    (nodes by dim, points by nodes, points by nodes by dim, corners by nodes by dim); face_offsets[f] is where face f starts in the
     concatenated face lists."""
     name: str
     description: str
@@ -156,6 +156,7 @@ class ElementIR:
     corner_count: int
     reference_volume: float
     shape_gradients: tuple[float, ...]  # points by nodes by dim
+    corner_gradients: tuple[float, ...]  # corners by nodes by dim (symbolic.corner_gradients)
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,8 @@ def lower_element(element: ElementSpec, tables: ElementTables) -> ElementIR:
         reference_nodes=tuple(float(x) for node in element.nodes for x in node),
         weights=tables.weights,
         shape_values=tuple(v for row in tables.shape_values for v in row),
-        corner_count=len({i for edge in element.edges for i in edge[:2]}),
+        corner_count=element.corner_count,
         reference_volume=float(element.reference_volume),
         shape_gradients=tuple(v for point in tables.reference_gradients for node in point for v in node),
+        corner_gradients=tuple(v for corner in tables.corner_gradients for node in corner for v in node),
     )

@@ -61,6 +61,11 @@ class ElementSpec:
         return len(self.nodes)
 
     @property
+    def corner_count(self) -> int:
+        """Nodes 0 .. corner_count-1 are the corners (the element-file rule): the edges' end points."""
+        return len({i for edge in self.edges for i in edge[:2]})
+
+    @property
     def dofs(self) -> int:
         return self.node_count * self.dim
 
@@ -143,6 +148,7 @@ class ElementTables:
     weights: tuple[float, ...]  # #Q
     shape_values: tuple[tuple[float, ...], ...]  # #Q by #N
     reference_gradients: tuple[tuple[tuple[float, ...], ...], ...]  # #Q by #N by dim
+    corner_gradients: tuple[tuple[tuple[float, ...], ...], ...]  # #corners by #N by dim (symbolic.corner_gradients)
 
 
 @dataclass(frozen=True)

@@ -58,7 +58,38 @@ def element_tables(element: ElementSpec, rule_name: str | None = None) -> Elemen
         weights=tuple(_to_double(w) for w in rule.weights),
         shape_values=tuple(values),
         reference_gradients=tuple(reference_gradients),
+        corner_gradients=corner_gradients(element),
     )
+
+
+def corner_gradients(element: ElementSpec) -> tuple[tuple[tuple[float, ...], ...], ...]:
+    """dN/d(r, s, t) of every node at each corner (#corners by #N by dim), for
+    the runtime's inversion check at the corners. Where a shape function is
+    singular at a corner (a rational pyramid's apex, 0/0), the value is the
+    limit along the line from the corners' centroid to that corner."""
+    variables = REFERENCE_VARIABLES[: element.dim]
+    gradients = [[sympy.diff(n, v) for v in variables] for n in element.shape_functions]
+    corners = [element.nodes[i] for i in range(element.corner_count)]
+    centroid = [sum(c[k] for c in corners) / len(corners) for k in range(element.dim)]
+    along = sympy.Symbol("along", positive=True)
+    result = []
+    for corner in corners:
+        at = dict(zip(variables, corner))
+        towards = {v: m + along * (c - m) for v, m, c in zip(variables, centroid, corner)}
+        rows = []
+        for row in gradients:
+            values = []
+            for g in row:
+                value = g.subs(at)
+                if not value.is_finite:
+                    on_line = sympy.cancel(sympy.together(g.subs(towards)))
+                    value = on_line.subs(along, 1)
+                    if not value.is_finite:
+                        value = sympy.limit(on_line, along, 1, "-")
+                values.append(_to_double(value))
+            rows.append(tuple(values))
+        result.append(tuple(rows))
+    return tuple(result)
 
 
 def gradient_symbols(dim: int) -> tuple[sympy.Symbol, ...]:

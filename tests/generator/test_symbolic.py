@@ -8,7 +8,9 @@ import sympy
 from conftest import ROOT
 from generator.load import GeneratorInputError, load_element, load_law
 from generator.model import Inputs, LawDerivatives, SymbolicIR
-from generator.symbolic import derive, derive_law, gradient_symbols, law_derivatives, law_energy, strain_quadratic
+from generator.load import REFERENCE_VARIABLES
+from generator.symbolic import (corner_gradients, derive, derive_law, gradient_symbols, law_derivatives, law_energy,
+                                strain_quadratic)
 
 LAM, MU = sympy.Symbol("lam", real=True), sympy.Symbol("mu", real=True)
 H_VALUES = [0.03, -0.02, 0.05, 0.01, 0.04, -0.03, 0.02, 0.06, -0.01]
@@ -214,3 +216,21 @@ def test_invariants_are_the_3d_ones_in_plane_strain(tmp_path, dim):
         law = _split_law(tmp_path, f'energy = "c10*{name}"\n')
         got = law_energy(law, dim).subs(values).subs(sympy.Symbol("c10", real=True), 1)
         assert float(got) == pytest.approx(float(value), rel=1e-14), name
+
+
+@pytest.mark.parametrize("name", ["quad4", "hex8", "tet10", "prism15", "pyramid5", "pyramid13"])
+def test_corner_gradients_are_the_gradients_at_the_corners_or_their_limit_from_the_centroid(name):
+    """At a regular corner the value; at a pyramid's apex (0/0) the gradient
+    a step of 1e-8 short of it on the line from the centroid, to 1e-6."""
+    element = load_element(ROOT / "elements" / f"{name}.toml")
+    variables = REFERENCE_VARIABLES[: element.dim]
+    corners = [element.nodes[i] for i in range(element.corner_count)]
+    centroid = [sum(c[k] for c in corners) / len(corners) for k in range(element.dim)]
+    table = corner_gradients(element)
+    assert len(table) == element.corner_count
+    for corner, rows in zip(corners, table):
+        near = [float(c) + 1e-8 * float(m - c) for c, m in zip(corner, centroid)]
+        for n, row in zip(element.shape_functions, rows):
+            for v, value in zip(variables, row):
+                expected = float(sympy.diff(n, v).subs(dict(zip(variables, near))))
+                assert value == pytest.approx(expected, abs=1e-6)

@@ -7,6 +7,7 @@
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/model/inversion_check.hpp"
 
 namespace tensormass {
 
@@ -86,10 +87,8 @@ void Model::bind_kernels(const ModelSpec& spec) {
 
 void Model::precompute(int cell) {
   const tm_kernel& kernel = *kernels_[cell];
-  double rest[kMaxCellDofs];
-  const auto nodes = cell_nodes(cell);
-  for (std::size_t j = 0; j < nodes.size(); ++j)
-    for (int a = 0; a < dim_; ++a) rest[j * dim_ + a] = mesh_->rest_positions[3 * nodes[j] + a];
+  double rest[kMaxCellDofs] = {};
+  add_rest_positions(cell, rest);
   const MaterialLaws& material = materials_[cell_material_[cell]];
   const int status = precompute_checked(kernel, rest, material.parameters(kernel),
                                         consts_.data() + consts_offsets_[cell], material.owner());
@@ -97,6 +96,10 @@ void Model::precompute(int cell) {
     throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) +
                      " has a non-positive Jacobian at rest (quadrature point " + std::to_string(status - 1) +
                      "): inverted or degenerate element");
+  const int corner = InversionCheck(*mesh_->blocks[mesh_->locate(cell).first].element).first_flat_corner(rest);
+  if (corner >= 0)
+    throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) + " has a non-positive Jacobian at corner " +
+                     std::to_string(corner) + " at rest: inverted or degenerate element");
 }
 
 int Model::law_id(int cell) const {
@@ -177,65 +180,15 @@ double Model::strain_energy(std::span<const double> u) const {
 
 namespace {
 
-/// True when det(I + grad u) <= 0 (or NaN) at a quadrature point of the
-/// cell. D and N fixed so that the loops unroll (this runs every step) for
-/// the usual node counts; N = 0 reads the count from `nodes` (any element).
-template <int D, int N>
-bool inverted_at_a_point(const double* u, const double* consts, int derived, int points, int nodes) {
-  const int n = N > 0 ? N : nodes;
-  for (int q = 0; q < points; ++q) {
-    const double* GT = consts + derived + q * (1 + D * n) + 1;
-    double F[D][D];
-    for (int a = 0; a < D; ++a)
-      for (int c = 0; c < D; ++c) {
-        double sum = a == c ? 1.0 : 0.0;
-        for (int j = 0; j < n; ++j) sum += u[j * D + a] * GT[c * n + j];
-        F[a][c] = sum;
-      }
-    double det;
-    if constexpr (D == 2) {
-      det = F[0][0] * F[1][1] - F[0][1] * F[1][0];
-    } else {
-      det = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
-            F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-    }
-    if (!(det > 0.0)) return true;
-  }
-  return false;
-}
-
-using InversionCheck = bool (*)(const double*, const double*, int, int, int);
-
 /// Below this many cells in a block the check stays on one thread.
 constexpr int kParallelInversionCells = 4096;
-
-InversionCheck inversion_check(int dim, int nodes) {
-  if (dim == 2) {
-    switch (nodes) {
-      case 3: return inverted_at_a_point<2, 3>;
-      case 4: return inverted_at_a_point<2, 4>;
-      case 6: return inverted_at_a_point<2, 6>;
-      case 8: return inverted_at_a_point<2, 8>;
-      default: return inverted_at_a_point<2, 0>;
-    }
-  }
-  switch (nodes) {
-    case 4: return inverted_at_a_point<3, 4>;
-    case 5: return inverted_at_a_point<3, 5>;
-    case 6: return inverted_at_a_point<3, 6>;
-    case 8: return inverted_at_a_point<3, 8>;
-    case 10: return inverted_at_a_point<3, 10>;
-    case 20: return inverted_at_a_point<3, 20>;
-    default: return inverted_at_a_point<3, 0>;
-  }
-}
 
 }  // namespace
 
 int Model::first_inverted_cell(std::span<const double> u) const {
   int first = cell_count();  // the smallest inverted cell: the same answer on any thread count
   for (const ElementBlock& block : mesh_->blocks) {
-    const InversionCheck inverted = inversion_check(dim_, block.element->nodes);
+    const InversionCheck check(*block.element);
     const int begin = block.first_cell, end = block.first_cell + block.count();
 #pragma omp parallel for schedule(static) reduction(min : first) if (end - begin >= kParallelInversionCells)
     for (int cell = begin; cell < end; ++cell) {
@@ -243,12 +196,22 @@ int Model::first_inverted_cell(std::span<const double> u) const {
       if (kernel.invertible || cell >= first) continue;  // invertible: defined through inversion, not a failure
       double local[kMaxCellDofs];
       gather(cell, u, local);
-      if (inverted(local, consts(cell), kernel.derived_params, kernel.quadrature_points, block.element->nodes))
+      if (check.at_quadrature_points(local, consts(cell), kernel.derived_params, kernel.quadrature_points)) {
         first = cell;
+      } else if (check.checks_corners()) {
+        add_rest_positions(cell, local);
+        if (check.first_flat_corner(local) >= 0) first = cell;
+      }
     }
     if (first < cell_count()) return first;
   }
   return -1;
+}
+
+void Model::add_rest_positions(int cell, double* local) const {
+  const auto nodes = cell_nodes(cell);
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    for (int a = 0; a < dim_; ++a) local[j * dim_ + a] += mesh_->rest_positions[3 * nodes[j] + a];
 }
 
 void Model::apply_constraints(double t, std::span<double> u, bool static_load_factor) const {

@@ -85,6 +85,34 @@ TEST(Model, InvertedElementAtRestIsNamed) {
   }
 }
 
+/// A unit hexahedron whose corner 0 sits at (0.45, 0.45, 0.45): positive at
+/// its Gauss points, folded at that corner (det = 1 - 3 * 0.45).
+TEST(Model, ElementFoldedAtACornerAtRestIsNamed) {
+  Mesh mesh = test::beam(3, "hex8", {1, 1, 1});
+  const int corner = mesh.blocks[0].connectivity[0];
+  for (int a = 0; a < 3; ++a) mesh.rest_positions[3 * corner + a] = 0.45;
+  try {
+    Model model(mesh, test::cantilever("stvk").model);
+    FAIL() << "an element folded at a corner was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("element 0 (hex8"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("at corner 0"), std::string::npos) << error.what();
+  }
+}
+
+/// The same fold reached by a displacement: the quadrature points alone
+/// would not see it.
+TEST(Model, InversionCheckSeesAFoldAtACorner) {
+  const Mesh mesh = test::beam(3, "hex8", {1, 1, 1});
+  const Model model(mesh, test::cantilever("neohookean").model);
+  std::vector<double> u(model.dof_count(), 0.0);
+  const int corner = mesh.blocks[0].connectivity[0];
+  for (int a = 0; a < 3; ++a) u[3 * corner + a] = 0.45 - mesh.rest_positions[3 * corner + a];
+  EXPECT_EQ(model.first_inverted_cell(u), 0);
+  for (int a = 0; a < 3; ++a) u[3 * corner + a] = 0.3 - mesh.rest_positions[3 * corner + a];
+  EXPECT_EQ(model.first_inverted_cell(u), -1);
+}
+
 TEST(Model, StaticSceneWithoutConstraintsIsRefusedByValidation) {
   const Mesh mesh = test::beam(2, "quad4", {4, 2, 1});
   Scene scene = test::cantilever("stvk");

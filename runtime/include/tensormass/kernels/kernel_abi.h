@@ -132,6 +132,9 @@ typedef struct tm_element_info {
   int corner_count;
   double reference_volume;        ///< measure of the reference element
   const double* shape_gradients;  ///< quadrature_points by nodes by dim: dN/dr, dN/ds(, dN/dt)
+  /// corner_count by nodes by dim: dN/dr, dN/ds(, dN/dt) at each corner; where a
+  /// shape function is singular there (a pyramid's apex), the limit from the centroid.
+  const double* corner_gradients;
 } tm_element_info;
 
 int tm_kernel_count(void);

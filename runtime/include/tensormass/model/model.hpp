@@ -164,7 +164,8 @@ class Model {
   /// Total strain energy at displacement u (dof_count).
   double strain_energy(std::span<const double> u) const;
   /// First cell whose deformation gradient has det <= 0 (or NaN) at a
-  /// quadrature point, or -1; cells under an invertible law (tm_kernel::invertible) are skipped.
+  /// quadrature point or whose deformed map has det <= 0 at a corner
+  /// (InversionCheck), or -1; cells under an invertible law (tm_kernel::invertible) are skipped.
   int first_inverted_cell(std::span<const double> u) const;
   /// Gathers the cell's displacements (nodes by dim) from u.
   void gather(int cell, std::span<const double> u, double* local) const;
@@ -175,6 +176,8 @@ class Model {
   void apply_nodal_forces_and_pressure(const ModelSpec& spec);
   void collect_constraints(const ModelSpec& spec);
   void precompute(int cell);
+  /// local (nodes by dim) += the cell's rest positions.
+  void add_rest_positions(int cell, double* local) const;
 
   const Mesh* mesh_;
   int dim_;
