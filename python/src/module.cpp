@@ -5,11 +5,13 @@
 #include "kernel_bindings.hpp"
 #include "simulation_bindings.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/common/version.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 PYBIND11_MODULE(_tensormass, m) {
   m.doc() = "tensormass: adaptive Tensor-Mass soft-tissue simulation (compiled core)";
+  m.attr("__version__") = tensormass::kVersion;
   // Input errors (file, line, key) are Python ValueErrors; numerical
   // failures get their own type, a RuntimeError.
   pybind11::register_exception<tensormass::NumericalError>(m, "NumericalError", PyExc_RuntimeError);

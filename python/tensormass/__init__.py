@@ -38,6 +38,6 @@ if "OMP_WAIT_POLICY" not in _os.environ:
     _os.environ.setdefault("GOMP_SPINCOUNT", "10000")
 
 from ._tensormass import (  # noqa: E402
-    Kernel, NumericalError, Simulation, kernel, kernels, mpi_rank, mpi_size, petsc_available)
+    Kernel, NumericalError, Simulation, __version__, kernel, kernels, mpi_rank, mpi_size, petsc_available)
 
-__all__ = ["Kernel", "NumericalError", "Simulation", "kernel", "kernels", "mpi_rank", "mpi_size", "petsc_available"]
+__all__ = ["__version__", "Kernel", "NumericalError", "Simulation", "kernel", "kernels", "mpi_rank", "mpi_size", "petsc_available"]

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/common/thread_defaults.hpp"
+#include "tensormass/common/version.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 
 namespace {
@@ -34,6 +35,7 @@ constexpr const char* kUsage =
     "  mesh-info FILE                   element counts per type, quality, inverted elements\n"
     "  raise-order IN.msh -o OUT.msh    the mesh at order 2, by Gmsh (tensormass raise-order --help)\n"
     "  render FRAME.vtu -o IMAGE.png    draw a result coloured by criterion state or law\n"
+    "  version, --version               the version\n"
     "  help                             this text\n";
 
 int usage_error(const std::string& message) {
@@ -45,6 +47,10 @@ int usage_error(const std::string& message) {
 int run(const std::string& command, const tensormass::cli::Arguments& args) {
   if (command == "help" || command == "--help" || command == "-h") {
     std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (command == "version" || command == "--version") {
+    std::printf("tensormass %s\n", tensormass::kVersion);
     return 0;
   }
   if (command == "kernels") return tensormass::cli::kernels_command(args);

@@ -38,7 +38,7 @@ cmp "$project/laws/mooney_rivlin.toml" "$source_dir/laws/mooney_rivlin.toml"
 
 # Generate, then compile what tensormass_kernels compiles (no terms split).
 (cd "$project" && "$python" -m generator --verbose | tail -1)
-flags=(-std=c++20 -O1 -march=native -fopenmp-simd -fno-math-errno -DTENSORMASS_SIMD=1 -DTENSORMASS_VECTOR_LOG=1
+flags=(-std=c++20 -O1 -march=native -fopenmp-simd -fno-math-errno -DTENSORMASS_SIMD=1 -DTENSORMASS_VECTOR_MATH=1
        -I"$source_dir/runtime/include")
 mkdir -p "$work/objects"
 sources=("$project"/generated/registry.cpp "$project"/generated/elements.cpp

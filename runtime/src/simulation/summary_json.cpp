@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "tensormass/common/version.hpp"
 #include "tensormass/io/atomic_file.hpp"
 
 namespace tensormass::detail {
@@ -62,6 +63,7 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   std::ostringstream j;
   j << "{\n";
   j << "  \"status\": " << quoted(failure.empty() ? "ok" : "failed") << ",\n";
+  j << "  \"version\": " << quoted(kVersion) << ",\n";
   if (!failure.empty()) j << "  \"error\": " << quoted(failure) << ",\n";
   j << "  \"scene\": " << quoted(scene.path) << ",\n";
   j << "  \"mesh\": " << quoted(scene.mesh) << ",\n";

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "support/test_support.hpp"
+#include "tensormass/common/version.hpp"
 
 namespace {
 
@@ -55,6 +56,7 @@ TEST_F(RunCommand, StaticSceneWritesFinalFramesSeriesAndSummary) {
        {"\"status\": \"ok\"", "\"steps\": 4", "\"time_per_step_ms\"", "\"time_per_phase_s\"", "\"newton_iterations\"",
         "\"linear_iterations\"", "\"elements_per_law\": {\"stvk\": 80}", "\"switches\"", "\"law_ids\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key << "\n" << summary;
+  EXPECT_NE(summary.find(std::string("\"version\": \"") + tensormass::kVersion + "\""), std::string::npos) << summary;
   EXPECT_NE(result.output.find("max displacement"), std::string::npos);
   for (const auto& entry : fs::directory_iterator(out()))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();

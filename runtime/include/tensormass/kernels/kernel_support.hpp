@@ -27,7 +27,7 @@
 // invariants, printed as exp(-log(J)/3)). Set by the build (with
 // -fno-math-errno and libmvec) for the kernels only; libmvec's log and exp
 // are within 4 ulp. Clang has no such attribute (its lanes call them one by one).
-#if defined(TENSORMASS_VECTOR_LOG) && !defined(__clang__)
+#if defined(TENSORMASS_VECTOR_MATH) && !defined(__clang__)
 extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
 extern "C" double exp(double) noexcept __attribute__((simd("notinbranch")));
 #endif
