@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """How few cells must carry the rich law? Chosen with hindsight, per scene.
 
-Issue 13 asks for adaptive runs within 1 % of the pure rich law at a fraction
-of its cost. A run's cost grows with the cells under the rich law, so the
+The targets of `tensormass bench adaptive` ask for adaptive runs within 1 % of
+the pure rich law at a fraction of its cost. A run's cost grows with the cells under the rich law, so the
 question behind each target is: how small can that set be at 1 %? This script
 answers it with hindsight (an oracle no criterion can beat by much):
 

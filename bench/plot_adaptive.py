@@ -8,7 +8,7 @@ writes: every run as a point, its mean step over the pure rich law's (x)
 against its error in % of the rich run's largest displacement (y, log
 scale); pure laws as squares, adaptive runs on the two-rung ladder as
 circles labelled with their R_NL threshold (diamonds: R_P), three-rung runs as triangles; the
-issue's targets as dashed lines (1 % error, the scene's cost target).
+benchmark's targets as dashed lines (1 % error, the scene's cost target).
 Failed runs (an inverted element) are left out and counted in the title.
 The PNG is written atomically (OUT.tmp.png, then renamed).
 """
@@ -29,7 +29,7 @@ PURE = {"hooke": "black", "corotational": "tab:orange", "stvk": "tab:purple", "n
 
 
 def cost_target(scene):
-    """The issue's cost target: 0.7x on the beams, 0.5x on the indentation scenes."""
+    """The benchmark's cost target: 0.7x on the beams, 0.5x on the indentation scenes."""
     return 0.7 if scene.startswith(("cantilever", "quad-beam")) else 0.5
 
 

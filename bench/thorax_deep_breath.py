@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """The adaptive model on a deep breath: the synthetic thorax, diaphragm down 5 cm.
 
-Issue 13's scene (2): examples/thorax (its surfaces, mesh and scene) with the
-diaphragm descending `--depth` (default 5 cm, against the example's 1.5 cm)
-over half a breathing cycle (`--steps` implicit steps of 0.05 s: 40 reach
-the deepest point at t = 2 s), every solver setting at its default. Runs,
-side by side through
+The thorax scene of the adaptive model's targets: examples/thorax (its
+surfaces, mesh and scene) with the diaphragm descending `--depth` (default
+5 cm, against the example's 1.5 cm) over half a breathing cycle (`--steps`
+implicit steps of 0.05 s: 40 reach the deepest point at t = 2 s), every
+solver setting at its default. Runs, side by side through
 tensormass.Simulation:
   hooke, neohookean, stable_neohookean      every cell under one law
   adaptive R_NL T                           cells start under Hooke and climb to

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Soak test of the thorax example (issue 14): N breathing cycles in one run.
+"""Soak test of the thorax example: N breathing cycles in one run.
 
 Builds the example's surfaces and mesh (as examples/thorax/run.sh does), runs
 examples/thorax/thorax.yaml for N cycles of 4 s, samples the process's
 resident memory (VmRSS) twice a second, and reports:
   - the resident memory at the end of the first cycle and its largest value
-    after it (growth in %; the issue asks for under 1 %);
+    after it (growth in %; the target is under 1 %);
   - the tumour's displacement at every end-exhale (t = 4 k s, where the
     diaphragm is back at rest) and at every inspiration (t = 4 k + 2 s):
     without drift, both repeat from cycle to cycle.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes the synthetic thorax of the issue 6 demo as closed ASCII STL surfaces.
+"""Writes the synthetic thorax of the demo as closed ASCII STL surfaces.
 
     make_thorax.py [--out DIR] [--edge L]
 

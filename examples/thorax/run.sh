@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The issue 6 demo end to end: the synthetic thorax (make_thorax.py), its
+# The thorax demo end to end: the synthetic thorax (make_thorax.py), its
 # mesh with a region of interest around the tumour, two breathing cycles
 # under the adaptive model and under pure St Venant-Kirchhoff, the tumour's
 # track of both runs and a picture.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14: a run killed with SIGKILL part way and resumed with --resume
+# A run killed with SIGKILL part way and resumed with --resume
 # ends bit for bit where the uninterrupted run ends (final state, frames,
 # tracks, series), for each integrator: implicit (CHOLMOD, whose factor is
 # restored), static (load-step extrapolation history) and explicit, and for

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14: the thorax meshed with thin gap tetrahedra on the moving
+# The thorax meshed with thin gap tetrahedra on the moving
 # diaphragm (--levels 1, no prism layer), pure St Venant-Kirchhoff, to
 # t = 3.2 s. Starting each implicit step with only the prescribed dofs moved
 # (solver.predictor: none, the behaviour before the predictor) squashes the

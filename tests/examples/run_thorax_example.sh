@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the thorax demo (examples/thorax/run.sh, as the README gives it) in a
-# scratch folder and checks issue 6's figures on its outputs: the tumour
+# scratch folder and checks the demo's figures on its outputs: the tumour
 # track of the adaptive run within 1 mm of the pure-StVK run's, both tracks
 # and the real-time factors written, frames and pictures present.
 set -euo pipefail

@@ -1,4 +1,4 @@
-// adaptivity.refine (geometric refinement, issue 15): its keys, defaults
+// adaptivity.refine (geometric refinement): its keys, defaults
 // and ranges, and every combination it refuses, each naming the file, the
 // line and the key.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// Refinement during 3D runs (adaptivity.refine on hex8 and tet4 blocks,
-// issue 15): a static indentation refines under the probe and gets closer
+// Refinement during 3D runs (adaptivity.refine on hex8 and tet4 blocks):
+// a static indentation refines under the probe and gets closer
 // to the uniformly refined mesh's solution; a dynamic run refines as the
 // probe goes in and coarsens back to the original cells once it is out;
 // with law switching on as well, the laws follow the children. Every frame

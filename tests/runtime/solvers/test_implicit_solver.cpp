@@ -109,7 +109,8 @@ namespace {
 
 /// A 10 x 5 x 10 cm soft block (E 5 kPa, nu 0.45, 3,000 tets) on a fixed
 /// base, a 2 x 2 cm probe on its top pushed `depth` down over 0.5 s
-/// (implicit, dt 0.01, 50 steps): issue 14's indentation, coarser.
+/// (implicit, dt 0.01, 50 steps): the indentation of `tensormass bench
+/// adaptive`, coarser.
 struct Indentation {
   Mesh mesh;
   Scene scene;

@@ -27,7 +27,7 @@ struct LinearSolverSettings {
   LinearSolverType type = LinearSolverType::cholmod;
   /// cg, petsc, and cholmod's CG with an old factor: relative residual.
   /// 1e-6, not 1e-10: a linearised implicit step (one Newton iteration) has
-  /// no use for more digits (docs/results/adaptive.md, session 28); static
+  /// no use for more digits (docs/results/adaptive.md); static
   /// Newton solves ask for less while their residual is large.
   double tolerance = 1e-6;
   int max_iterations = 10000;  ///< cg
