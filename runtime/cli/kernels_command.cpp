@@ -1,6 +1,8 @@
 // `tensormass kernels [--json]`: the registry, one row per LES triple.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "tensormass/kernels/law_parameters.hpp"
@@ -33,26 +35,21 @@ void print_laws() {
   }
 }
 
-/// ["young", "poisson"]: the kernel's parameter names as a JSON list.
-std::string json_parameters(const tm_kernel& k) {
-  std::string out = "[";
-  for (int p = 0; p < k.params; ++p) out += std::string(p ? ", " : "") + "\"" + k.param_names[p] + "\"";
-  return out + "]";
-}
-
 void print_json() {
-  std::printf("[\n");
-  const auto kernels = Registry::instance().kernels();
-  for (std::size_t i = 0; i < kernels.size(); ++i) {
-    const tm_kernel* k = kernels[i];
-    std::printf(
-        "  {\"law\": \"%s\", \"element\": \"%s\", \"split\": \"%s\", \"nodes\": %d, \"dim\": %d, "
-        "\"quadrature_points\": %d, \"consts\": %d, \"flops_energy\": %ld, \"flops_gradient\": %ld, "
-        "\"flops_hessian\": %ld, \"parameters\": %s}%s\n",
-        k->law, k->element, k->split, k->nodes, k->dim, k->quadrature_points, k->consts, k->flops_energy,
-        k->flops_gradient, k->flops_hessian, json_parameters(*k).c_str(), i + 1 < kernels.size() ? "," : "");
-  }
-  std::printf("]\n");
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const tm_kernel* k : Registry::instance().kernels())
+    rows.push_back({{"law", k->law},
+                    {"element", k->element},
+                    {"split", k->split},
+                    {"nodes", k->nodes},
+                    {"dim", k->dim},
+                    {"quadrature_points", k->quadrature_points},
+                    {"consts", k->consts},
+                    {"flops_energy", k->flops_energy},
+                    {"flops_gradient", k->flops_gradient},
+                    {"flops_hessian", k->flops_hessian},
+                    {"parameters", std::vector<std::string>(k->param_names, k->param_names + k->params)}});
+  std::printf("%s\n", rows.dump(2).c_str());
 }
 
 }  // namespace

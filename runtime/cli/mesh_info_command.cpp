@@ -5,6 +5,7 @@
 // stderr, exit 0.
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.hpp"
@@ -45,25 +46,10 @@ Options parse_options(const Arguments& args) {
   return options;
 }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') out += std::string("\\") + c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buffer;
-    } else out += c;
-  }
-  return out + "\"";
-}
+using Json = nlohmann::ordered_json;
 
-std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
+/// A number, or null where it is not finite (JSON has no NaN or infinity).
+Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
 long source_id(const Mesh& mesh, int cell) {
   const auto [b, local] = mesh.locate(cell);
@@ -103,35 +89,37 @@ void print_text(const Mesh& mesh, const MeshQuality& quality) {
 }
 
 void print_json(const Mesh& mesh, const MeshQuality& quality) {
-  std::printf("{\n  \"file\": %s,\n  \"dimension\": %d,\n  \"nodes\": %d,\n  \"cells\": %d,\n",
-              json_string(mesh.source).c_str(), mesh.dim, mesh.node_count(), mesh.cell_count());
-  std::printf("  \"element_types\": {");
-  for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
-    std::printf("%s\"%s\": %d", b ? ", " : "", mesh.blocks[b].element->name, mesh.blocks[b].count());
-  std::printf("},\n  \"groups\": [");
-  for (std::size_t i = 0; i < mesh.groups.size(); ++i) {
-    const Group& g = mesh.groups[i];
-    std::printf("%s\n    {\"name\": %s, \"dim\": %d, \"nodes\": %zu, \"cells\": %zu, \"facets\": %d}", i ? "," : "",
-                json_string(g.name).c_str(), g.dim, g.nodes.size(), g.cells.size(), g.facets.count());
-  }
-  std::printf("%s],\n  \"quality\": {", mesh.groups.empty() ? "" : "\n  ");
-  for (std::size_t i = 0; i < quality.types.size(); ++i) {
-    const ElementTypeQuality& t = quality.types[i];
-    std::printf(
-        "%s\n    \"%s\": {\"count\": %d, \"min_scaled_jacobian\": %s, \"max_scaled_jacobian\": %s, "
-        "\"max_edge_ratio\": %s, \"inverted\": %d, \"volume\": %s}",
-        i ? "," : "", t.element->name, t.count, json_number(t.min_scaled_jacobian).c_str(),
-        json_number(t.max_scaled_jacobian).c_str(), json_number(t.max_edge_ratio).c_str(), t.inverted,
-        json_number(t.volume).c_str());
-  }
-  std::printf("\n  },\n  \"max_edge_ratio\": %s,\n  \"volume\": %s,\n  \"inverted\": [",
-              json_number(quality.max_edge_ratio).c_str(), json_number(quality.volume).c_str());
-  for (std::size_t i = 0; i < quality.inverted_cells.size(); ++i) {
-    const int cell = quality.inverted_cells[i];
-    std::printf("%s\n    {\"cell\": %d, \"element\": \"%s\", \"source_id\": %ld}", i ? "," : "", cell,
-                element_name(mesh, cell), source_id(mesh, cell));
-  }
-  std::printf("%s]\n}\n", quality.inverted_cells.empty() ? "" : "\n  ");
+  Json types = Json::object();
+  for (const ElementBlock& block : mesh.blocks) types[block.element->name] = block.count();
+  Json groups = Json::array();
+  for (const Group& g : mesh.groups)
+    groups.push_back({{"name", g.name},
+                      {"dim", g.dim},
+                      {"nodes", g.nodes.size()},
+                      {"cells", g.cells.size()},
+                      {"facets", g.facets.count()}});
+  Json per_type = Json::object();
+  for (const ElementTypeQuality& t : quality.types)
+    per_type[t.element->name] = {{"count", t.count},
+                                 {"min_scaled_jacobian", number(t.min_scaled_jacobian)},
+                                 {"max_scaled_jacobian", number(t.max_scaled_jacobian)},
+                                 {"max_edge_ratio", number(t.max_edge_ratio)},
+                                 {"inverted", t.inverted},
+                                 {"volume", number(t.volume)}};
+  Json inverted = Json::array();
+  for (const int cell : quality.inverted_cells)
+    inverted.push_back({{"cell", cell}, {"element", element_name(mesh, cell)}, {"source_id", source_id(mesh, cell)}});
+  const Json info{{"file", mesh.source},
+                  {"dimension", mesh.dim},
+                  {"nodes", mesh.node_count()},
+                  {"cells", mesh.cell_count()},
+                  {"element_types", types},
+                  {"groups", groups},
+                  {"quality", per_type},
+                  {"max_edge_ratio", number(quality.max_edge_ratio)},
+                  {"volume", number(quality.volume)},
+                  {"inverted", inverted}};
+  std::printf("%s\n", info.dump(2, ' ', false, Json::error_handler_t::replace).c_str());
 }
 
 }  // namespace

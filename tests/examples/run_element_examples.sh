@@ -11,7 +11,7 @@ source_dir=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp "$source_dir/examples/elements/cantilever.yaml" "$work/"
-sag() { sed -n 's/.*"max_displacement": {"value": \([^,]*\),.*/\1/p' "$work/out-cantilever/summary.json"; }
+sag() { /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["max_displacement"]["value"])' "$work/out-cantilever/summary.json"; }
 run() {  # run DIM TYPE CELLS: prints the sag
   "$binary" beam --dim "$1" --type "$2" --cells "$3" -o "$work/beam.msh" > /dev/null
   "$binary" run "$work/cantilever.yaml" --quiet

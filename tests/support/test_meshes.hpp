@@ -1,7 +1,7 @@
 /// \file test_meshes.hpp
 /// Helpers of the tests that read and check meshes (io readers, mesh
 /// quality, mesh-info): paths of the committed test meshes
-/// (tests/data/meshes), a minimal JSON reader for their expected.json, node
+/// (tests/data/meshes), their expected.json (read with nlohmann-json), node
 /// positions, cells per type, mesh comparison and a read_mesh InputError
 /// matcher.
 #ifndef TENSORMASS_TESTS_SUPPORT_TEST_MESHES_HPP
@@ -14,6 +14,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,91 +47,9 @@ inline void expect_input_error(const std::string& path, const std::vector<std::s
   }
 }
 
-// --- Minimal JSON (objects, arrays, numbers, strings without escapes) ------
-
-struct Json {
-  enum class Kind { null, number, string, array, object } kind = Kind::null;
-  double number = 0;
-  std::string text;
-  std::vector<Json> items;
-  std::map<std::string, Json> members;
-
-  const Json& operator[](const std::string& key) const {
-    static const Json missing;
-    const auto found = members.find(key);
-    return found == members.end() ? missing : found->second;
-  }
-  int integer() const { return static_cast<int>(number); }
-};
-
-class JsonParser {
- public:
-  explicit JsonParser(std::string text) : text_(std::move(text)) {}
-  Json parse() {
-    Json value = parse_value();
-    skip_space();
-    if (pos_ != text_.size()) throw std::runtime_error("json: trailing characters");
-    return value;
-  }
-
- private:
-  void skip_space() {
-    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-  }
-  char next() {
-    skip_space();
-    if (pos_ >= text_.size()) throw std::runtime_error("json: unexpected end");
-    return text_[pos_];
-  }
-  std::string parse_string() {
-    ++pos_;
-    const std::size_t end = text_.find('"', pos_);
-    if (end == std::string::npos) throw std::runtime_error("json: unterminated string");
-    std::string result = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    return result;
-  }
-  Json parse_value() {
-    Json value;
-    const char c = next();
-    if (c == '{') {
-      value.kind = Json::Kind::object;
-      ++pos_;
-      while (next() != '}') {
-        const std::string key = parse_string();
-        if (next() != ':') throw std::runtime_error("json: expected ':'");
-        ++pos_;
-        value.members[key] = parse_value();
-        if (next() == ',') ++pos_;
-      }
-      ++pos_;
-    } else if (c == '[') {
-      value.kind = Json::Kind::array;
-      ++pos_;
-      while (next() != ']') {
-        value.items.push_back(parse_value());
-        if (next() == ',') ++pos_;
-      }
-      ++pos_;
-    } else if (c == '"') {
-      value.kind = Json::Kind::string;
-      value.text = parse_string();
-    } else if (text_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else {
-      value.kind = Json::Kind::number;
-      std::size_t used = 0;
-      value.number = std::stod(text_.substr(pos_, 40), &used);
-      pos_ += used;
-    }
-    return value;
-  }
-  std::string text_;
-  std::size_t pos_ = 0;
-};
-
-inline const Json& expected_meshes() {
-  static const Json json = JsonParser(test_support::read_file(data_file("expected.json"))).parse();
+/// tests/data/meshes/expected.json: what Gmsh reports of each test mesh.
+inline const nlohmann::json& expected_meshes() {
+  static const nlohmann::json json = nlohmann::json::parse(test_support::read_file(data_file("expected.json")));
   return json;
 }
 

@@ -1,4 +1,4 @@
-#include "tensormass/refinement/zz_indicator.hpp"
+#include "tensormass/adaptivity/zz_indicator.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/input_cursor.hpp"
+#include "common/input_cursor.hpp"
 
 #include <algorithm>
 #include <cerrno>

@@ -4,8 +4,8 @@
 ///   InputCursor      walks the bytes (text tokens with line numbers, binary
 ///                    values with byte offsets) and throws InputError
 ///                    "FILE:LINE: what" or "FILE: byte N: what".
-#ifndef TENSORMASS_IO_INPUT_CURSOR_HPP
-#define TENSORMASS_IO_INPUT_CURSOR_HPP
+#ifndef TENSORMASS_COMMON_INPUT_CURSOR_HPP
+#define TENSORMASS_COMMON_INPUT_CURSOR_HPP
 
 #include <bit>
 #include <cstring>

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/input_cursor.hpp"
+#include "common/input_cursor.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/surface/surface.hpp"
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/input_cursor.hpp"
+#include "common/input_cursor.hpp"
 #include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
 

@@ -18,8 +18,8 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "common/input_cursor.hpp"
 #include "io/gmsh_session.hpp"
-#include "io/input_cursor.hpp"
 #include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
 

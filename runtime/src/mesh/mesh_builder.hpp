@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/input_cursor.hpp"
+#include "common/input_cursor.hpp"
 #include "tensormass/mesh/mesh.hpp"
 
 namespace tensormass::detail {

@@ -12,9 +12,9 @@
 #include "scene/yaml_reader.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/io/track_csv.hpp"
 #include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
-#include "tensormass/simulation/track.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
@@ -66,6 +66,17 @@ const KeyTable& scene_keys() {
   };
   return table;
 }
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::vector<std::string>>> scene_schema() {
+  std::vector<std::pair<std::string, std::vector<std::string>>> schema(scene_keys().begin(), scene_keys().end());
+  for (auto& [path, keys] : schema)
+    if (path == "materials[]") keys = kMaterialKeys;
+  return schema;
+}
+
+namespace {
 
 // --- Typed reads with ranges -------------------------------------------------
 

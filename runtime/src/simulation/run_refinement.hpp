@@ -7,10 +7,10 @@
 #include <span>
 #include <vector>
 
+#include "tensormass/adaptivity/zz_indicator.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 #include "tensormass/refinement/refinement_settings.hpp"
-#include "tensormass/refinement/zz_indicator.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 
 namespace tensormass::detail {

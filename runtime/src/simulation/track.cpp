@@ -1,13 +1,10 @@
 // Centroid tracks of groups (output.track): fixed node weights from the rest
-// volumes, one row per recorded state, CSV written atomically.
+// volumes, one row per recorded state (io/track_csv writes them).
 #include "tensormass/simulation/track.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <ostream>
 
 #include "tensormass/common/errors.hpp"
-#include "tensormass/io/atomic_file.hpp"
 #include "tensormass/mesh/mesh_quality.hpp"
 
 namespace tensormass {
@@ -77,26 +74,6 @@ void GroupTrack::record(double time, std::span<const double> u) {
   rows_.push_back(row);
 }
 
-void GroupTrack::write_csv(const std::string& path) const {
-  io::write_atomically(path, [&](std::ostream& out) {
-    out << "time,x,y,z,ux,uy,uz\n";
-    char line[256];
-    for (const TrackRow& r : rows_) {
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r.time, r.position[0],
-                    r.position[1], r.position[2], r.displacement[0], r.displacement[1], r.displacement[2]);
-      out << line;
-    }
-  });
-}
-
-std::string track_file_name(const std::string& group) {
-  std::string name = group;
-  for (char& c : name) {
-    const bool plain =
-        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '-' || c == '_';
-    if (!plain) c = '_';
-  }
-  return "track_" + name + ".csv";
-}
+void GroupTrack::write_csv(const std::string& path) const { write_track_csv(path, rows_); }
 
 }  // namespace tensormass

@@ -20,33 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/model/model.hpp"
-
-// Counts every global allocation so that a test can show evaluate() makes none.
-namespace {
-std::atomic<long> allocation_count{0};
-}  // namespace
-
-// Not inlined: GCC would otherwise pair malloc/free across the inlined
-// operators and warn (-Wmismatched-new-delete).
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  ++allocation_count;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
-[[gnu::noinline]] void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-// The nothrow pair too, so that every new these deletes may free comes from
-// malloc: AddressSanitizer's own nothrow new, freed here, is an
-// alloc-dealloc mismatch (libfreeimage, loaded by Gmsh, uses it).
-[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++allocation_count;
-  return std::malloc(size == 0 ? 1 : size);
-}
-[[gnu::noinline]] void operator delete(void* memory, const std::nothrow_t&) noexcept { std::free(memory); }
 
 namespace tensormass {
 namespace {
@@ -619,9 +597,9 @@ TEST_P(CriteriaOnKernel, EvaluateAllocatesNothing) {
   for (const std::string& name : criterion_names()) criteria.push_back(make_criterion(name));
   const ElementView view = element.view();
   double sum = 0.0;
-  const long before = allocation_count.load();
+  const long before = test_support::allocation_count.load();
   for (const auto& criterion : criteria) sum += criterion->evaluate(view);
-  EXPECT_EQ(allocation_count.load(), before);
+  EXPECT_EQ(test_support::allocation_count.load(), before);
   EXPECT_TRUE(std::isfinite(sum));
 }
 

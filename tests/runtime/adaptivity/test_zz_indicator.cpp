@@ -20,33 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "refinement_checks.hpp"
+#include "allocation_counter.hpp"
+#include "runtime/refinement/refinement_checks.hpp"
 #include "support/cantilever.hpp"
+#include "tensormass/adaptivity/zz_indicator.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/kernels/registry.hpp"
 #include "tensormass/model/model.hpp"
-#include "tensormass/refinement/zz_indicator.hpp"
-
-// Counts every global allocation so that a test can show a reused
-// ZzIndicator makes none.
-namespace {
-std::atomic<long> allocation_count{0};
-}  // namespace
-
-// Not inlined: GCC would otherwise pair malloc/free across the inlined
-// operators and warn (-Wmismatched-new-delete).
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  ++allocation_count;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
-[[gnu::noinline]] void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++allocation_count;
-  return std::malloc(size == 0 ? 1 : size);
-}
-[[gnu::noinline]] void operator delete(void* memory, const std::nothrow_t&) noexcept { std::free(memory); }
 
 namespace tensormass {
 namespace {
@@ -601,9 +581,9 @@ TEST(ZzIndicator, ReusedIndicatorAllocatesNothing) {
   std::vector<double> indicator(static_cast<std::size_t>(model.cell_count()));
   ZzIndicator zz;
   zz.compute(model, u, indicator);
-  const long before = allocation_count.load();
+  const long before = test_support::allocation_count.load();
   zz.compute(model, u, indicator);
-  EXPECT_EQ(allocation_count.load() - before, 0);
+  EXPECT_EQ(test_support::allocation_count.load() - before, 0);
   // For the record (no bound: the machine is shared): R_ZZ against one
   // energy pass over the same cells.
   const auto start = std::chrono::steady_clock::now();

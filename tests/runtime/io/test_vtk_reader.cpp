@@ -34,11 +34,11 @@ TEST_P(MeshioFile, ReadsToTheSameMeshAsTheGmshFile) {
   const Mesh gmsh = tensormass::read_mesh(meshtest::data_file(GetParam().stem + ".msh41.msh"));
   const Mesh vtk = tensormass::read_mesh(meshtest::data_file(GetParam().vtk_file));
   meshtest::expect_same_cells(gmsh, vtk);
-  const meshtest::Json& groups = meshtest::expected_meshes()[GetParam().stem]["groups"];
-  ASSERT_EQ(vtk.groups.size(), groups.members.size());
-  for (const auto& [name, expected] : groups.members) {
+  const nlohmann::json& groups = meshtest::expected_meshes()[GetParam().stem]["groups"];
+  ASSERT_EQ(vtk.groups.size(), groups.size());
+  for (const auto& [name, expected] : groups.items()) {
     const tensormass::Group* from_gmsh = gmsh.group(name);
-    const tensormass::Group* from_vtk = vtk.group("region_" + std::to_string(expected["tag"].integer()));
+    const tensormass::Group* from_vtk = vtk.group("region_" + std::to_string(expected["tag"].get<int>()));
     ASSERT_NE(from_gmsh, nullptr);
     ASSERT_NE(from_vtk, nullptr) << name;
     EXPECT_EQ(from_vtk->dim, from_gmsh->dim) << name;

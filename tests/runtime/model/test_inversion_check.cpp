@@ -1,12 +1,11 @@
 // InversionCheck: det F at quadrature points and det dx/dxi at the corners,
 // for every element of the registry.
-#include "tensormass/model/inversion_check.hpp"
-
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/model/inversion_check.hpp"
 
 namespace tensormass {
 namespace {

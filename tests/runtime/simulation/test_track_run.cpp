@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "track_test_support.hpp"
 
@@ -60,32 +61,32 @@ TEST_F(TrackRun, ImplicitRunWritesOneRowPerStepFromTimeZero) {
   // Rest centroids: the whole box and the quad half.
   EXPECT_NEAR(track_test::numbers(track_test::read_lines(out("track_body.csv"))[1])[1], 2.5, 1e-14);
   EXPECT_NEAR(track_test::numbers(track_test::read_lines(out("track_phase_quad4.csv"))[1])[1], 3.75, 1e-14);
-  const std::string s = summary();
-  EXPECT_NE(s.find("\"tracks\": {\"body\": \"track_body.csv\", \"phase_quad4\": \"track_phase_quad4.csv\"}"),
-            std::string::npos)
-      << s;
-  EXPECT_NE(s.find("\"track_body.csv\", \"track_phase_quad4.csv\", \"summary.json\"]"), std::string::npos) << s;
+  const auto s = nlohmann::ordered_json::parse(summary());
+  EXPECT_EQ(s["tracks"].dump(), R"({"body":"track_body.csv","phase_quad4":"track_phase_quad4.csv"})");
+  const auto& files = s["files"];
+  ASSERT_GE(files.size(), 3u) << s.dump(2);
+  EXPECT_EQ(files[files.size() - 3], "track_body.csv");
+  EXPECT_EQ(files[files.size() - 2], "track_phase_quad4.csv");
+  EXPECT_EQ(files.back(), "summary.json");
   EXPECT_NE(result.output.find("track_body.csv"), std::string::npos) << result.output;
 }
 
-/// The number after `"key": ` in `json` (NaN when absent or null).
-double json_number(const std::string& json, const std::string& key) {
-  const std::size_t at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return NAN;
-  const std::string value = json.substr(at + key.size() + 4, 24);
-  return value.rfind("null", 0) == 0 ? NAN : std::stod(value);
+/// The number at `pointer` (a JSON pointer: "/time_per_phase_s/total") of the JSON text (NaN when null).
+double json_number(const std::string& json, const std::string& pointer) {
+  const nlohmann::json value = nlohmann::json::parse(json).at(nlohmann::json::json_pointer(pointer));
+  return value.is_null() ? NAN : value.get<double>();
 }
 
 TEST_F(TrackRun, ImplicitSummaryHasTheRealTimeFactor) {
   const Result result = run(std::string(kGravity) + "solver: {type: implicit, dt: 0.01, steps: 6}\n");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::string s = summary();
-  EXPECT_NEAR(json_number(s, "simulated_seconds"), 0.06, 1e-15);
-  const double loop = json_number(s, "time_loop_seconds"), factor = json_number(s, "real_time_factor");
+  EXPECT_NEAR(json_number(s, "/simulated_seconds"), 0.06, 1e-15);
+  const double loop = json_number(s, "/time_loop_seconds"), factor = json_number(s, "/real_time_factor");
   EXPECT_GT(loop, 0);
   EXPECT_GT(factor, 0);
   EXPECT_NEAR(factor, 0.06 / loop, 1e-9 * factor);
-  EXPECT_LE(loop, json_number(s, "total")) << "the time loop is part of the whole run";
+  EXPECT_LE(loop, json_number(s, "/time_per_phase_s/total")) << "the time loop is part of the whole run";
   EXPECT_NE(result.output.find("real-time factor"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("s simulated in"), std::string::npos) << result.output;
 }
@@ -93,8 +94,8 @@ TEST_F(TrackRun, ImplicitSummaryHasTheRealTimeFactor) {
 TEST_F(TrackRun, ExplicitSummaryHasTheRealTimeFactor) {
   const Result result = run(std::string(kGravity) + "solver: {type: explicit, dt: 1.0e-5, steps: 20}\n", "[body]");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NEAR(json_number(summary(), "simulated_seconds"), 2e-4, 1e-18);
-  EXPECT_GT(json_number(summary(), "real_time_factor"), 0);
+  EXPECT_NEAR(json_number(summary(), "/simulated_seconds"), 2e-4, 1e-18);
+  EXPECT_GT(json_number(summary(), "/real_time_factor"), 0);
   EXPECT_EQ(track_test::read_lines(out("track_body.csv")).size(), 1u + 21u);
 }
 
@@ -106,8 +107,9 @@ TEST_F(TrackRun, StaticRunHasOneRowPerLoadStepAndNoRealTimeFactor) {
   for (std::size_t k = 1; k < lines.size(); ++k)
     EXPECT_EQ(track_test::numbers(lines[k])[0], static_cast<double>(k - 1) / 4) << "time = load factor";
   const std::string s = summary();
-  EXPECT_NE(s.find("\"real_time_factor\": null"), std::string::npos) << s;
-  EXPECT_NE(s.find("\"simulated_seconds\": null"), std::string::npos) << s;
+  const auto json = nlohmann::json::parse(s);
+  EXPECT_TRUE(json["real_time_factor"].is_null()) << s;
+  EXPECT_TRUE(json["simulated_seconds"].is_null()) << s;
   EXPECT_EQ(result.output.find("real-time factor"), std::string::npos) << result.output;
 }
 
@@ -143,7 +145,7 @@ TEST_F(TrackRun, NumericalFailureKeepsTheTrackUpToTheLastGoodStep) {
     for (double x : track_test::numbers(lines[k])) EXPECT_TRUE(std::isfinite(x)) << lines[k];
   const std::string s = summary();
   EXPECT_NE(s.find("\"status\": \"failed\""), std::string::npos);
-  EXPECT_NE(s.find("\"tracks\": {\"body\": \"track_body.csv\"}"), std::string::npos) << s;
+  EXPECT_EQ(nlohmann::json::parse(s)["tracks"], nlohmann::json({{"body", "track_body.csv"}})) << s;
   for (const auto& entry : fs::directory_iterator(dir_.path() / "out"))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
@@ -151,7 +153,7 @@ TEST_F(TrackRun, NumericalFailureKeepsTheTrackUpToTheLastGoodStep) {
 TEST_F(TrackRun, NoTrackMeansNoFilesAndAnEmptyMap) {
   const Result result = run(std::string(kGravity) + "solver: {type: static, load_steps: 1}\n", "[]");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(summary().find("\"tracks\": {}"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(summary())["tracks"], nlohmann::json::object());
   for (const auto& entry : fs::directory_iterator(dir_.path() / "out"))
     EXPECT_NE(entry.path().filename().string().rfind("track_", 0), 0u) << entry.path();
 }

@@ -18,7 +18,7 @@
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/adaptivity/criteria_screen.hpp"
 #include "tensormass/assembly/assembler.hpp"
-#include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/io/field.hpp"
 #include "tensormass/model/model.hpp"
 
 namespace tensormass {
@@ -83,7 +83,7 @@ class Adaptivity {
   AdaptivityMemory memory() const;
   /// Takes a saved memory back (its sizes must fit: std::invalid_argument otherwise).
   void restore(AdaptivityMemory memory);
-  /// Follows a mesh change (refinement, issue 15): from now on works on
+  /// Follows a mesh change (refinement): from now on works on
   /// `model` and `assembler` (built on the new mesh, their laws already
   /// carried over), cell c taking the per-cell state (last criteria values,
   /// calm count, initial rung) of old cell origin[c]. The run-level counts

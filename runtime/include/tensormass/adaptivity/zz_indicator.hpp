@@ -1,6 +1,6 @@
 /// \file zz_indicator.hpp
 /// R_ZZ, the Zienkiewicz-Zhu recovered-stress error indicator per cell, and
-/// the cells a threshold on it selects for refinement (issue 15).
+/// the cells a threshold on it selects for refinement.
 ///
 /// Stress measure: the symmetric part s = (P + P^T) / 2 of the first
 /// Piola-Kirchhoff stress P that the cell's kernel gives at each quadrature
@@ -37,8 +37,8 @@
 /// indicator (each runs the cell's stress kernel), one over the nodes; no
 /// heap allocation per cell, and none at all when a ZzIndicator is reused
 /// on models of the same size.
-#ifndef TENSORMASS_REFINEMENT_ZZ_INDICATOR_HPP
-#define TENSORMASS_REFINEMENT_ZZ_INDICATOR_HPP
+#ifndef TENSORMASS_ADAPTIVITY_ZZ_INDICATOR_HPP
+#define TENSORMASS_ADAPTIVITY_ZZ_INDICATOR_HPP
 
 #include <span>
 #include <vector>

@@ -1,8 +1,8 @@
 /// \file output_settings.hpp
 /// What a run writes, as plain data: the output directory, the frame
 /// interval and the tracked groups.
-#ifndef TENSORMASS_SIMULATION_OUTPUT_SETTINGS_HPP
-#define TENSORMASS_SIMULATION_OUTPUT_SETTINGS_HPP
+#ifndef TENSORMASS_IO_OUTPUT_SETTINGS_HPP
+#define TENSORMASS_IO_OUTPUT_SETTINGS_HPP
 
 #include <string>
 #include <vector>

@@ -8,16 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "tensormass/io/field.hpp"
 #include "tensormass/mesh/mesh.hpp"
 
 namespace tensormass::io {
-
-/// One data array: `components` values per point (or per cell), flattened.
-struct Field {
-  std::string name;
-  int components = 1;
-  std::vector<double> values;  ///< count by components
-};
 
 /// Writes the mesh's cells (all blocks, VTK node order, positions = rest +
 /// displacement when `displacement` is non-empty (node_count by 3)) with

@@ -11,13 +11,14 @@
 #define TENSORMASS_SCENE_SCENE_HPP
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tensormass/adaptivity/adaptivity_settings.hpp"
+#include "tensormass/io/output_settings.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model_spec.hpp"
 #include "tensormass/refinement/refinement_settings.hpp"
-#include "tensormass/simulation/output_settings.hpp"
 #include "tensormass/solvers/solver_settings.hpp"
 
 namespace tensormass {
@@ -49,6 +50,13 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 /// groups have facets that are faces of cells, tracked groups have cells, a
 /// static solve has a constraint, and not every dof is constrained.
 void validate_against_mesh(const Scene& scene, const Mesh& mesh);
+
+/// Every map of the scene and the keys the reader accepts in it, by path:
+/// "" for the top level, "materials[]" for a material, "solver.linear", ...
+/// A material's law constants are not listed: each law declares its own
+/// (`tensormass kernels`, docs/laws.md). docs/scene.md documents every key
+/// (ctest scene.SceneReference.*).
+std::vector<std::pair<std::string, std::vector<std::string>>> scene_schema();
 
 }  // namespace tensormass
 

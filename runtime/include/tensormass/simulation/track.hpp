@@ -14,7 +14,7 @@
 /// parallelograms, parallelepipeds and right prisms (so C is the group's
 /// volume centroid on meshes of these cells), not for pyramids or curved cells.
 ///
-/// CSV: header `time,x,y,z,ux,uy,uz`, then one row per recorded state
+/// CSV (io/track_csv.hpp): header `time,x,y,z,ux,uy,uz`, then one row per recorded state
 /// (time in seconds, or the load factor for static solves), (x, y, z) = C(u)
 /// and (ux, uy, uz) = C(u) - C(u_first) = S(u) - S(u_first), S(u) = sum_i W_i u_i
 /// (the first row's displacement is exactly 0, and S is evaluated as
@@ -28,16 +28,10 @@
 #include <string>
 #include <vector>
 
+#include "tensormass/io/track_csv.hpp"
 #include "tensormass/mesh/mesh.hpp"
 
 namespace tensormass {
-
-/// One recorded state of a track.
-struct TrackRow {
-  double time = 0;
-  std::array<double, 3> position{};      ///< current centroid
-  std::array<double, 3> displacement{};  ///< from the first row
-};
 
 /// The centroid of one group of cells, recorded step by step.
 class GroupTrack {
@@ -84,10 +78,6 @@ class GroupTrack {
   double rest_volume_ = 0;
   std::vector<TrackRow> rows_;
 };
-
-/// "track_<group>.csv" with every character of the group name other than a
-/// letter, a digit, '.', '-' or '_' replaced by '_'.
-std::string track_file_name(const std::string& group);
 
 }  // namespace tensormass
 
