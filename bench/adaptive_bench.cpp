@@ -13,11 +13,11 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bench_metadata.hpp"
 #include "machine_info.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
@@ -155,7 +155,7 @@ Case indentation(bool quick, std::array<int, 3> cells = kBlockCells) {
   c.thresholds = {0.003, 0.01, 0.03};
   c.stress_thresholds = {0.05, 0.1, 0.2};
   c.corotational_thresholds = {{0.003, 0.01}, {0.003, 0.03}};
-  // StVK inverts under the probe (issue 14); stable neo-Hookean is the
+  // StVK inverts under the probe; stable neo-Hookean is the
   // inversion-safe alternative to the rich law.
   c.other_laws = {"corotational", "stvk", "stable_neohookean"};
   c.what = std::to_string(c.mesh.cell_count()) + " tet4, E 5 kPa, nu 0.45, 2 x 2 cm probe 1.5 cm into 5 cm";
@@ -236,7 +236,7 @@ Case gravity_beam(const std::string& name, int dim, std::array<int, 3> cells, st
   return c;
 }
 
-/// The 3D cantilever of issue 13: 5 x 1 x 1 m, 8,640 tets, E 20 MPa, 150 steps.
+/// The 3D cantilever: 5 x 1 x 1 m, 8,640 tets, E 20 MPa, 150 steps.
 Case cantilever(bool quick) {
   Case c = gravity_beam("cantilever", 3, quick ? std::array<int, 3>{15, 3, 3} : std::array<int, 3>{30, 6, 8},
                         {5.0, 1.0, 1.0}, "tet6", 2e7, quick ? 30 : 150);
@@ -493,7 +493,7 @@ void print_screen(const CaseResult& result) {
       same ? "identical" : "DIFFER");
 }
 
-/// The targets of issue 13 on one scene; prints each, returns nothing (misses are reported, not fatal).
+/// The benchmark's targets on one scene; prints each, returns nothing (misses are reported, not fatal).
 void print_targets(const CaseResult& result) {
   const Case& c = *result.scene;
   const Run& linear = result.runs[0];
@@ -522,35 +522,41 @@ void print_targets(const CaseResult& result) {
 
 // --- JSON and the command ----------------------------------------------------
 
-std::string json_of(const std::vector<CaseResult>& results) {
-  std::ostringstream out;
-  out << "{\"machine\": \"" << cpu_model() << "\", \"threads\": " << omp_get_max_threads() << ", \"scenes\": [";
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    const Case& c = *results[i].scene;
-    out << (i ? ", " : "") << "{\"name\": \"" << c.name << "\", \"rounds\": " << results[i].rounds
-        << ", \"cells\": " << c.mesh.cell_count() << ", \"steps\": " << c.scene.solver.steps << ", \"runs\": [";
-    for (std::size_t r = 0; r < results[i].runs.size(); ++r) {
-      const Run& run = results[i].runs[r];
-      out << (r ? ", " : "") << "{\"label\": \"" << run.label << "\", \"threshold\": ";
-      if (run.threshold) out << *run.threshold;
-      else out << "null";
-      out << ", \"screened\": " << (run.screened ? "true" : "false") << ", \"ms_per_step\": " << run.mean_ms
-          << ", \"ratio\": " << run.ratio << ", \"ratio_low\": " << run.ratio_low
-          << ", \"ratio_high\": " << run.ratio_high << ", \"assembly_ms\": " << run.assembly_ms
-          << ", \"solve_ms\": " << run.solve_ms << ", \"criteria_ms\": " << run.criteria_ms
-          << ", \"error\": " << run.error << ", \"switches\": " << run.switches
-          << ", \"failed\": " << (run.failure.empty() ? "false" : "true") << ", \"cells_per_law\": {";
-      bool first = true;
-      for (const auto& [law, count] : run.cells_per_law) {
-        out << (first ? "" : ", ") << "\"" << law << "\": " << count;
-        first = false;
-      }
-      out << "}}";
-    }
-    out << "]}";
-  }
-  out << "]}\n";
-  return out.str();
+// Figures with six significant digits, as always written.
+Json json_of(const Run& run) {
+  Json cells_per_law = Json::object();
+  for (const auto& [law, count] : run.cells_per_law) cells_per_law[law] = count;
+  return {{"label", run.label},
+          {"threshold", run.threshold ? number(*run.threshold, 6) : Json(nullptr)},
+          {"screened", run.screened},
+          {"ms_per_step", number(run.mean_ms, 6)},
+          {"ratio", number(run.ratio, 6)},
+          {"ratio_low", number(run.ratio_low, 6)},
+          {"ratio_high", number(run.ratio_high, 6)},
+          {"assembly_ms", number(run.assembly_ms, 6)},
+          {"solve_ms", number(run.solve_ms, 6)},
+          {"criteria_ms", number(run.criteria_ms, 6)},
+          {"error", number(run.error, 6)},
+          {"switches", run.switches},
+          {"failed", !run.failure.empty()},
+          {"cells_per_law", cells_per_law}};
+}
+
+Json json_of(const CaseResult& result) {
+  const Case& c = *result.scene;
+  Json runs = Json::array();
+  for (const Run& run : result.runs) runs.push_back(json_of(run));
+  return {{"name", c.name},
+          {"rounds", result.rounds},
+          {"cells", c.mesh.cell_count()},
+          {"steps", c.scene.solver.steps},
+          {"runs", runs}};
+}
+
+Json json_of(const std::vector<CaseResult>& results) {
+  Json scenes = Json::array();
+  for (const CaseResult& result : results) scenes.push_back(json_of(result));
+  return {{"machine", cpu_model()}, {"threads", omp_get_max_threads()}, {"scenes", scenes}, {"metadata", metadata()}};
 }
 
 bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
@@ -624,7 +630,7 @@ int adaptive_command(const std::vector<std::string>& args) {
   std::printf("\nthe thorax deep breath (scene 2) runs through Python: bench/thorax_deep_breath.py\n");
   if (!options.json.empty()) {
     try {
-      io::write_atomically(options.json, [&](std::ostream& out) { out << json_of(results); });
+      io::write_atomically(options.json, [&](std::ostream& out) { out << json_text(json_of(results)); });
     } catch (const std::exception& error) {
       std::fprintf(stderr, "tensormass bench adaptive: %s\n", error.what());
       return 1;

@@ -6,7 +6,7 @@
 /// default settings (threads, solver). Per run: mean ms per step and its
 /// assembly, solve and criteria shares, cells per law at the end, and the
 /// error against the pure rich law: the largest nodal distance over all
-/// steps over the rich run's largest displacement. Targets (issue 13) are
+/// steps over the rich run's largest displacement. Targets are
 /// printed beside the figures (docs/results/adaptive.md).
 #ifndef TENSORMASS_BENCH_ADAPTIVE_BENCH_HPP
 #define TENSORMASS_BENCH_ADAPTIVE_BENCH_HPP

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_json.hpp"
 #include "handwritten_stvk.hpp"
 #include "machine_info.hpp"
 #include "polar_bench.hpp"
@@ -395,39 +396,38 @@ std::vector<std::string> cross_check(const std::vector<Row*>& rows, const Geomet
 
 double gflops(long flops, double ns) { return ns > 0.0 ? static_cast<double>(flops) / ns : 0.0; }
 
-std::string json_escape(const std::string& text) {
-  std::string out;
-  for (const char ch : text) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    out += ch;
-  }
-  return out;
+/// One row of --json: ns with six figures, GFLOP/s with four (as always written).
+Json json_row(const Row& r, const Settings& settings) {
+  return {{"law", r.law},
+          {"element", r.element},
+          {"split", r.split},
+          {"elements", r.elements},
+          {"consts", r.consts},
+          {"dofs", r.dofs},
+          {"repetitions", settings.repetitions},
+          {"ns_gradient", number(r.ns_gradient, 6)},
+          {"ns_gradient_hessian", number(r.ns_gradient_hessian, 6)},
+          {"ns_gradient_min", number(r.min_gradient, 6)},
+          {"ns_gradient_hessian_min", number(r.min_gradient_hessian, 6)},
+          {"flops_gradient", r.flops_gradient},
+          {"flops_hessian", r.flops_hessian},
+          {"flops_gradient_hessian", r.flops_gradient_hessian},
+          {"gflops_gradient", number(gflops(r.flops_gradient, r.ns_gradient), 4)},
+          {"gflops_gradient_hessian", number(gflops(r.flops_gradient_hessian, r.ns_gradient_hessian), 4)}};
 }
 
+/// The rows as a JSON array (no metadata: readers take the file as the list of rows).
 bool write_json(const std::string& path, const std::vector<const Row*>& rows, const Settings& settings) {
+  Json json = Json::array();
+  for (const Row* row : rows) json.push_back(json_row(*row, settings));
+  const std::string text = json_text(json);
   const std::string temporary = path + ".tmp";
   std::FILE* file = std::fopen(temporary.c_str(), "w");
   if (file == nullptr) {
     std::fprintf(stderr, "tensormass bench: cannot write '%s'\n", temporary.c_str());
     return false;
   }
-  std::fprintf(file, "[\n");
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const Row& r = *rows[i];
-    std::fprintf(file,
-                 "  {\"law\": \"%s\", \"element\": \"%s\", \"split\": \"%s\", \"elements\": %d, \"consts\": %d, "
-                 "\"dofs\": %d, \"repetitions\": %d, \"ns_gradient\": %.6g, \"ns_gradient_hessian\": %.6g, "
-                 "\"ns_gradient_min\": %.6g, \"ns_gradient_hessian_min\": %.6g, \"flops_gradient\": %ld, "
-                 "\"flops_hessian\": %ld, \"flops_gradient_hessian\": %ld, \"gflops_gradient\": %.4g, "
-                 "\"gflops_gradient_hessian\": %.4g}%s\n",
-                 json_escape(r.law).c_str(), json_escape(r.element).c_str(), json_escape(r.split).c_str(), r.elements,
-                 r.consts, r.dofs, settings.repetitions, r.ns_gradient, r.ns_gradient_hessian, r.min_gradient,
-                 r.min_gradient_hessian, r.flops_gradient, r.flops_hessian, r.flops_gradient_hessian,
-                 gflops(r.flops_gradient, r.ns_gradient), gflops(r.flops_gradient_hessian, r.ns_gradient_hessian),
-                 i + 1 < rows.size() ? "," : "");
-  }
-  std::fprintf(file, "]\n");
-  const bool written = std::fflush(file) == 0 && !std::ferror(file);
+  const bool written = std::fputs(text.c_str(), file) >= 0 && std::fflush(file) == 0 && !std::ferror(file);
   if (std::fclose(file) != 0 || !written || std::rename(temporary.c_str(), path.c_str()) != 0) {
     std::fprintf(stderr, "tensormass bench: cannot write '%s'\n", path.c_str());
     std::remove(temporary.c_str());

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_metadata.hpp"
 #include "machine_info.hpp"
 #include "paper_report.hpp"
 #include "tensormass/adaptivity/adaptivity.hpp"
@@ -471,6 +472,72 @@ bool parse(const std::vector<std::string>& args, Options& options, int& exit_cod
   return true;
 }
 
+// --- JSON ---------------------------------------------------------------------
+
+Json settings_json(int steps, int repetitions) {
+  return {{"dt", number(kDt)},
+          {"steps", steps},
+          {"newton_iterations", 1},
+          {"linear", "cholmod"},
+          {"poisson", number(kPoisson)},
+          {"density", number(kDensity)},
+          {"gravity", number(kGravity)},
+          {"repetitions_2d", repetitions},
+          {"repetitions_3d", repetitions_3d(repetitions)}};
+}
+
+Json beam_json(const BeamCase& beam, const BeamOutcome& outcome) {
+  Json thresholds = Json::array();
+  for (const auto& [fraction, threshold] : outcome.rs_thresholds)
+    thresholds.push_back({{"fraction", number(fraction)}, {"threshold", number(threshold)}});
+  return {{"beam", beam.name},
+          {"dim", beam.spec.dim},
+          {"length", number(beam.spec.size[0])},
+          {"young", number(beam.young)},
+          {"elements", outcome.rows.empty() ? 0 : outcome.rows[0].elements},
+          {"tip_deflection_stvk", number(outcome.tip_stvk)},
+          {"tip_deflection_hooke", number(outcome.tip_hooke)},
+          {"r_s_thresholds", thresholds}};
+}
+
+Json overhead_json(const std::string& beam, const Overhead& o) {
+  return {{"beam", beam},
+          {"criterion", o.criterion},
+          {"ms_per_step", number(o.ms_per_step)},
+          {"hooke_ms_per_step", number(o.hooke_ms)},
+          {"criteria_ms", number(o.criteria_ms)},
+          {"ms_per_step_median", number(o.ms_median)},
+          {"hooke_ms_per_step_median", number(o.hooke_median)}};
+}
+
+Json target_json(const Target& t) {
+  return {{"what", t.what}, {"value", number(t.value)}, {"op", t.op}, {"limit", number(t.limit)}, {"pass", t.pass()}};
+}
+
+/// paper.json: the run, the machine, the settings, then per beam, the
+/// overhead on the first one, the targets and every row.
+Json paper_json(const std::string& run, int steps, int repetitions, const std::vector<BeamCase>& cases,
+                const std::vector<BeamOutcome>& outcomes, const std::vector<Target>& targets,
+                const std::vector<PaperRow>& rows) {
+  Json beams = Json::array(), overhead = Json::array(), target_list = Json::array();
+  for (std::size_t b = 0; b < cases.size(); ++b) beams.push_back(beam_json(cases[b], outcomes[b]));
+  if (!outcomes.empty())
+    for (const Overhead& o : outcomes[0].overhead) overhead.push_back(overhead_json(cases[0].name, o));
+  for (const Target& t : targets) target_list.push_back(target_json(t));
+  return {{"tool", "tensormass bench paper"},
+          {"run", run},
+          {"machine", cpu_model()},
+          {"load_average", load_average()},
+          {"build", TENSORMASS_BENCH_BUILD_INFO},
+          {"threads", 1},
+          {"settings", settings_json(steps, repetitions)},
+          {"beams", beams},
+          {"overhead", overhead},
+          {"targets", target_list},
+          {"rows", rows_json(rows)},
+          {"metadata", metadata()}};
+}
+
 }  // namespace
 
 int paper_command(const std::vector<std::string>& args) {
@@ -549,62 +616,23 @@ int paper_command(const std::vector<std::string>& args) {
         worst = o.added();
         which = o.criterion;
       }
-    targets.push_back({main_beam + ": criteria time / pure Hooke's mean step, worst criterion (" + which + ", issue 4)",
-                       worst, "<=", 0.05});
+    targets.push_back(
+        {main_beam + ": criteria time / pure Hooke's mean step, worst criterion (" + which + ")", worst, "<=", 0.05});
   }
   std::printf("\n== Targets ==\n");
   for (const Target& t : targets)
     std::printf("%-4s %-80s %.3f (target %s %g)\n", t.pass() ? "PASS" : "MISS", t.what.c_str(), t.value, t.op.c_str(),
                 t.limit);
 
-  // JSON.
-  std::ostringstream json;
-  json << "{\n\"tool\": \"tensormass bench paper\", \"run\": " << json_string(mode_name)
-       << ",\n\"machine\": " << json_string(cpu_model()) << ", \"load_average\": " << json_string(load_average())
-       << ",\n\"build\": " << json_string(TENSORMASS_BENCH_BUILD_INFO) << ", \"threads\": 1"
-       << ",\n\"settings\": {\"dt\": " << json_number(kDt) << ", \"steps\": " << steps
-       << ", \"newton_iterations\": 1, \"linear\": \"cholmod\", \"poisson\": " << json_number(kPoisson)
-       << ", \"density\": " << json_number(kDensity) << ", \"gravity\": " << json_number(kGravity)
-       << ", \"repetitions_2d\": " << options.repetitions
-       << ", \"repetitions_3d\": " << repetitions_3d(options.repetitions) << "},\n\"beams\": [";
-  for (std::size_t b = 0; b < cases.size(); ++b) {
-    const BeamCase& c = cases[b];
-    json << (b ? ",\n  " : "\n  ") << "{\"beam\": " << json_string(c.name) << ", \"dim\": " << c.spec.dim
-         << ", \"length\": " << json_number(c.spec.size[0]) << ", \"young\": " << json_number(c.young)
-         << ", \"elements\": " << (outcomes[b].rows.empty() ? 0 : outcomes[b].rows[0].elements)
-         << ", \"tip_deflection_stvk\": " << json_number(outcomes[b].tip_stvk)
-         << ", \"tip_deflection_hooke\": " << json_number(outcomes[b].tip_hooke) << ", \"r_s_thresholds\": [";
-    for (std::size_t i = 0; i < outcomes[b].rs_thresholds.size(); ++i)
-      json << (i ? ", " : "") << "{\"fraction\": " << json_number(outcomes[b].rs_thresholds[i].first)
-           << ", \"threshold\": " << json_number(outcomes[b].rs_thresholds[i].second) << "}";
-    json << "]}";
-  }
-  json << "\n],\n\"overhead\": [";
-  if (!outcomes.empty())
-    for (std::size_t i = 0; i < outcomes[0].overhead.size(); ++i) {
-      const Overhead& o = outcomes[0].overhead[i];
-      json << (i ? ", " : "") << "\n  {\"beam\": " << json_string(main_beam)
-           << ", \"criterion\": " << json_string(o.criterion) << ", \"ms_per_step\": " << json_number(o.ms_per_step)
-           << ", \"hooke_ms_per_step\": " << json_number(o.hooke_ms)
-           << ", \"criteria_ms\": " << json_number(o.criteria_ms)
-           << ", \"ms_per_step_median\": " << json_number(o.ms_median)
-           << ", \"hooke_ms_per_step_median\": " << json_number(o.hooke_median) << "}";
-    }
-  json << "\n],\n\"targets\": [";
-  for (std::size_t i = 0; i < targets.size(); ++i)
-    json << (i ? ", " : "") << "\n  {\"what\": " << json_string(targets[i].what)
-         << ", \"value\": " << json_number(targets[i].value) << ", \"op\": " << json_string(targets[i].op)
-         << ", \"limit\": " << json_number(targets[i].limit) << ", \"pass\": " << (targets[i].pass() ? "true" : "false")
-         << "}";
-  json << "\n],\n\"rows\": " << rows_json(rows) << "\n}\n";
-  const std::string json_text = json.str();
-  if (!options.json.empty() && !write_file(options.json, json_text)) return 1;
+  const std::string paper_text =
+      json_text(paper_json(mode_name, steps, options.repetitions, cases, outcomes, targets, rows));
+  if (!options.json.empty() && !write_file(options.json, paper_text)) return 1;
 
   if (!options.out.empty()) {
     std::error_code error;
     fs::create_directories(options.out, error);
     const fs::path out = options.out;
-    if (!write_file(out / "paper.json", json_text)) return 1;
+    if (!write_file(out / "paper.json", paper_text)) return 1;
     // The markdown report.
     std::ostringstream md;
     md << paper_markdown_header(mode_name, cpu_model(), load_average(), TENSORMASS_BENCH_BUILD_INFO, steps, kDt,
@@ -636,7 +664,7 @@ int paper_command(const std::vector<std::string>& args) {
          << (t.pass() ? "PASS" : "**MISS**") << " |\n";
     if (!outcomes.empty() && !outcomes[0].overhead.empty()) {
       md << "\n## Criteria overhead (" << main_beam
-         << ", issue 4)\n\n"
+         << ")\n\n"
             "Adaptive runs whose threshold no element reaches (nothing switches, the criterion runs on every "
             "element every step) against pure Hooke, same repetitions.\n\n"
             "The criteria's own time (Adaptivity::criteria_seconds, per step) over pure Hooke's mean step is the "

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -66,52 +65,22 @@ double mean(const std::vector<double>& values) {
   return sum / static_cast<double>(values.size());
 }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '"') out += "\\\"";
-    else if (c == '\\') out += "\\\\";
-    else if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-      out += buffer;
-    } else out += ch;
-  }
-  return out + "\"";
-}
-
-std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
-
-std::string rows_json(const std::vector<PaperRow>& rows) {
-  std::string out = "[";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const PaperRow& r = rows[i];
-    out += i ? ",\n  {" : "\n  {";
-    out += "\"beam\": " + json_string(r.beam);
-    out += ", \"elements\": " + std::to_string(r.elements);
-    out += ", \"mode\": " + json_string(r.mode);
-    out += ", \"threshold\": " + (r.threshold ? json_number(*r.threshold) : std::string("null"));
-    out += ", \"ms_per_step\": " + json_number(r.ms_per_step);
-    out += ", \"ms_per_step_median\": " + json_number(r.ms_per_step_median);
-    out += ", \"error\": " + json_number(r.error);
-    out += ", \"upgraded\": " + std::to_string(r.upgraded);
-    out += ", \"criteria_ms\": " + json_number(r.criteria_ms);
-    out += ", \"assembly_ms\": " + json_number(r.assembly_ms);
-    out += ", \"solve_ms\": " + json_number(r.solve_ms);
-    out += ", \"samples\": [";
-    for (std::size_t s = 0; s < r.samples.size(); ++s) out += (s ? ", " : "") + json_number(r.samples[s]);
-    out += "]}";
-  }
-  out += rows.empty() ? "]" : "\n]";
-  return out;
+Json rows_json(const std::vector<PaperRow>& rows) {
+  Json list = Json::array();
+  for (const PaperRow& r : rows)
+    list.push_back({{"beam", r.beam},
+                    {"elements", r.elements},
+                    {"mode", r.mode},
+                    {"threshold", r.threshold ? number(*r.threshold) : Json(nullptr)},
+                    {"ms_per_step", number(r.ms_per_step)},
+                    {"ms_per_step_median", number(r.ms_per_step_median)},
+                    {"error", number(r.error)},
+                    {"upgraded", r.upgraded},
+                    {"criteria_ms", number(r.criteria_ms)},
+                    {"assembly_ms", number(r.assembly_ms)},
+                    {"solve_ms", number(r.solve_ms)},
+                    {"samples", numbers(r.samples)}});
+  return list;
 }
 
 const PaperRow* find_row(const std::vector<PaperRow>& rows, const std::string& beam, const std::string& mode,

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "bench_json.hpp"
+
 namespace tensormass::bench {
 
 /// Largest distance between the same node in two displacement fields
@@ -51,15 +53,11 @@ struct PaperRow {
   std::vector<double> samples;      ///< mean ms per step of each repetition
 };
 
-/// Escapes a string for JSON (quotes, backslash, control characters).
-std::string json_string(const std::string& text);
-/// A number for JSON: shortest round-trip form, null for NaN or infinity.
-std::string json_number(double value);
-
 /// The rows as a JSON array, one object per row with the keys beam,
 /// elements, mode, threshold (null for pure runs), ms_per_step,
-/// ms_per_step_median, error, upgraded, criteria_ms, assembly_ms, solve_ms, samples.
-std::string rows_json(const std::vector<PaperRow>& rows);
+/// ms_per_step_median, error, upgraded, criteria_ms, assembly_ms, solve_ms,
+/// samples (numbers in full, null where not finite).
+Json rows_json(const std::vector<PaperRow>& rows);
 
 /// The origin report's Table 1 (mean ms per step; thresholds in the
 /// origin's units: percent for R_EL and R_V).

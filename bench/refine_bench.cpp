@@ -7,18 +7,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_metadata.hpp"
 #include "machine_info.hpp"
 #include "refine_indentation.hpp"
+#include "tensormass/adaptivity/zz_indicator.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/refinement/hierarchical_mesh.hpp"
-#include "tensormass/refinement/zz_indicator.hpp"
 #include "tensormass/scene/scene.hpp"
 #include "tensormass/solvers/integrators.hpp"
 #include "tensormass/solvers/linear_solver.hpp"
@@ -167,11 +167,11 @@ RefineRun adaptive(const Mesh& coarse, const Scene& scene, double threshold, con
   return run;
 }
 
-/// "a/b/c" (separator "/") or "a, b, c" (JSON) for the cells of each level.
-std::string levels_text(const std::vector<int>& per_level, const char* separator = "/") {
+/// "a/b/c": the cells of each level.
+std::string levels_text(const std::vector<int>& per_level) {
   std::string text;
   for (std::size_t level = 0; level < per_level.size(); ++level)
-    text += (level ? separator : "") + std::to_string(per_level[level]);
+    text += (level ? "/" : "") + std::to_string(per_level[level]);
   return text;
 }
 
@@ -181,21 +181,29 @@ void print_run(const RefineRun& run) {
               1e3 * run.indicator_seconds, 1e3 * run.refine_seconds);
 }
 
-std::string json_of(const std::vector<RefineRun>& runs, const Mesh& coarse, const std::string& indentation) {
-  std::ostringstream out;
-  out << "{\"machine\": \"" << cpu_model() << "\", \"threads\": " << omp_get_max_threads()
-      << ", \"coarse_cells\": " << coarse.cell_count() << ", \"max_level\": " << kMaxLevel << ", \"runs\": [";
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const RefineRun& r = runs[i];
-    out << (i ? ", " : "") << "{\"label\": \"" << r.label << "\", \"threshold\": ";
-    if (r.threshold >= 0) out << r.threshold;
-    else out << "null";
-    out << ", \"cells\": " << r.cells << ", \"leaves_per_level\": [" << levels_text(r.leaves_per_level, ", ") << "]"
-        << ", \"passes\": " << r.passes << ", \"error\": " << r.error << ", \"solve_seconds\": " << r.solve_seconds
-        << ", \"indicator_seconds\": " << r.indicator_seconds << ", \"refine_seconds\": " << r.refine_seconds << "}";
-  }
-  out << "], \"indentation\": " << indentation << "}\n";
-  return out.str();
+// Figures with six significant digits, as always written.
+Json json_of(const RefineRun& r) {
+  return {{"label", r.label},
+          {"threshold", r.threshold >= 0 ? number(r.threshold, 6) : Json(nullptr)},
+          {"cells", r.cells},
+          {"leaves_per_level", r.leaves_per_level},
+          {"passes", r.passes},
+          {"error", number(r.error, 6)},
+          {"solve_seconds", number(r.solve_seconds, 6)},
+          {"indicator_seconds", number(r.indicator_seconds, 6)},
+          {"refine_seconds", number(r.refine_seconds, 6)}};
+}
+
+Json json_of(const std::vector<RefineRun>& runs, const Mesh& coarse, const Json& indentation) {
+  Json plate = Json::array();
+  for (const RefineRun& run : runs) plate.push_back(json_of(run));
+  return {{"machine", cpu_model()},
+          {"threads", omp_get_max_threads()},
+          {"coarse_cells", coarse.cell_count()},
+          {"max_level", kMaxLevel},
+          {"runs", plate},
+          {"indentation", indentation},
+          {"metadata", metadata()}};
 }
 
 bool parse(const std::vector<std::string>& args, Options& options, int& exit_code) {
@@ -252,8 +260,8 @@ int refine_command(const std::vector<std::string>& args) {
       runs.push_back(adaptive(coarse, scene, threshold, reference));
       print_run(runs.back());
     }
-    std::printf("\ntargets (issue 15): error <= %.1fx the coarse mesh's with < %.1fx the reference's cells\n",
-                kErrorTarget, kCellTarget);
+    std::printf("\ntargets: error <= %.1fx the coarse mesh's with < %.1fx the reference's cells\n", kErrorTarget,
+                kCellTarget);
     for (std::size_t i = 2; i < runs.size(); ++i) {
       const double error_ratio = runs[i].error / plain.error;
       const double cell_ratio = static_cast<double>(runs[i].cells) / fine.cells;
@@ -274,7 +282,8 @@ int refine_command(const std::vector<std::string>& args) {
   const IndentationResult indentation = refine_indentation(options.quick);
   if (!options.json.empty()) {
     try {
-      io::write_atomically(options.json, [&](std::ostream& out) { out << json_of(runs, coarse, indentation.json); });
+      io::write_atomically(options.json,
+                           [&](std::ostream& out) { out << json_text(json_of(runs, coarse, indentation.json)); });
     } catch (const std::exception& error) {
       std::fprintf(stderr, "tensormass bench refine: %s\n", error.what());
       return 1;

@@ -1,6 +1,6 @@
 /// \file refine_bench.hpp
 /// `tensormass bench refine [--quick] [--json FILE]`: does local refinement
-/// pay? Issue 15's 2D plate with a probe: a 10 x 5 cm plate of 20 x 10
+/// pay? A 2D plate with a probe: a 10 x 5 cm plate of 20 x 10
 /// quad4 (E 5 kPa, nu 0.45, plane strain), the bottom fixed, a 2 cm probe
 /// pressed 5 mm into the middle of the top, a static Hooke solve. Runs:
 /// the coarse mesh; a mesh refined uniformly to level 2 (each cell cut in
@@ -11,7 +11,7 @@
 /// coarse mesh's nodes against the reference over the reference's largest
 /// displacement, and the solve time. Then the 3D tool indentation from a
 /// coarse hex mesh, dynamic, with and without law switching
-/// (refine_indentation.hpp). Targets (issue 15) beside the figures
+/// (refine_indentation.hpp). Targets beside the figures
 /// (docs/results/refine.md).
 #ifndef TENSORMASS_BENCH_REFINE_BENCH_HPP
 #define TENSORMASS_BENCH_REFINE_BENCH_HPP

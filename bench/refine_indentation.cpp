@@ -11,7 +11,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -299,47 +298,64 @@ void print_run(const Run& run) {
   if (!run.failure.empty()) std::printf("%-32s %s\n", "", run.failure.c_str());
 }
 
-std::string json_of(const Setup& setup, int coarse_cells, const std::vector<Run>& runs) {
-  std::ostringstream out;
-  out << "{\"coarse_cells\": " << coarse_cells << ", \"max_level\": " << setup.max_level
-      << ", \"steps\": " << setup.steps << ", \"probe_depth\": " << setup.depth
-      << ", \"error_target\": " << kErrorTarget << ", \"cost_target\": " << kCostTarget
-      << ", \"event_target\": " << kEventTarget << ", \"runs\": [";
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const Run& r = runs[i];
-    out << (i ? ", " : "") << "{\"label\": \"" << r.spec.label << "\", \"law\": \"" << r.spec.law
-        << "\", \"uniform_level\": " << r.spec.level << ", \"reference\": \""
-        << (r.spec.neo_family ? "neohookean" : "hooke") << "\", \"refine_threshold\": ";
-    if (r.spec.zz >= 0) out << r.spec.zz << ", \"every\": " << r.spec.every;
-    else out << "null, \"every\": null";
-    out << ", \"switch_threshold\": ";
-    if (r.spec.nl >= 0) out << r.spec.nl;
-    else out << "null";
-    out << ", \"completed_steps\": " << r.steps.size() << ", \"cells\": " << r.cells << ", \"nodes\": " << r.nodes
-        << ", \"leaves_per_level\": [" << list_text(r.leaves_per_level, ", ") << "], \"peak_cells\": " << r.peak_cells
-        << ", \"events\": " << r.events << ", \"ms_per_step\": " << r.mean_ms
-        << ", \"ms_ratio_to_reference\": " << (r.reference_ms > 0 ? r.mean_ms / r.reference_ms : 0.0)
-        << ", \"event_ms_max\": " << r.event_ms_max << ", \"event_ms_mean\": " << r.event_ms_mean
-        << ", \"event_change_ms\": " << r.event_change_ms << ", \"event_refactor_ms\": " << r.event_refactor_ms
-        << ", \"event_to_refined_step_max\": " << r.event_ratio_max
-        << ", \"event_to_reference_step_max\": " << (r.reference_ms > 0 ? r.event_ms_max / r.reference_ms : 0.0)
-        << ", \"error\": " << r.error << ", \"factorizations\": " << r.factorizations << ", \"cells_per_law\": {";
-    for (std::size_t l = 0; l < r.cells_per_law.size(); ++l)
-      out << (l ? ", " : "") << "\"" << r.cells_per_law[l].first << "\": " << r.cells_per_law[l].second;
-    out << "}, \"failure\": ";
-    if (r.failure.empty()) {
-      out << "null}";
-    } else {
-      std::string text;
-      for (const char c : r.failure) {
-        if (c == '"' || c == '\\') text += '\\';
-        text += c == '\n' ? ' ' : c;
-      }
-      out << "\"" << text << "\"}";
-    }
-  }
-  out << "]}";
-  return out.str();
+// --json: figures with six significant digits, as always written.
+
+Json json_of(const RunSpec& spec) {
+  const bool refines = spec.zz >= 0;
+  return {{"label", spec.label},
+          {"law", spec.law},
+          {"uniform_level", spec.level},
+          {"reference", spec.neo_family ? "neohookean" : "hooke"},
+          {"refine_threshold", refines ? number(spec.zz, 6) : Json(nullptr)},
+          {"every", refines ? Json(spec.every) : Json(nullptr)},
+          {"switch_threshold", spec.nl >= 0 ? number(spec.nl, 6) : Json(nullptr)}};
+}
+
+/// The run's failure on one line, or null.
+Json failure_json(const std::string& failure) {
+  if (failure.empty()) return nullptr;
+  std::string line = failure;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  return line;
+}
+
+Json json_of(const Run& r) {
+  const auto per_reference = [&](double ms) { return r.reference_ms > 0 ? ms / r.reference_ms : 0.0; };
+  Json cells_per_law = Json::object();
+  for (const auto& [law, count] : r.cells_per_law) cells_per_law[law] = count;
+  Json j = json_of(r.spec);
+  j["completed_steps"] = r.steps.size();
+  j["cells"] = r.cells;
+  j["nodes"] = r.nodes;
+  j["leaves_per_level"] = r.leaves_per_level;
+  j["peak_cells"] = r.peak_cells;
+  j["events"] = r.events;
+  j["ms_per_step"] = number(r.mean_ms, 6);
+  j["ms_ratio_to_reference"] = number(per_reference(r.mean_ms), 6);
+  j["event_ms_max"] = number(r.event_ms_max, 6);
+  j["event_ms_mean"] = number(r.event_ms_mean, 6);
+  j["event_change_ms"] = number(r.event_change_ms, 6);
+  j["event_refactor_ms"] = number(r.event_refactor_ms, 6);
+  j["event_to_refined_step_max"] = number(r.event_ratio_max, 6);
+  j["event_to_reference_step_max"] = number(per_reference(r.event_ms_max), 6);
+  j["error"] = number(r.error, 6);
+  j["factorizations"] = r.factorizations;
+  j["cells_per_law"] = cells_per_law;
+  j["failure"] = failure_json(r.failure);
+  return j;
+}
+
+Json json_of(const Setup& setup, int coarse_cells, const std::vector<Run>& runs) {
+  Json list = Json::array();
+  for (const Run& run : runs) list.push_back(json_of(run));
+  return {{"coarse_cells", coarse_cells},
+          {"max_level", setup.max_level},
+          {"steps", setup.steps},
+          {"probe_depth", number(setup.depth, 6)},
+          {"error_target", number(kErrorTarget, 6)},
+          {"cost_target", number(kCostTarget, 6)},
+          {"event_target", number(kEventTarget, 6)},
+          {"runs", list}};
 }
 
 RunSpec refined(const std::string& law, double zz, int every, double nl, bool neo_family, bool coarsen = true) {
@@ -454,7 +470,7 @@ IndentationResult refine_indentation(bool quick) {
   print_header();
   for (std::size_t i = neo_start; i < runs.size(); ++i) print_run(runs[i]);
 
-  std::printf("\ntargets (issue 15), 3D indentation%s:\n", quick ? " (quick: not the targets' sizes)" : "");
+  std::printf("\ntargets, 3D indentation%s:\n", quick ? " (quick: not the targets' sizes)" : "");
   std::printf("  within %.0f %% of the uniform level-%d mesh at <= %.1fx its time per step (Hooke):\n",
               100 * kErrorTarget, L, kCostTarget);
   for (std::size_t i = 0; i < neo_start; ++i) {

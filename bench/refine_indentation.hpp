@@ -1,5 +1,5 @@
 /// \file refine_indentation.hpp
-/// The 3D half of `tensormass bench refine` (issue 15): tool indentation
+/// The 3D half of `tensormass bench refine`: tool indentation
 /// from a coarse hex mesh. The scene of the adaptive-model benchmark's
 /// indentation (adaptive_bench.cpp): a 10 x 5 x 10 cm soft block (E 5 kPa,
 /// nu 0.45, density 1000), the base y = 0 fixed, the nodes of a 2 x 2 cm
@@ -26,18 +26,18 @@
 /// refined mesh, the cells at the end and per level, and the error: the
 /// largest displacement difference at the coarse mesh's nodes at the final
 /// time against the reference, over the reference's largest displacement.
-/// Targets (issue 15): error <= 2 % at <= 0.3x the reference's time per
+/// Targets: error <= 2 % at <= 0.3x the reference's time per
 /// step; refining or coarsening costs at most one step of the refined mesh.
 #ifndef TENSORMASS_BENCH_REFINE_INDENTATION_HPP
 #define TENSORMASS_BENCH_REFINE_INDENTATION_HPP
 
-#include <string>
+#include "bench_json.hpp"
 
 namespace tensormass::bench {
 
 /// What the 3D indentation gives back to refine_command.
 struct IndentationResult {
-  std::string json;  ///< a JSON object (the "indentation" member of --json)
+  Json json;  ///< a JSON object (the "indentation" member of --json)
   /// A uniform run failed, a scene was refused, or (quick) any run failed;
   /// an adaptive run's numerical failure is reported, not fatal, in a full run.
   bool failed = false;

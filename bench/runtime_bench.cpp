@@ -22,10 +22,10 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_metadata.hpp"
 #include "calculix_runner.hpp"
 #include "machine_info.hpp"
 #include "tensormass/assembly/assembler.hpp"
@@ -126,60 +126,9 @@ std::string loaded_blas() {
 
 // --- JSON ---------------------------------------------------------------------
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (ch == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += ch;
-  }
-  return out + "\"";
-}
-
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char text[40];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
-
-/// A JSON object built field by field.
-class JsonObject {
- public:
-  JsonObject& add(const std::string& key, double value) { return raw(key, json_number(value)); }
-  JsonObject& add(const std::string& key, int value) { return raw(key, std::to_string(value)); }
-  JsonObject& add(const std::string& key, long value) { return raw(key, std::to_string(value)); }
-  JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
-  JsonObject& add(const std::string& key, const std::string& value) { return raw(key, json_string(value)); }
-  JsonObject& add(const std::string& key, const char* value) { return raw(key, json_string(value)); }
-  JsonObject& add(const std::string& key, const JsonObject& value) { return raw(key, value.str()); }
-  JsonObject& add(const std::string& key, const std::vector<JsonObject>& values) {
-    std::string text = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + values[i].str();
-    return raw(key, text + "]");
-  }
-  JsonObject& add(const std::string& key, const std::vector<double>& values) {
-    std::string text = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + json_number(values[i]);
-    return raw(key, text + "]");
-  }
-  JsonObject& raw(const std::string& key, const std::string& text) {
-    fields_.emplace_back(key, text);
-    return *this;
-  }
-  std::string str() const {
-    std::string text = "{";
-    for (std::size_t i = 0; i < fields_.size(); ++i)
-      text += (i ? ", " : "") + json_string(fields_[i].first) + ": " + fields_[i].second;
-    return text + "}";
-  }
-
- private:
-  std::vector<std::pair<std::string, std::string>> fields_;
-};
+/// A figure as this benchmark has always written it: six significant digits, null where not finite.
+Json figure(double x) { return number(x, 6); }
+Json figures(const std::vector<double>& values) { return numbers(values, 6); }
 
 bool write_file_atomically(const std::string& path, const std::string& text) {
   const std::string temporary = path + ".tmp";
@@ -298,7 +247,7 @@ struct CcxSettings {
   int increments;
   int repetitions;
 };
-// The cantilever of the speed issue: 15,360 tets, 20 load steps, its tip
+// The cantilever of the CalculiX comparison: 15,360 tets, 20 load steps, its tip
 // sagging by 17 % of its length.
 constexpr CcxSettings kCcxFull{{40, 8, 8}, 20, 3};
 constexpr CcxSettings kCcxQuick{{20, 4, 4}, 10, 3};
@@ -307,7 +256,7 @@ constexpr double kCcxYoung = 1.0e7;
 constexpr double kCcxGravity = 9.81;        // m/s^2
 constexpr double kAgreementFailure = 1e-4;  // beyond this the bench fails (exit 1)
 
-bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Target>& targets) {
+bool run_ccx_comparison(const Options& options, Json& json, std::vector<Target>& targets) {
   const CcxSettings settings = options.quick ? kCcxQuick : kCcxFull;
   const Threads scope(options.threads > 0 ? options.threads : omp_get_max_threads());
   const int threads = omp_get_max_threads();
@@ -327,14 +276,18 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
       "*STATIC DIRECT, tight *CONTROLS; %d thread(s) each (OMP_NUM_THREADS=%d for ccx)%s\n",
       kCcxYoung, kPoisson, kDensity, kCcxGravity, settings.increments, threads, threads,
       options.threads > 0 ? "" : ", tensormass with its default settings");
-  json.add("tets", mesh.cell_count()).add("nodes", mesh.node_count()).add("increments", settings.increments);
-  json.add("threads", threads).add("gravity", kCcxGravity).add("young", kCcxYoung);
+  json["tets"] = mesh.cell_count();
+  json["nodes"] = mesh.node_count();
+  json["increments"] = settings.increments;
+  json["threads"] = threads;
+  json["gravity"] = figure(kCcxGravity);
+  json["young"] = figure(kCcxYoung);
 
   const std::string ccx = find_calculix(options.ccx);
   if (ccx.empty()) {
     std::printf("SKIPPED: CalculiX (%s) not found (install calculix-ccx, or give --ccx PATH or TENSORMASS_CCX)\n",
                 options.ccx.empty() ? "ccx" : options.ccx.c_str());
-    json.add("skipped", "ccx not found");
+    json["skipped"] = "ccx not found";
     return true;
   }
   CalculixOptions ccx_options;
@@ -409,14 +362,22 @@ bool run_ccx_comparison(const Options& options, JsonObject& json, std::vector<Ta
               agreement);
   std::printf("time ratio ccx / tensormass = %.2f (setup + solve), %.2f (solve only)\n", ratio, ratio_solve);
 
-  json.add("tip_deflection", -tip).add("max_displacement", largest).add("agreement", agreement);
-  json.add("tensormass_total_s", median(tm_total)).add("tensormass_setup_s", median(tm_setup));
-  json.add("tensormass_solve_s", median(tm_solve)).add("tensormass_assembly_s", median(tm_assembly));
-  json.add("tensormass_linear_s", median(tm_linear)).add("tensormass_newton_iterations", newton);
-  json.add("ccx_wall_s", median(ccx_wall)).add("ccx_reported_s", median(ccx_reported));
-  json.add("ccx_iterations", ccx_iterations).add("ratio_ccx_over_tensormass", ratio);
-  json.add("ratio_ccx_over_tensormass_solve_only", ratio_solve);
-  json.add("tensormass_total_samples_s", tm_total).add("ccx_wall_samples_s", ccx_wall);
+  json["tip_deflection"] = figure(-tip);
+  json["max_displacement"] = figure(largest);
+  json["agreement"] = figure(agreement);
+  json["tensormass_total_s"] = figure(median(tm_total));
+  json["tensormass_setup_s"] = figure(median(tm_setup));
+  json["tensormass_solve_s"] = figure(median(tm_solve));
+  json["tensormass_assembly_s"] = figure(median(tm_assembly));
+  json["tensormass_linear_s"] = figure(median(tm_linear));
+  json["tensormass_newton_iterations"] = newton;
+  json["ccx_wall_s"] = figure(median(ccx_wall));
+  json["ccx_reported_s"] = figure(median(ccx_reported));
+  json["ccx_iterations"] = ccx_iterations;
+  json["ratio_ccx_over_tensormass"] = figure(ratio);
+  json["ratio_ccx_over_tensormass_solve_only"] = figure(ratio_solve);
+  json["tensormass_total_samples_s"] = figures(tm_total);
+  json["ccx_wall_samples_s"] = figures(ccx_wall);
 
   targets.push_back(
       {"ccx wall / tensormass wall, " + std::to_string(mesh.cell_count()) + " tets", ratio, ">=", 5.0, true});
@@ -449,7 +410,7 @@ ThreadRun time_implicit_run(const Model& model, const Assembler& assembler, cons
 
 constexpr double kThreadsYoung = 1.0e7;
 
-bool run_thread_defaults(const Options& options, JsonObject& json, std::vector<Target>& targets) {
+bool run_thread_defaults(const Options& options, Json& json, std::vector<Target>& targets) {
   constexpr std::array<int, 3> kCells{30, 8, 6};
   const int steps = options.quick ? 10 : 100, repetitions = 3;
   const int defaults = omp_get_max_threads();
@@ -478,14 +439,17 @@ bool run_thread_defaults(const Options& options, JsonObject& json, std::vector<T
     medians[k] = median(seconds);
     std::printf("%8d %10.3f %12.2f %12.3f %12.3f\n", counts[k], medians[k], 1e3 * medians[k] / steps, median(assembly),
                 median(solve));
-    JsonObject row;
-    row.add("threads", counts[k]).add("run_s", medians[k]).add("assembly_s", median(assembly));
-    row.add("solve_s", median(solve)).add("run_samples_s", seconds);
-    json.add(k == 0 ? "one_thread" : "default_threads", row);
+    json[k == 0 ? "one_thread" : "default_threads"] = {{"threads", counts[k]},
+                                                       {"run_s", figure(medians[k])},
+                                                       {"assembly_s", figure(median(assembly))},
+                                                       {"solve_s", figure(median(solve))},
+                                                       {"run_samples_s", figures(seconds)}};
   }
   const double ratio = medians[1] / medians[0];
   std::printf("default / one thread = %.2f (target <= 1.0, goal 0.65 on 2 cores)\n", ratio);
-  json.add("tets", mesh.cell_count()).add("steps", steps).add("ratio_default_over_one", ratio);
+  json["tets"] = mesh.cell_count();
+  json["steps"] = steps;
+  json["ratio_default_over_one"] = figure(ratio);
   targets.push_back({"default threads / one thread, " + std::to_string(mesh.cell_count()) + "-tet implicit run", ratio,
                      "<=", 1.0, true});
   return true;
@@ -513,7 +477,7 @@ constexpr double kImplicitYoung = 1.0e6;
 constexpr double kImplicitDt = 0.01;
 constexpr double kCgTolerance = 1e-8;
 
-bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+bool run_implicit_steps(const Options& options, Json& json, std::vector<Target>& targets) {
   std::printf("\n== 3. Implicit Euler steps, StVK tet4 beams (tet6 cut), 1 Newton iteration per step ==\n");
   std::printf(
       "E = %g Pa, nu = %g, rho = %g, gravity 9.81 (-y), dt = %g s, clamped; CG: Jacobi, tolerance %g, "
@@ -592,16 +556,27 @@ bool run_implicit_steps(const Options& options, std::vector<JsonObject>& json, s
                     median(step_median), median(assembly), median(solve), median(rest), median(iterations),
                     median(asm_ref), median(spmv), cg ? ratio_text : "-", median(first), bandwidth, rss_mb);
         std::fflush(stdout);
-        JsonObject row;
-        row.add("mesh", c->label).add("tets", mesh.cell_count()).add("free_dofs", model.free_dof_count());
-        row.add("nonzeros", assembler.pattern().nonzeros()).add("solver", solver).add("threads", threads);
-        row.add("steps", steps).add("repetitions", c->repetitions);
-        row.add("step_ms", median(step_mean)).add("step_ms_median", median(step_median));
-        row.add("assembly_ms", median(assembly)).add("solve_ms", median(solve)).add("rest_ms", median(rest));
-        row.add("linear_iterations_per_step", median(iterations)).add("first_step_ms", median(first));
-        row.add("reference_assembly_ms", median(asm_ref)).add("spmv_ms", median(spmv));
-        row.add("spmv_bytes", spmv_bytes).add("spmv_gb_per_s", bandwidth).add("peak_rss_mb", rss_mb);
-        if (cg) row.add("ratio_step_over_reference", median(ratio));
+        Json row = {{"mesh", c->label},
+                    {"tets", mesh.cell_count()},
+                    {"free_dofs", model.free_dof_count()},
+                    {"nonzeros", assembler.pattern().nonzeros()},
+                    {"solver", solver},
+                    {"threads", threads},
+                    {"steps", steps},
+                    {"repetitions", c->repetitions}};
+        row["step_ms"] = figure(median(step_mean));
+        row["step_ms_median"] = figure(median(step_median));
+        row["assembly_ms"] = figure(median(assembly));
+        row["solve_ms"] = figure(median(solve));
+        row["rest_ms"] = figure(median(rest));
+        row["linear_iterations_per_step"] = figure(median(iterations));
+        row["first_step_ms"] = figure(median(first));
+        row["reference_assembly_ms"] = figure(median(asm_ref));
+        row["spmv_ms"] = figure(median(spmv));
+        row["spmv_bytes"] = figure(spmv_bytes);
+        row["spmv_gb_per_s"] = figure(bandwidth);
+        row["peak_rss_mb"] = figure(rss_mb);
+        if (cg) row["ratio_step_over_reference"] = figure(median(ratio));
         json.push_back(row);
         if (cg && threads == 1 && std::string(c->label) == "10k")
           targets.push_back(
@@ -663,33 +638,36 @@ std::vector<LawRun> make_law_runs(const Mesh& mesh, const std::function<void(Sce
 }
 
 /// Prints the rows of one integrator and returns its JSON; `ratio` gets stvk/hooke of the medians.
-JsonObject report_laws(const char* integrator, const std::vector<LawRun>& runs, double& ratio, double& ratio_mean) {
+Json report_laws(const char* integrator, const std::vector<LawRun>& runs, double& ratio, double& ratio_mean) {
   std::printf("\n%-9s %-7s %11s %11s %12s %10s %14s   %s\n", "", "law", "mean ms", "median ms", "assembly ms",
               "solve ms", "tip defl. (m)", "origin report (mean ms)");
   const char* origin[2] = {"0.102", "16.273"};
-  std::vector<JsonObject> rows;
+  Json rows = Json::array();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const LawRun& r = runs[i];
     std::printf("%-9s %-7s %11.4f %11.4f %12.4f %10.4f %14.4f   %s\n", i == 0 ? integrator : "", r.law.c_str(),
                 median(r.mean_ms), median(r.median_ms), median(r.assembly_ms), median(r.solve_ms), -r.tip, origin[i]);
-    JsonObject row;
-    row.add("law", r.law).add("step_ms_mean", median(r.mean_ms)).add("step_ms_median", median(r.median_ms));
-    row.add("assembly_ms", median(r.assembly_ms)).add("solve_ms", median(r.solve_ms)).add("tip_deflection", -r.tip);
-    row.add("step_ms_mean_samples", r.mean_ms).add("step_ms_median_samples", r.median_ms);
-    rows.push_back(row);
+    rows.push_back({{"law", r.law},
+                    {"step_ms_mean", figure(median(r.mean_ms))},
+                    {"step_ms_median", figure(median(r.median_ms))},
+                    {"assembly_ms", figure(median(r.assembly_ms))},
+                    {"solve_ms", figure(median(r.solve_ms))},
+                    {"tip_deflection", figure(-r.tip)},
+                    {"step_ms_mean_samples", figures(r.mean_ms)},
+                    {"step_ms_median_samples", figures(r.median_ms)}});
   }
   ratio = median(runs[1].median_ms) / median(runs[0].median_ms);
   ratio_mean = median(runs[1].mean_ms) / median(runs[0].mean_ms);
   const double ratio_assembly = median(runs[1].assembly_ms) / median(runs[0].assembly_ms);
   std::printf("%-9s stvk / hooke: %.2f (median ms per step), %.2f (mean), assembly alone %.2f; origin report %.0fx\n",
               "", ratio, ratio_mean, ratio_assembly, 16.273 / 0.102);
-  JsonObject json;
-  json.add("laws", rows).add("ratio_stvk_over_hooke", ratio).add("ratio_stvk_over_hooke_mean", ratio_mean);
-  json.add("ratio_assembly", ratio_assembly);
-  return json;
+  return {{"laws", rows},
+          {"ratio_stvk_over_hooke", figure(ratio)},
+          {"ratio_stvk_over_hooke_mean", figure(ratio_mean)},
+          {"ratio_assembly", figure(ratio_assembly)}};
 }
 
-bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>& targets) {
+bool run_quad_beam(const Options& options, Json& json, std::vector<Target>& targets) {
   const int steps = options.quick ? 20 : 100;
   const int explicit_steps = options.quick ? 200 : 1000;
   const int repetitions = options.quick ? 3 : 5;
@@ -742,12 +720,17 @@ bool run_quad_beam(const Options& options, JsonObject& json, std::vector<Target>
   });
 
   double ratio = 0, ratio_mean = 0, explicit_ratio = 0, explicit_ratio_mean = 0;
-  JsonObject implicit_json = report_laws("implicit", implicit_runs, ratio, ratio_mean);
-  JsonObject explicit_json = report_laws("explicit", explicit_runs, explicit_ratio, explicit_ratio_mean);
-  implicit_json.add("dt", 0.01).add("steps", steps);
-  explicit_json.add("dt", explicit_dt).add("steps", explicit_steps);
-  json.add("elements", mesh.cell_count()).add("repetitions", repetitions).add("young", kQuadYoung);
-  json.add("implicit", implicit_json).add("explicit", explicit_json);
+  Json implicit_json = report_laws("implicit", implicit_runs, ratio, ratio_mean);
+  Json explicit_json = report_laws("explicit", explicit_runs, explicit_ratio, explicit_ratio_mean);
+  implicit_json["dt"] = figure(0.01);
+  implicit_json["steps"] = steps;
+  explicit_json["dt"] = figure(explicit_dt);
+  explicit_json["steps"] = explicit_steps;
+  json = {{"elements", mesh.cell_count()},
+          {"repetitions", repetitions},
+          {"young", figure(kQuadYoung)},
+          {"implicit", implicit_json},
+          {"explicit", explicit_json}};
   targets.push_back({"600-quad beam, implicit: stvk / hooke median ms per step", ratio, "<=", 2.5, true});
   return true;
 }
@@ -783,7 +766,7 @@ std::array<double, 2> time_batched_assembly(const Assembler& per_element, const 
   return {median(samples[0]), median(samples[1])};
 }
 
-bool run_batched_assembly(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+bool run_batched_assembly(const Options& options, Json& json, std::vector<Target>& targets) {
   const int repetitions = options.quick ? 5 : 21;
   const int defaults = omp_get_max_threads();
   std::printf("\n== 5. Batched kernels in the assembly: batched vs per element ==\n");
@@ -811,11 +794,13 @@ bool run_batched_assembly(const Options& options, std::vector<JsonObject>& json,
       const auto forces = time_batched_assembly(per_element, batched, u, false, repetitions);
       std::printf("%-16s %6d %7d | %9.3f %9.3f %6.2f | %9.3f %9.3f %6.2f\n", c.label, model.cell_count(), threads,
                   full[0], full[1], full[1] / full[0], forces[0], forces[1], forces[1] / forces[0]);
-      JsonObject row;
-      row.add("case", c.label).add("cells", model.cell_count()).add("threads", threads);
-      row.add("tangent_per_element_ms", full[0]).add("tangent_batched_ms", full[1]);
-      row.add("forces_per_element_ms", forces[0]).add("forces_batched_ms", forces[1]);
-      json.push_back(row);
+      json.push_back({{"case", c.label},
+                      {"cells", model.cell_count()},
+                      {"threads", threads},
+                      {"tangent_per_element_ms", figure(full[0])},
+                      {"tangent_batched_ms", figure(full[1])},
+                      {"forces_per_element_ms", figure(forces[0])},
+                      {"forces_batched_ms", figure(forces[1])}});
       if (threads == defaults && std::string(c.label) == "stvk tet4") {
         targets.push_back(
             {"batched / per-element assembly, forces + tangent, StVK tet4", full[1] / full[0], "<=", 1.0, true});
@@ -858,7 +843,7 @@ std::array<double, 2> time_products(const SparseMatrix& K, int repetitions, doub
   return {median(samples[0]), median(samples[1])};
 }
 
-bool run_block_products(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+bool run_block_products(const Options& options, Json& json, std::vector<Target>& targets) {
   const int repetitions = options.quick ? 5 : 41;
   const int defaults = omp_get_max_threads();
   std::printf("\n== 6. The tangent product K x: by node blocks (the default) vs row by row ==\n");
@@ -889,10 +874,13 @@ bool run_block_products(const Options& options, std::vector<JsonObject>& json, s
       std::printf("%-8s %9d %10d %7d | %9.3f %9.3f %6.2f %6.1f %9.1e\n",
                   (std::to_string(model.cell_count() / 1000) + "k").c_str(), K.rows, K.nonzeros(), threads, t[0], t[1],
                   t[1] / t[0], gbs, difference);
-      JsonObject row;
-      row.add("tets", model.cell_count()).add("rows", K.rows).add("nonzeros", K.nonzeros()).add("threads", threads);
-      row.add("by_rows_ms", t[0]).add("by_blocks_ms", t[1]).add("relative_difference", difference);
-      json.push_back(row);
+      json.push_back({{"tets", model.cell_count()},
+                      {"rows", K.rows},
+                      {"nonzeros", K.nonzeros()},
+                      {"threads", threads},
+                      {"by_rows_ms", figure(t[0])},
+                      {"by_blocks_ms", figure(t[1])},
+                      {"relative_difference", figure(difference)}});
       if (threads == defaults && &cells == &sizes.back())
         targets.push_back({"K x by node blocks / by rows, largest beam", t[1] / t[0], "<=", 1.0, true});
     }
@@ -903,9 +891,10 @@ bool run_block_products(const Options& options, std::vector<JsonObject>& json, s
 
 // --- 6b. The folded linear part's product ------------------------------------
 
-/// g = K_L u as LinearPart::multiply did before session 15: one sum per row
-/// of the blocks (D chains of additions per node), parallel above the same
-/// node count. The baseline of run_folded_products.
+/// g = K_L u from the folded blocks with one sum per row of the blocks (D
+/// chains of additions per node, against LinearPart::multiply's D x D
+/// sums), parallel above the same node count. The baseline of
+/// run_folded_products.
 template <int D>
 void folded_product_one_sum_per_row(const NodeGraph& graph, const double* blocks, const double* u, double* g) {
   const int nodes = graph.node_count();
@@ -944,7 +933,7 @@ std::array<double, 2> time_folded_products(const Model& model, const LinearPart&
   return {median(samples[0]), median(samples[1])};
 }
 
-bool run_folded_products(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+bool run_folded_products(const Options& options, Json& json, std::vector<Target>& targets) {
   const int repetitions = options.quick ? 5 : 101;
   const int defaults = omp_get_max_threads();
   std::printf("\n== 6b. Folded Hooke forces K_L u: D x D sums per node (the default) vs one sum per row ==\n");
@@ -968,10 +957,12 @@ bool run_folded_products(const Options& options, std::vector<JsonObject>& json, 
       agree = agree && difference <= 1e-13;
       std::printf("%-8s %7d %7d | %9.4f %9.4f %6.2f %9.1e\n", (std::to_string(model.cell_count() / 1000) + "k").c_str(),
                   mesh.node_count(), threads, t[0], t[1], t[1] / t[0], difference);
-      JsonObject row;
-      row.add("tets", model.cell_count()).add("nodes", mesh.node_count()).add("threads", threads);
-      row.add("one_sum_per_row_ms", t[0]).add("d_by_d_sums_ms", t[1]).add("relative_difference", difference);
-      json.push_back(row);
+      json.push_back({{"tets", model.cell_count()},
+                      {"nodes", mesh.node_count()},
+                      {"threads", threads},
+                      {"one_sum_per_row_ms", figure(t[0])},
+                      {"d_by_d_sums_ms", figure(t[1])},
+                      {"relative_difference", figure(difference)}});
       if (threads == defaults && &cells == &sizes.front())
         targets.push_back({"folded K_L u, D x D sums / one per row, 24k tets", t[1] / t[0], "<=", 1.0, true});
     }
@@ -1010,7 +1001,7 @@ std::array<double, 2> time_scatters(Assembler& assembler, const std::vector<doub
   return {median(samples[0]), median(samples[1])};
 }
 
-bool run_scatter(const Options& options, std::vector<JsonObject>& json, std::vector<Target>& targets) {
+bool run_scatter(const Options& options, Json& json, std::vector<Target>& targets) {
   const int repetitions = options.quick ? 5 : 21;
   const int defaults = omp_get_max_threads();
   std::printf("\n== 7. The tangent scatter: by node blocks (the default) vs one index per Hessian entry ==\n");
@@ -1040,11 +1031,14 @@ bool run_scatter(const Options& options, std::vector<JsonObject>& json, std::vec
       agree = agree && same;
       std::printf("%-15s %7d %7d | %9.3f %9.3f %6.2f | %8.1f %8.1f\n", c.label, model.cell_count(), threads, t[0], t[1],
                   t[1] / t[0], block_mib, entry_mib);
-      JsonObject row;
-      row.add("case", c.label).add("cells", model.cell_count()).add("threads", threads);
-      row.add("by_entries_ms", t[0]).add("by_blocks_ms", t[1]).add("identical", same);
-      row.add("map_mib_blocks", block_mib).add("map_mib_entries", entry_mib);
-      json.push_back(row);
+      json.push_back({{"case", c.label},
+                      {"cells", model.cell_count()},
+                      {"threads", threads},
+                      {"by_entries_ms", figure(t[0])},
+                      {"by_blocks_ms", figure(t[1])},
+                      {"identical", same},
+                      {"map_mib_blocks", figure(block_mib)},
+                      {"map_mib_entries", figure(entry_mib)}});
       if (threads == defaults && std::string(c.label) == "stvk tet4 100k")
         targets.push_back({"assembly, scatter by node blocks / by entries, 100k tets", t[1] / t[0], "<=", 1.0, true});
     }
@@ -1139,9 +1133,12 @@ int runtime_command(const std::vector<std::string>& args) {
   std::printf("load average at start: %s (other processes share these cores: timings are noisy)\n", load_start.c_str());
 
   std::vector<Target> targets;
-  JsonObject report;
-  report.add("benchmark", "runtime").add("quick", options.quick).add("cpu", cpu_model());
-  report.add("build", TENSORMASS_BENCH_BUILD_INFO).add("processors", omp_get_num_procs()).add("blas", blas);
+  Json report = {{"benchmark", "runtime"},
+                 {"quick", options.quick},
+                 {"cpu", cpu_model()},
+                 {"build", TENSORMASS_BENCH_BUILD_INFO},
+                 {"processors", omp_get_num_procs()},
+                 {"blas", blas}};
   bool ok = true;
   auto guarded = [&](const char* name, const std::function<bool()>& part) {
     if (!options.only.empty() && options.only != name) return;
@@ -1154,8 +1151,9 @@ int runtime_command(const std::vector<std::string>& args) {
     }
     std::fflush(stdout);
   };
-  JsonObject ccx_json, threads_json, quad_json;
-  std::vector<JsonObject> implicit_json, batch_json, spmv_json, folded_json, scatter_json;
+  Json ccx_json = Json::object(), threads_json = Json::object(), quad_json = Json::object();
+  Json implicit_json = Json::array(), batch_json = Json::array(), spmv_json = Json::array(),
+       folded_json = Json::array(), scatter_json = Json::array();
   guarded("ccx", [&] { return run_ccx_comparison(options, ccx_json, targets); });
   guarded("threads", [&] { return run_thread_defaults(options, threads_json, targets); });
   guarded("implicit", [&] { return run_implicit_steps(options, implicit_json, targets); });
@@ -1165,36 +1163,41 @@ int runtime_command(const std::vector<std::string>& args) {
     return run_block_products(options, spmv_json, targets) && run_folded_products(options, folded_json, targets);
   });
   guarded("scatter", [&] { return run_scatter(options, scatter_json, targets); });
-  if (options.only.empty() || options.only == "ccx") report.add("ccx", ccx_json);
-  if (options.only.empty() || options.only == "threads") report.add("threads", threads_json);
-  if (options.only.empty() || options.only == "implicit") report.add("implicit", implicit_json);
-  if (options.only.empty() || options.only == "quad") report.add("quad_beam", quad_json);
-  if (options.only.empty() || options.only == "batch") report.add("batched_assembly", batch_json);
-  if (options.only.empty() || options.only == "spmv") report.add("block_products", spmv_json);
-  if (options.only.empty() || options.only == "spmv") report.add("folded_products", folded_json);
-  if (options.only.empty() || options.only == "scatter") report.add("scatter", scatter_json);
+  if (options.only.empty() || options.only == "ccx") report["ccx"] = ccx_json;
+  if (options.only.empty() || options.only == "threads") report["threads"] = threads_json;
+  if (options.only.empty() || options.only == "implicit") report["implicit"] = implicit_json;
+  if (options.only.empty() || options.only == "quad") report["quad_beam"] = quad_json;
+  if (options.only.empty() || options.only == "batch") report["batched_assembly"] = batch_json;
+  if (options.only.empty() || options.only == "spmv") report["block_products"] = spmv_json;
+  if (options.only.empty() || options.only == "spmv") report["folded_products"] = folded_json;
+  if (options.only.empty() || options.only == "scatter") report["scatter"] = scatter_json;
 
   std::printf("\ntargets\n");
   int pass = 0, miss = 0;
-  std::vector<JsonObject> target_json;
+  Json target_json = Json::array();
   for (const Target& t : targets) {
     std::printf("  %-58s %10.3g  (target %s %g)  %s\n", t.name.c_str(), t.value, t.relation.c_str(), t.goal,
                 t.pass() ? "PASS" : "MISS");
     ++(t.pass() ? pass : miss);
-    JsonObject j;
-    j.add("name", t.name).add("value", t.value).add("relation", t.relation).add("goal", t.goal);
-    j.add("pass", t.pass());
-    target_json.push_back(j);
+    target_json.push_back({{"name", t.name},
+                           {"value", figure(t.value)},
+                           {"relation", t.relation},
+                           {"goal", figure(t.goal)},
+                           {"pass", t.pass()}});
   }
   std::printf("targets: %d PASS, %d MISS\n", pass, miss);
   const double seconds = since(started);
   const std::string load_end = load_average();
   std::printf("done in %.1f s%s; load average at the end: %s\n", seconds, ok ? "" : " (with FAILURES)",
               load_end.c_str());
-  report.add("targets", target_json).add("seconds", seconds).add("ok", ok);
-  report.add("load_average_start", load_start).add("load_average_end", load_end);
+  report["targets"] = target_json;
+  report["seconds"] = figure(seconds);
+  report["ok"] = ok;
+  report["load_average_start"] = load_start;
+  report["load_average_end"] = load_end;
+  report["metadata"] = metadata();
   if (!options.json.empty()) {
-    if (!write_file_atomically(options.json, report.str() + "\n")) {
+    if (!write_file_atomically(options.json, json_text(report))) {
       std::fprintf(stderr, "tensormass bench runtime: cannot write '%s'\n", options.json.c_str());
       return 1;
     }
