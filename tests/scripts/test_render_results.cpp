@@ -38,7 +38,8 @@ INSTANTIATE_TEST_SUITE_P(Pages, RenderedResultsPage,
                          ::testing::Values(RenderedPage{"render_refine.py", "refine.json", "refine.md"},
                                            RenderedPage{"render_paper.py", "paper.json", "paper.md"},
                                            RenderedPage{"render_adaptive.py",
-                                                        "adaptive_bench.json adaptive_needle_fine.json", "adaptive.md"}),
+                                                        "adaptive_bench.json adaptive_needle_fine.json",
+                                                        "adaptive.md"}),
                          [](const auto& info) {
                            std::string name = info.param.page;
                            return name.substr(0, name.find('.'));

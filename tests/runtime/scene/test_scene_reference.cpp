@@ -70,7 +70,8 @@ TEST(SceneReference, DocumentsNoKeyTheReaderRefuses) {
   for (const auto& [path, keys] : tensormass::scene_schema()) accepted.insert(keys.begin(), keys.end());
   const std::set<std::string> tabled = tabled_keys(reference_keys_part());
   ASSERT_GT(tabled.size(), 20u) << "the reference's key tables were not found";
-  for (const std::string& key : tabled) EXPECT_TRUE(accepted.count(key)) << "docs/scene.md tables `" << key << "`, which no scene map accepts";
+  for (const std::string& key : tabled)
+    EXPECT_TRUE(accepted.count(key)) << "docs/scene.md tables `" << key << "`, which no scene map accepts";
 }
 
 }  // namespace
