@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_json.hpp"
+#include "bench_metadata.hpp"
 #include "handwritten_stvk.hpp"
 #include "machine_info.hpp"
 #include "polar_bench.hpp"
@@ -44,7 +45,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kUsage =
     "usage: tensormass bench kernels [--json FILE] [--quick]\n"
-    "  --json FILE   also write the rows as a JSON array to FILE (atomically)\n"
+    "  --json FILE   also write the settings, rows and polar rotation timings to FILE (atomically)\n"
     "  --quick       fewer elements and repetitions (CI smoke test, a few seconds)\n";
 
 struct Options {
@@ -80,6 +81,8 @@ struct Row {
   tm_gradient_batch_fn gradient_batch = nullptr;
   tm_gradient_hessian_batch_fn gradient_hessian_batch = nullptr;
   bool baseline = false;
+  /// Baseline rows: the largest relative differences from stvk/ELEMENT/whole.
+  double check_gradient = 0, check_hessian = 0;
   // Working set.
   std::vector<double> constants, u;
   int sweeps_gradient = 1, sweeps_gradient_hessian = 1;
@@ -328,7 +331,7 @@ Outputs evaluate(const Row& row, const double* rest, const double* u) {
 /// The baseline against the registry's stvk/ELEMENT/whole on a few elements,
 /// at the bench's strains and at 10x them. Returns false (after printing) on
 /// disagreement beyond 1e-10 relative.
-bool verify_baseline(const Row& baseline, const Row& reference, const Geometry& geometry) {
+bool verify_baseline(Row& baseline, const Row& reference, const Geometry& geometry) {
   double worst_gradient = 0.0, worst_hessian = 0.0;
   for (int e = 0; e < std::min(4, geometry.count); ++e)
     for (const double amplify : {1.0, 10.0}) {
@@ -341,6 +344,8 @@ bool verify_baseline(const Row& baseline, const Row& reference, const Geometry& 
                                  relative_difference(mine.gradient_from_gh, theirs.gradient_from_gh)});
       worst_hessian = std::max(worst_hessian, relative_difference(mine.hessian, theirs.hessian));
     }
+  baseline.check_gradient = worst_gradient;
+  baseline.check_hessian = worst_hessian;
   const bool ok = worst_gradient <= 1e-10 && worst_hessian <= 1e-10;
   std::printf(
       "baseline check: handwritten stvk/%s vs %s/%s/%s on 4 elements (x1 and x10 strain): "
@@ -396,30 +401,61 @@ std::vector<std::string> cross_check(const std::vector<Row*>& rows, const Geomet
 
 double gflops(long flops, double ns) { return ns > 0.0 ? static_cast<double>(flops) / ns : 0.0; }
 
-/// One row of --json: ns with six figures, GFLOP/s with four (as always written).
-Json json_row(const Row& r, const Settings& settings) {
-  return {{"law", r.law},
-          {"element", r.element},
-          {"split", r.split},
-          {"elements", r.elements},
-          {"consts", r.consts},
-          {"dofs", r.dofs},
-          {"repetitions", settings.repetitions},
-          {"ns_gradient", number(r.ns_gradient, 6)},
-          {"ns_gradient_hessian", number(r.ns_gradient_hessian, 6)},
-          {"ns_gradient_min", number(r.min_gradient, 6)},
-          {"ns_gradient_hessian_min", number(r.min_gradient_hessian, 6)},
-          {"flops_gradient", r.flops_gradient},
-          {"flops_hessian", r.flops_hessian},
-          {"flops_gradient_hessian", r.flops_gradient_hessian},
-          {"gflops_gradient", number(gflops(r.flops_gradient, r.ns_gradient), 4)},
-          {"gflops_gradient_hessian", number(gflops(r.flops_gradient_hessian, r.ns_gradient_hessian), 4)}};
+/// One row of --json: ns with six figures, GFLOP/s with four.
+Json json_row(const Row& r) {
+  Json row = {{"law", r.law},
+              {"element", r.element},
+              {"split", r.split},
+              {"elements", r.elements},
+              {"consts", r.consts},
+              {"dofs", r.dofs},
+              {"batch_width", r.batch_width},
+              {"ns_gradient", number(r.ns_gradient, 6)},
+              {"ns_gradient_hessian", number(r.ns_gradient_hessian, 6)},
+              {"ns_gradient_min", number(r.min_gradient, 6)},
+              {"ns_gradient_hessian_min", number(r.min_gradient_hessian, 6)},
+              {"flops_gradient", r.flops_gradient},
+              {"flops_hessian", r.flops_hessian},
+              {"flops_gradient_hessian", r.flops_gradient_hessian},
+              {"gflops_gradient", number(gflops(r.flops_gradient, r.ns_gradient), 4)},
+              {"gflops_gradient_hessian", number(gflops(r.flops_gradient_hessian, r.ns_gradient_hessian), 4)}};
+  if (r.baseline) {
+    row["check_gradient"] = number(r.check_gradient, 3);
+    row["check_hessian"] = number(r.check_hessian, 3);
+  }
+  return row;
 }
 
-/// The rows as a JSON array (no metadata: readers take the file as the list of rows).
-bool write_json(const std::string& path, const std::vector<const Row*>& rows, const Settings& settings) {
-  Json json = Json::array();
-  for (const Row* row : rows) json.push_back(json_row(*row, settings));
+Json json_polar(const std::vector<PolarTiming>& timings) {
+  Json rows = Json::array();
+  for (const PolarTiming& t : timings)
+    rows.push_back({{"strain", t.strain},
+                    {"ns", number(t.ns, 4)},
+                    {"ns_before", number(t.ns_before, 4)},
+                    {"ns_batched", number(t.ns_batched, 4)},
+                    {"difference", number(t.difference, 3)},
+                    {"batched_difference", number(t.batched_difference, 3)}});
+  return rows;
+}
+
+/// {"metadata", "settings", "rows", "polar_rotation"}: what
+/// scripts/results/render_kernels.py renders docs/results/kernels.md from.
+bool write_json(const std::string& path, const std::vector<const Row*>& rows, const Settings& settings, bool quick,
+                const std::vector<PolarTiming>& polar, double seconds) {
+  Json json = {{"metadata", metadata()}};
+  json["metadata"]["build"] = TENSORMASS_BENCH_BUILD_INFO;
+  json["metadata"]["load_average"] = load_average();  // the other cores' work adds noise
+  json["settings"] = {{"quick", quick},
+                      {"repetitions", settings.repetitions},
+                      {"sample_ns", settings.sample_ns},
+                      {"max_elements", settings.max_elements},
+                      {"working_set_bytes", settings.working_set_bytes},
+                      {"young", kYoung},
+                      {"poisson", kPoisson},
+                      {"seconds", number(seconds, 3)}};
+  json["rows"] = Json::array();
+  for (const Row* row : rows) json["rows"].push_back(json_row(*row));
+  json["polar_rotation"] = json_polar(polar);
   const std::string text = json_text(json);
   const std::string temporary = path + ".tmp";
   std::FILE* file = std::fopen(temporary.c_str(), "w");
@@ -763,14 +799,17 @@ int kernels_command(const std::vector<std::string>& args) {
   }
   print_table(ordered);
   print_targets(ordered, registry);
-  if (!print_polar_rotation_timings(options.quick ? 2000 : 100000, options.quick ? 3 : 7)) {
+  bool polar_agrees = true;
+  const std::vector<PolarTiming> polar =
+      print_polar_rotation_timings(options.quick ? 2000 : 100000, options.quick ? 3 : 7, polar_agrees);
+  if (!polar_agrees) {
     std::fprintf(stderr, "tensormass bench: FAILED: the polar rotation disagrees with its previous iteration\n");
     return 1;
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   std::printf("\n%zu rows in %.1f s (checksum %.6e)\n", ordered.size(), seconds, static_cast<double>(g_sink));
   if (!options.json.empty()) {
-    if (!write_json(options.json, ordered, settings)) return 1;
+    if (!write_json(options.json, ordered, settings, options.quick, polar, seconds)) return 1;
     std::printf("wrote %s\n", options.json.c_str());
   }
   return 0;

@@ -633,56 +633,14 @@ int paper_command(const std::vector<std::string>& args) {
     fs::create_directories(options.out, error);
     const fs::path out = options.out;
     if (!write_file(out / "paper.json", paper_text)) return 1;
-    // The markdown report.
-    std::ostringstream md;
-    md << paper_markdown_header(mode_name, cpu_model(), load_average(), TENSORMASS_BENCH_BUILD_INFO, steps, kDt,
-                                options.repetitions, repetitions_3d(options.repetitions));
-    md << "\n## Beams\n\n| beam | elements | L (m) | E (Pa) | final tip deflection, StVK (m) | Hooke (m) | R_S "
-          "thresholds "
-          "(1/2, 1/5, 1/20 of the elements) |\n|---|---|---|---|---|---|---|\n";
-    for (std::size_t b = 0; b < cases.size(); ++b) {
-      const BeamOutcome& o = outcomes[b];
-      md << "| " << cases[b].name << " | " << (o.rows.empty() ? 0 : o.rows[0].elements) << " | "
-         << fmt("%g", cases[b].spec.size[0]) << " | " << fmt("%g", cases[b].young) << " | " << fmt("%.3f", o.tip_stvk)
-         << " | " << fmt("%.3f", o.tip_hooke) << " | ";
-      for (std::size_t i = 0; i < o.rs_thresholds.size(); ++i)
-        md << (i ? ", " : "") << fmt("%.4g", o.rs_thresholds[i].second);
-      md << " |\n";
+    // The page: scripts/results/render_paper.py lays it out from the JSON.
+    const std::string render = "/usr/bin/python3 '" + std::string(TENSORMASS_PAPER_SOURCE_DIR) +
+                               "/scripts/results/render_paper.py' '" + (out / "paper.json").string() + "' > '" +
+                               (out / "paper.md").string() + "'";
+    if (std::system(render.c_str()) != 0) {
+      std::fprintf(stderr, "tensormass bench paper: the page failed (%s)\n", render.c_str());
+      return 1;
     }
-    md << "\n## Table 1, ours beside the origin's\n\n"
-          "Cells: **mean ms per step** (threshold; error = largest nodal distance to the pure StVK run over all "
-          "steps / L; elements upgraded at the end). The origin's thresholds are 1.5, 3, 6 % for R_EL and R_V "
-          "(ours: 0.015, 0.03, 0.06, the same) and 15, 30, 60 for R_S (units not given; ours are calibrated, see "
-          "Beams). The origin's machine is unknown: compare ratios, not milliseconds.\n\n";
-    for (std::size_t b = 0; b < cases.size(); ++b) {
-      md << "### " << cases[b].name << "\n\n" << markdown_table(rows, cases[b].name, cases[b].origin) << "\n";
-      md << markdown_ratios(rows, cases[b].name) << "\n";
-    }
-    md << "## Targets (" << main_beam << ")\n\n| | target | measured | |\n|---|---|---|---|\n";
-    for (const Target& t : targets)
-      md << "| " << t.what << " | " << t.op << " " << fmt("%g", t.limit) << " | " << fmt("%.3f", t.value) << " | "
-         << (t.pass() ? "PASS" : "**MISS**") << " |\n";
-    if (!outcomes.empty() && !outcomes[0].overhead.empty()) {
-      md << "\n## Criteria overhead (" << main_beam
-         << ")\n\n"
-            "Adaptive runs whose threshold no element reaches (nothing switches, the criterion runs on every "
-            "element every step) against pure Hooke, same repetitions.\n\n"
-            "The criteria's own time (Adaptivity::criteria_seconds, per step) over pure Hooke's mean step is the "
-            "figure of the target; the whole-step differences (mean and median per step) are also given, but on "
-            "this shared machine they carry several percent of noise.\n\n"
-            "| criterion | criteria ms per step | / Hooke's mean step | mean ms per step | pure Hooke | difference | "
-            "median ms per step | pure Hooke | difference | criteria ns per element |\n"
-            "|---|---|---|---|---|---|---|---|---|---|\n";
-      for (const Overhead& o : outcomes[0].overhead)
-        md << "| " << o.criterion << " | " << fmt("%.4f", o.criteria_ms) << " | " << fmt("%.1f %%", 100 * o.added())
-           << " | " << fmt("%.4f", o.ms_per_step) << " | " << fmt("%.4f", o.hooke_ms) << " | "
-           << fmt("%+.1f %%", 100 * (o.ms_per_step / o.hooke_ms - 1)) << " | " << fmt("%.4f", o.ms_median) << " | "
-           << fmt("%.4f", o.hooke_median) << " | " << fmt("%+.1f %%", 100 * (o.ms_median / o.hooke_median - 1)) << " | "
-           << fmt("%.0f", 1e6 * o.criteria_ms / (outcomes[0].rows.empty() ? 1 : outcomes[0].rows[0].elements))
-           << " |\n";
-    }
-    md << paper_markdown_footer();
-    if (!write_file(out / "paper.md", md.str())) return 1;
     if (options.plots) {
       const std::string command = "/usr/bin/python3 '" + std::string(TENSORMASS_PAPER_SOURCE_DIR) +
                                   "/bench/plot_paper.py' '" + (out / "paper.json").string() + "' '" + out.string() +

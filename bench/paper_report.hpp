@@ -59,30 +59,6 @@ struct PaperRow {
 /// samples (numbers in full, null where not finite).
 Json rows_json(const std::vector<PaperRow>& rows);
 
-/// The origin report's Table 1 (mean ms per step; thresholds in the
-/// origin's units: percent for R_EL and R_V).
-struct OriginTable {
-  static constexpr double hooke_600 = 0.102, stvk_600 = 16.273, hooke_300 = 0.031, stvk_300 = 9.011;
-};
-
-/// The markdown table of one beam in the origin's layout: a row per mode
-/// (Hooke, R_EL, R_V, R_S, R_NL, StVK), a column per threshold, each cell
-/// "ms per step / error / upgraded". `origin` adds the origin's numbers for
-/// the 600- or 300-element beam when 600 or 300 (else none).
-std::string markdown_table(const std::vector<PaperRow>& rows, const std::string& beam, int origin);
-
-/// The ratios that count: StVK / Hooke and each adaptive run / StVK, and
-/// the position of each adaptive run between Hooke (0) and StVK (1), as a
-/// markdown table. Empty when the beam lacks a pure run.
-std::string markdown_ratios(const std::vector<PaperRow>& rows, const std::string& beam);
-
-/// The fixed text of docs/results/paper.md before the tables (title, how to
-/// reproduce, machine, method) and after them (plots, notes).
-std::string paper_markdown_header(const std::string& run, const std::string& cpu, const std::string& load,
-                                  const std::string& build, int steps, double dt, int repetitions_2d,
-                                  int repetitions_3d);
-std::string paper_markdown_footer();
-
 /// The row of `beam` and `mode` (and threshold), or nullptr.
 const PaperRow* find_row(const std::vector<PaperRow>& rows, const std::string& beam, const std::string& mode,
                          std::optional<double> threshold = std::nullopt);

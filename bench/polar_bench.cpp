@@ -114,7 +114,7 @@ double median_batch_ns(const std::vector<double>& H, std::vector<double>& R, int
 
 }  // namespace
 
-bool print_polar_rotation_timings(int matrices, int repetitions) {
+std::vector<PolarTiming> print_polar_rotation_timings(int matrices, int repetitions, bool& agree) {
   std::printf("\n## 3D polar rotation (corotational kernels), ns per call, median of %d over %d matrices\n\n",
               repetitions, matrices);
   std::printf(
@@ -123,7 +123,8 @@ bool print_polar_rotation_timings(int matrices, int repetitions) {
       kernel::kBatchWidth);
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::mt19937_64 rng(20261126);
-  bool agree = true;
+  agree = true;
+  std::vector<PolarTiming> timings;
   for (double strain : {0.001, 0.01, 0.1, 0.3}) {
     const std::vector<double> H = random_gradients(matrices, strain, rng);
     std::vector<double> now(H.size()), before(H.size()), batched(H.size());
@@ -142,8 +143,9 @@ bool print_polar_rotation_timings(int matrices, int repetitions) {
     agree = agree && difference <= 1e-12 && batched_difference <= 1e-12;
     std::printf("| %g | %.1f | %.1f | %.2f | %.1e | %.1f | %.2f | %.1e |\n", strain, now_ns / 2, before_ns / 2,
                 now_ns / before_ns, difference, batched_ns / 2, batched_ns / now_ns, batched_difference);
+    timings.push_back({strain, now_ns / 2, before_ns / 2, batched_ns / 2, difference, batched_difference});
   }
-  return agree;
+  return timings;
 }
 
 }  // namespace tensormass::bench

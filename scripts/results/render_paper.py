@@ -3,12 +3,11 @@
 
     /usr/bin/python3 scripts/results/render_paper.py docs/results/paper.json > docs/results/paper.md
 
-`tensormass bench paper` writes paper.md itself (bench/paper_report.cpp,
-bench/paper_bench.cpp); this script lays out the same page from the JSON
-alone, with the same number formats, so that the page can be remade, or
-checked, without running the benchmark. Every figure comes from the JSON
-except the date and commit of the measurement (MEASURED below) and the
-origin report's own times, which are constants of the bench too.
+`tensormass bench paper --out DIR` writes DIR/paper.json and runs this
+script to lay DIR/paper.md out from it, so the page has one writer. Every
+figure comes from the JSON, the date and commit from its "metadata" (a JSON
+of a run without metadata gives MEASURED below), except the origin report's
+own times, which are constants here.
 """
 import sys
 
@@ -123,6 +122,14 @@ def markdown_ratios(rows, beam):
     return out
 
 
+def measured(data):
+    """The date and commit of the run: its metadata's, else MEASURED."""
+    meta = data.get("metadata")
+    if not meta:
+        return MEASURED
+    return f"{meta['date'][:10]}, commit `{meta['commit']}`"
+
+
 def header(data):
     s = data["settings"]
     dt, steps = s["dt"], s["steps"]
@@ -131,7 +138,7 @@ def header(data):
 
 Table 1 and Figure 12 of the origin report (Caillaud, LIRIS; `docs/architecture.md`) on our code: 2D cantilever beams of 60 x 10 and 30 x 10 square quads under gravity, pure Hooke, pure StVK, and adaptive runs (every element starts under Hooke and is upgraded to StVK when its criterion exceeds the threshold), then the same on 3D tet, hex and mixed beams.
 
-Measured on `{data['machine']}` (one thread) on {MEASURED} (run: {data['run']}). `tensormass bench paper` writes this page and `docs/results/paper.json`; `scripts/results/render_paper.py` lays the page out again from the JSON.
+Measured on `{data['machine']}` (one thread) on {measured(data)} (run: {data['run']}). `tensormass bench paper` writes `docs/results/paper.json` and lays this page out from it with `scripts/results/render_paper.py`.
 
 ## Reproduce
 

@@ -1,6 +1,6 @@
 // The untimed logic of `tensormass bench paper` (bench/paper_report.hpp):
 // the error metric of the origin's Figure 12, the threshold calibration
-// helper, the JSON rows and the markdown tables, on hand-made data.
+// helper and the JSON rows, on hand-made data.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -121,38 +121,6 @@ TEST(PaperJson, NamesAreEscapedAndNonFiniteNumbersNull) {
   EXPECT_TRUE(parsed[0]["error"].is_null());
   EXPECT_TRUE(parsed[0]["samples"][0].is_null());
   EXPECT_EQ(parsed[0]["samples"][1], 1.5);
-}
-
-TEST(PaperTable, OriginLayoutWithOurCellsAndTheOrigins) {
-  const std::string table = markdown_table(sample_rows(), "quad 60x10", 600);
-  // Rows in the origin's order, thresholds sorted within a row.
-  const auto hooke = table.find("| Hooke |"), el = table.find("| R_EL |"), stvk = table.find("| StVK |");
-  ASSERT_NE(hooke, std::string::npos);
-  ASSERT_NE(el, std::string::npos);
-  ASSERT_NE(stvk, std::string::npos);
-  EXPECT_LT(hooke, el);
-  EXPECT_LT(el, stvk);
-  const auto t1 = table.find("(0.015;"), t2 = table.find("(0.03;"), t3 = table.find("(0.06;");
-  EXPECT_LT(t1, t2);
-  EXPECT_LT(t2, t3);
-  EXPECT_NE(table.find("**1.15** (0.015; 0.01; 500)"), std::string::npos) << table;
-  // The origin's numbers beside ours.
-  EXPECT_NE(table.find("16.273"), std::string::npos);
-  EXPECT_NE(table.find("2.690 | 0.561 | 0.125"), std::string::npos);
-  // R_V has no run here but keeps the origin's row; R_NL has no origin value.
-  EXPECT_NE(table.find("| R_V |"), std::string::npos);
-  EXPECT_NE(table.find("| R_NL | **1.10**"), std::string::npos) << table;
-  // Without the origin: no origin columns.
-  EXPECT_EQ(markdown_table(sample_rows(), "quad 60x10", 0).find("16.273"), std::string::npos);
-}
-
-TEST(PaperTable, RatiosAgainstStvkAndHooke) {
-  const std::string ratios = markdown_ratios(sample_rows(), "quad 60x10");
-  // StVK / Hooke = 1.2; R_EL 0.015: 1.15 / 1.2 = 0.96, position (1.15 - 1) / 0.2 = 0.75, error / Hooke's = 0.25.
-  EXPECT_NE(ratios.find("StVK / Hooke (ms per step): **1.20**"), std::string::npos) << ratios;
-  EXPECT_NE(ratios.find("| R_EL | 0.015 | 1.15 | 0.96 | 0.75 | 0.01 | 0.25 | 500 / 600 |"), std::string::npos)
-      << ratios;
-  EXPECT_EQ(markdown_ratios(sample_rows(), "no such beam"), "");
 }
 
 TEST(PaperTable, FindRowByModeAndThreshold) {

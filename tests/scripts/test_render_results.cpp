@@ -34,15 +34,16 @@ TEST_P(RenderedResultsPage, IsWhatItsScriptMakesOfItsJson) {
       << "regenerate it: /usr/bin/python3 scripts/results/" << p.script << " ... > docs/results/" << p.page;
 }
 
-INSTANTIATE_TEST_SUITE_P(Pages, RenderedResultsPage,
-                         ::testing::Values(RenderedPage{"render_refine.py", "refine.json", "refine.md"},
-                                           RenderedPage{"render_paper.py", "paper.json", "paper.md"},
-                                           RenderedPage{"render_adaptive.py",
-                                                        "adaptive_bench.json adaptive_needle_fine.json",
-                                                        "adaptive.md"}),
-                         [](const auto& info) {
-                           std::string name = info.param.page;
-                           return name.substr(0, name.find('.'));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Pages, RenderedResultsPage,
+    ::testing::Values(RenderedPage{"render_refine.py", "refine.json", "refine.md"},
+                      RenderedPage{"render_paper.py", "paper.json", "paper.md"},
+                      RenderedPage{"render_kernels.py", "kernels.json kernels_avx2.json", "kernels.md"},
+                      RenderedPage{"render_adaptive.py", "adaptive_bench.json adaptive_needle_fine.json",
+                                   "adaptive.md"}),
+    [](const auto& info) {
+      std::string name = info.param.page;
+      return name.substr(0, name.find('.'));
+    });
 
 }  // namespace
