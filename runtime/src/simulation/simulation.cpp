@@ -1,179 +1,40 @@
 #include "tensormass/simulation/simulation.hpp"
 
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <map>
 #include <numeric>
 #include <optional>
 #include <span>
 
 #include "common/phase_timer.hpp"
+#include "simulation/carry_laws.hpp"
+#include "simulation/discretisation.hpp"
 #include "simulation/progress.hpp"
+#include "simulation/report_figures.hpp"
+#include "simulation/resume_checkpoint.hpp"
 #include "simulation/run_refinement.hpp"
+#include "simulation/state_frames.hpp"
 #include "simulation/summary_json.hpp"
-#include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
-#include "tensormass/io/read_mesh.hpp"
 #include "tensormass/io/vtk_writer.hpp"
-#include "tensormass/kernels/registry.hpp"
-#include "tensormass/mesh/mesh.hpp"
-#include "tensormass/model/model.hpp"
-#include "tensormass/parallel/cell_partition.hpp"
-#include "tensormass/parallel/distribution.hpp"
-#include "tensormass/parallel/mesh_broadcast.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
-#include "tensormass/parallel/rank_errors.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Point displacement (and velocity) with 3 components, and per-cell fields.
-struct StateFields {
-  std::vector<io::Field> point_data, cell_data;
-};
-
-StateFields state_fields(const Model& model, const State& state, std::span<const int> levels,
-                         const Adaptivity* adaptivity) {
-  const Mesh& mesh = model.mesh();
-  const int d = model.dim(), nodes = mesh.node_count();
-  std::vector<double> displacement(3 * static_cast<std::size_t>(nodes), 0.0);
-  io::Field velocity{"velocity", 3, std::vector<double>(3 * static_cast<std::size_t>(nodes), 0.0)};
-  for (int i = 0; i < nodes; ++i)
-    for (int a = 0; a < d; ++a) {
-      displacement[3 * i + a] = state.displacement[i * d + a];
-      velocity.values[3 * i + a] = state.velocity[i * d + a];
-    }
-  io::Field law{"law_id", 1, {}}, type{"element_type", 1, {}}, material{"material", 1, {}};
-  for (io::Field* field : {&law, &type, &material}) field->values.reserve(model.cell_count());
-  for (const ElementBlock& block : mesh.blocks)
-    for (int local = 0; local < block.count(); ++local) {
-      const int cell = block.first_cell + local;
-      law.values.push_back(model.law_id(cell));
-      type.values.push_back(block.element->vtk_type);
-      material.values.push_back(model.material(cell));
-    }
-  // The deformed shape is displacement applied to the rest positions: keep
-  // the points at rest so ParaView's "Warp By Vector" shows the motion.
-  // Moved, not copied: at a million cells each cell field is 8 MB.
-  StateFields fields;
-  fields.point_data.push_back({"displacement", 3, std::move(displacement)});
-  fields.point_data.push_back(std::move(velocity));
-  for (io::Field* field : {&law, &type, &material}) fields.cell_data.push_back(std::move(*field));
-  if (!levels.empty()) fields.cell_data.push_back({"level", 1, std::vector<double>(levels.begin(), levels.end())});
-  if (adaptivity)
-    for (io::Field& field : adaptivity->cell_fields()) fields.cell_data.push_back(std::move(field));
-  return fields;
-}
-
-/// `name`.vtu on one process; over MPI ranks, each rank's piece
-/// `name`_p<rank>.vtu (its cells) and, from rank 0, `name`.pvtu. Returns
-/// the file to name in a series.
-std::string write_state(const std::string& directory, const std::string& name, const Model& model, const State& state,
-                        std::span<const int> levels, const Adaptivity* adaptivity, const Distribution* distribution) {
-  const StateFields fields = state_fields(model, state, levels, adaptivity);
-  const fs::path folder(directory);
-  if (!distribution) {
-    io::write_vtu((folder / (name + ".vtu")).string(), model.mesh(), {}, fields.point_data, fields.cell_data);
-    return name + ".vtu";
-  }
-  const auto piece = [&](int rank) { return name + "_p" + std::to_string(rank) + ".vtu"; };
-  std::vector<bool> own(model.cell_count());
-  std::vector<int> numbers(model.cell_count());
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    own[cell] = distribution->owns_cell(cell);
-    numbers[cell] = distribution->global_cell(cell);
-  }
-  io::write_vtu_piece((folder / piece(distribution->rank())).string(), model.mesh(), own, {}, fields.point_data,
-                      fields.cell_data, numbers, distribution->global_nodes());
-  if (distribution->rank() == 0) {
-    std::vector<std::string> pieces;
-    for (int rank = 0; rank < distribution->size(); ++rank) pieces.push_back(piece(rank));
-    io::write_pvtu((folder / (name + ".pvtu")).string(), pieces, fields.point_data, fields.cell_data);
-  }
-  return name + ".pvtu";
-}
-
-/// `state`: the whole mesh's.
-void locate_max_displacement(const Model& model, const State& state, RunReport& report) {
-  const int d = model.dim();
-  report.max_displacement = 0;
-  for (int i = 0; i < static_cast<int>(state.displacement.size()) / d; ++i) {
-    double length2 = 0;
-    for (int a = 0; a < d; ++a) length2 += state.displacement[i * d + a] * state.displacement[i * d + a];
-    if (std::sqrt(length2) > report.max_displacement || report.max_displacement_node < 0) {
-      report.max_displacement = std::sqrt(length2);
-      report.max_displacement_node = i;
-    }
-  }
-}
-
-void collect_adaptivity(const Adaptivity* adaptivity, RunReport& report) {
-  if (!adaptivity) return;
-  report.criteria_seconds = adaptivity->criteria_seconds();
-  report.criterion_seconds = adaptivity->criterion_seconds();
-  report.switches = adaptivity->total_switches();
-  report.adaptivity = adaptivity->records();
-}
-
-/// This process's peak resident memory so far, in MiB.
-double peak_memory_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // KiB on Linux
-}
-
-/// Cells per law and per element type, of the whole mesh: over MPI ranks
-/// each counts its own cells, and the counts are summed.
-void count_cells(const Model& model, const Distribution* distribution, RunReport& report) {
-  const std::vector<std::string>& laws = model.law_names();
-  const auto elements = Registry::instance().elements();
-  std::vector<double> counted(laws.size() + elements.size(), 0.0);  // laws, then element types
-  for (const ElementBlock& block : model.mesh().blocks) {
-    const tm_kernel* last = nullptr;
-    std::size_t law = 0;
-    const std::size_t type =
-        laws.size() + (std::find(elements.begin(), elements.end(), block.element) - elements.begin());
-    for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
-      if (distribution && !distribution->owns_cell(cell)) continue;
-      if (&model.kernel(cell) != last) {  // the law's name looked up once per run of cells under one kernel
-        last = &model.kernel(cell);
-        law = std::find(laws.begin(), laws.end(), last->law) - laws.begin();
-      }
-      counted[law] += 1;
-      counted[type] += 1;
-    }
-  }
-  if (distribution) parallel::sum_over_ranks(counted);
-  std::map<std::string, int> per_law;
-  for (std::size_t law = 0; law < laws.size(); ++law)
-    if (counted[law] > 0) per_law[laws[law]] = static_cast<int>(counted[law]);
-  report.cells_per_law.assign(per_law.begin(), per_law.end());
-  report.cells_per_type.clear();
-  for (std::size_t type = 0; type < elements.size(); ++type)
-    if (const double count = counted[laws.size() + type]; count > 0)
-      report.cells_per_type.push_back({elements[type]->name, static_cast<int>(count)});
-}
-
-/// One track per `output.track` group (the groups were checked before).
-std::vector<GroupTrack> make_tracks(const Scene& scene, const Mesh& mesh) {
-  std::vector<GroupTrack> tracks;
-  for (const std::string& name : scene.output.track) tracks.emplace_back(mesh, *mesh.group(name));
-  return tracks;
-}
+using detail::CellLaws;
+using detail::Discretisation;
+using detail::StartMesh;
+using detail::write_state;
 
 /// Writes every track's CSV and lists it in the report.
 void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& directory, RunReport& report) {
@@ -184,227 +45,6 @@ void write_tracks(const std::vector<GroupTrack>& tracks, const std::string& dire
     report.files.push_back(name);
     report.tracks.push_back({track.name(), name});
   }
-}
-
-/// The output directory's checkpoint when there is one, checked against
-/// this run's fingerprints (`run`); InputError when it belongs to another run.
-std::optional<Checkpoint> matching_checkpoint(const std::string& path, const Scene& scene, const Checkpoint& run) {
-  if (!fs::exists(path)) return std::nullopt;
-  Checkpoint checkpoint = read_checkpoint(path);
-  if (checkpoint.mesh_fingerprint != run.mesh_fingerprint)
-    throw InputError("checkpoint " + path + " was written for another mesh than " + scene.mesh +
-                     " (remove it, or give another output.directory, to start afresh)");
-  if (checkpoint.scene_fingerprint != run.scene_fingerprint)
-    throw InputError("checkpoint " + path + " was written for another version of " + scene.path +
-                     " (materials, constraints, loads, solver, adaptivity or output.every/track differ; remove it, "
-                     "or give another output.directory, to start afresh)");
-  return checkpoint;
-}
-
-/// InputError unless the checkpoint's state fits the model's dofs.
-/// `dofs`: the whole mesh's.
-void check_checkpoint_state(const Checkpoint& checkpoint, const std::string& path, std::size_t dofs) {
-  if (checkpoint.state.displacement.size() != dofs || checkpoint.state.velocity.size() != dofs)
-    throw InputError("checkpoint " + path + ": its state does not fit the model's " + std::to_string(dofs) + " dofs");
-}
-
-/// Simulated and time-loop seconds of a dynamic run (see RunReport::loop_seconds).
-void time_loop(const Scene& scene, const State& state, double adaptivity_seconds, RunReport& report) {
-  if (scene.solver.is_static()) return;
-  report.simulated_seconds = state.step * scene.solver.dt;
-  report.loop_seconds = adaptivity_seconds;
-  for (double ms : report.statistics.step_ms) report.loop_seconds += ms / 1e3;
-}
-
-/// Over several MPI ranks, the cut of the model's cells among them (rank 0
-/// partitions, every rank gets the same); nullptr on one process.
-std::unique_ptr<Distribution> cut_among_ranks(const Model& model) {
-  const int ranks = parallel::world_size(), rank = parallel::world_rank();
-  if (ranks <= 1) return nullptr;
-  std::vector<int> cell_owner =
-      rank == 0 ? parallel::partition_cells(model.mesh(), ranks) : std::vector<int>(model.cell_count(), 0);
-  parallel::broadcast_from_root(cell_owner);
-  return std::make_unique<Distribution>(model, std::move(cell_owner), rank, ranks);
-}
-
-/// The distribution of a model: over a rank's part of the mesh (`cut`), or
-/// of the whole mesh cut here (cut_among_ranks).
-std::unique_ptr<Distribution> distribute(const Model& model, std::optional<CellCut> cut) {
-  if (!cut) return cut_among_ranks(model);
-  return std::make_unique<Distribution>(model, std::move(*cut), parallel::world_rank(), parallel::world_size());
-}
-
-/// A model of a rank's part of the mesh: its node sums and energy scale
-/// completed from every rank's part.
-void complete_model_sums(Model& model, const Distribution& distribution) {
-  double energy_scale = 0.0;
-  for (int cell = 0; cell < model.cell_count(); ++cell)
-    if (distribution.owns_cell(cell)) energy_scale += model.cell_energy_scale(cell);
-  model.complete_partial_sums([&](std::span<double> v) { distribution.complete_dofs(v); },
-                              parallel::sum_over_ranks(energy_scale));
-}
-
-/// The model of `mesh`. Over ranks that each hold their part of a mesh
-/// (`collective`), an error building one rank's (an element inverted at
-/// rest) is thrown on every rank, so none waits for it in the next step.
-Model build_model(const Mesh& mesh, const ModelSpec& spec, bool collective) {
-  if (!collective) return Model(mesh, spec);
-  std::optional<Model> model;
-  parallel::on_every_rank([&] { model.emplace(mesh, spec); });
-  return std::move(*model);
-}
-
-/// The mesh and everything built on it: replaced as a whole when
-/// refinement changes the mesh. `cut`: set when the mesh is this rank's part.
-struct Discretisation {
-  Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics,
-                 std::optional<CellCut> cut = std::nullopt)
-      : mesh(std::move(mesh_in)),
-        model(build_model(mesh, scene.model, cut.has_value())),
-        distribution(distribute(model, std::move(cut))),
-        assembler(model, true, distribution.get()),
-        linear(make_linear_solver(scene.solver.linear)),
-        integration{model, assembler, *linear, scene.solver, statistics} {
-    if (distribution && distribution->holds_part()) {
-      complete_model_sums(model, *distribution);
-      distribution->number_global_rows();
-    }
-  }
-  /// What the solvers need before the first step (after any distribution).
-  void prepare(const Scene& scene) {
-    assembler.set_hessian_projection(scene.solver.project_hessian);
-    describe_free_nodes(*linear, model);
-  }
-  /// Cells, nodes and free dofs of the whole mesh.
-  int whole_cell_count() const {
-    return distribution && distribution->holds_part() ? distribution->whole_cell_count() : mesh.cell_count();
-  }
-  int whole_node_count() const { return distribution ? distribution->whole_node_count() : mesh.node_count(); }
-  int whole_free_dof_count() const {
-    return distribution && distribution->holds_part() ? distribution->global_row_count() : model.free_dof_count();
-  }
-
-  Mesh mesh;
-  Model model;
-  std::unique_ptr<Distribution> distribution;  // null on one process; before the assembler, which uses it
-  Assembler assembler;
-  std::unique_ptr<LinearSolver> linear;
-  Integration integration;
-  /// The integrator, made at its first use: the explicit one estimates dt
-  /// from the laws then, and a refined mesh gets its own.
-  Integrator& stepper() {
-    if (!integrator) integrator = make_integrator(integration);
-    return *integrator;
-  }
-  std::unique_ptr<Integrator> integrator;
-};
-
-/// What this rank starts from: the whole mesh, or over several MPI ranks
-/// its part of it, with what only the whole mesh tells.
-struct StartMesh {
-  Mesh mesh;
-  std::optional<CellCut> cut;      ///< set when `mesh` is this rank's part, checked against the scene on rank 0
-  std::uint64_t fingerprint = 0;   ///< with cut: the whole mesh's
-  std::vector<GroupTrack> tracks;  ///< with cut: rank 0's, made on the whole mesh (the others record none)
-};
-
-/// A whole mesh held by this process, uncut.
-StartMesh whole_start_mesh(Mesh mesh) {
-  StartMesh start;
-  start.mesh = std::move(mesh);
-  return start;
-}
-
-/// The scene's mesh checked against the scene (a part was checked whole, on rank 0).
-Mesh checked_mesh(const Scene& scene, StartMesh& start) {
-  if (!start.cut) validate_against_mesh(scene, start.mesh);
-  return std::move(start.mesh);
-}
-
-/// Whether each MPI rank holds only its part of the mesh. Runs that refine
-/// the mesh (every rank refines the whole of it alike), that save or
-/// restore every cell's adaptive state, or whose caller asks for it
-/// (Python scripts) keep the whole mesh on every rank.
-bool cuts_mesh(const Scene& scene, const RunOptions& options) {
-  if (parallel::world_size() == 1 || scene.refinement.enabled || options.whole_mesh_on_every_rank) return false;
-  return !(scene.adaptivity.enabled && (options.resume || scene.output.checkpoint_every > 0));
-}
-
-/// The scene's mesh as this rank holds it: rank 0 reads the file, checks it
-/// against the scene and cuts it (when cuts_mesh), then sends each rank its
-/// part; the reader's and the whole mesh's memory stay on rank 0, for a while.
-StartMesh read_start_mesh(const Scene& scene, const RunOptions& options) {
-  if (!cuts_mesh(scene, options)) return whole_start_mesh(parallel::read_mesh_on_root(scene.mesh));
-  StartMesh start;
-  Mesh whole;
-  std::vector<int> cell_owner;
-  parallel::on_root([&] {
-    whole = read_mesh(scene.mesh);
-    validate_against_mesh(scene, whole);
-    start.fingerprint = mesh_fingerprint(whole);
-    start.tracks = make_tracks(scene, whole);
-    cell_owner = parallel::partition_cells(whole, parallel::world_size());
-  });
-  MeshPart part =
-      parallel::world_rank() == 0 ? parallel::send_mesh_parts(whole, cell_owner) : parallel::receive_mesh_part();
-  std::vector<char> fingerprint(sizeof start.fingerprint);
-  std::memcpy(fingerprint.data(), &start.fingerprint, sizeof start.fingerprint);
-  parallel::broadcast_bytes_from_root(fingerprint);
-  std::memcpy(&start.fingerprint, fingerprint.data(), sizeof start.fingerprint);
-  start.mesh = std::move(part.mesh);
-  start.cut = std::move(part.cut);
-  return start;
-}
-
-/// Per cell of a model: its kernel, and the kernel it blends from (nullptr
-/// when it does not blend) with the blend's weight. Kernels live in the
-/// registry: the pointers outlive the model.
-struct CellLaws {
-  std::vector<const tm_kernel*> kernels, blend_from;
-  std::vector<double> blend_weights;
-};
-
-CellLaws cell_laws(const Model& model) {
-  CellLaws laws;
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    laws.kernels.push_back(&model.kernel(cell));
-    laws.blend_from.push_back(model.blend_from(cell));
-    laws.blend_weights.push_back(model.blend_weight(cell));
-  }
-  return laws;
-}
-
-/// Per cell of the leaf mesh after `transfers` (applied in order): the cell
-/// of the mesh before them whose state it takes.
-std::vector<int> cell_origins(const std::vector<LeafTransfer>& transfers) {
-  std::vector<int> origin(static_cast<std::size_t>(transfers.front().old_cell_count));
-  std::iota(origin.begin(), origin.end(), 0);
-  for (const LeafTransfer& transfer : transfers) origin = transfer_cell_field<int>(transfer, origin);
-  return origin;
-}
-
-/// Gives each cell of `model` (just built on the new mesh, under its
-/// materials' laws) the law of the old cell it comes from, and its blend
-/// (the law blended from and the weight). Returns the cells that could not
-/// take the law (no kernel for their element): they keep their initial law.
-int carry_laws(const CellLaws& before, std::span<const int> origin, Model& model) {
-  int missed = 0;
-  for (int cell = 0; cell < model.cell_count(); ++cell) {
-    const std::size_t source = static_cast<std::size_t>(origin[static_cast<std::size_t>(cell)]);
-    const tm_kernel* law = model.law_kernel(cell, before.kernels[source]->law);
-    if (!law) {
-      ++missed;
-      continue;
-    }
-    model.set_law(cell, law->law);
-    const tm_kernel* from = before.blend_from[source];
-    if (!from) continue;
-    const tm_kernel* blend = model.law_kernel(cell, from->law);
-    if (!blend || blend == &model.kernel(cell)) continue;
-    model.start_blend(cell, blend);
-    model.set_blend_weight(cell, before.blend_weights[source]);
-  }
-  return missed;
 }
 
 RefinementRecord refinement_record(int step, const detail::RunRefinement& refinement) {
@@ -488,7 +128,7 @@ struct Simulation::Impl {
   RunReport report;
   /// This rank's peak memory at the end of each phase so far (RunReport::peak_memory_mib_by_phase);
   /// initialised before disc: the mesh is read, the model not built yet.
-  std::vector<std::pair<std::string, double>> memory_marks{{"mesh", peak_memory_mib()}};
+  std::vector<std::pair<std::string, double>> memory_marks{{"mesh", detail::peak_memory_mib()}};
   std::unique_ptr<Discretisation> disc;
   std::unique_ptr<detail::RunRefinement> refinement;  // null without adaptivity.refine
   const Distribution* distribution = nullptr;         // disc's, once shared among ranks; null on one process
@@ -502,7 +142,7 @@ struct Simulation::Impl {
   detail::Progress progress;
   std::array<double, 3> phase_marks{};  // assembly, solve, criteria seconds at the last step
   std::size_t counted_steps = 0;
-  void mark_memory(const char* phase) { memory_marks.emplace_back(phase, peak_memory_mib()); }
+  void mark_memory(const char* phase) { memory_marks.emplace_back(phase, detail::peak_memory_mib()); }
   double stepping_ms = 0;
   double adaptivity_seconds = 0;  // the adaptive model's share of the time loop
   int resolves = 0;               // static: repeats of the current load step after switches
@@ -530,12 +170,12 @@ struct Simulation::Impl {
 /// of the adaptive model, the output directory.
 Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions& options)
     : scene(scene_in),
-      disc(
-          std::make_unique<Discretisation>(checked_mesh(scene, start), scene, report.statistics, std::move(start.cut))),
+      disc(std::make_unique<Discretisation>(detail::checked_mesh(scene, start), scene, report.statistics,
+                                            std::move(start.cut))),
       refinement(scene.refinement.enabled ? std::make_unique<detail::RunRefinement>(scene.refinement, disc->mesh)
                                           : nullptr),
       dynamic(scene.solver.is_dynamic()),
-      tracks(holds_part() ? std::move(start.tracks) : make_tracks(scene, disc->mesh)),
+      tracks(holds_part() ? std::move(start.tracks) : detail::make_tracks(scene, disc->mesh)),
       checkpoint_path((fs::path(scene.output.directory) / kCheckpointFile).string()),
       progress(scene.solver.total_steps(), std::string(solver_type_name(scene.solver.type)),
                options.progress && parallel::world_rank() == 0) {
@@ -544,7 +184,7 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   fingerprints.mesh_fingerprint = holds_part() ? start.fingerprint : mesh_fingerprint(disc->mesh);
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
   std::optional<Checkpoint> checkpoint;
-  if (options.resume) checkpoint = matching_checkpoint(checkpoint_path, scene, fingerprints);
+  if (options.resume) checkpoint = detail::matching_checkpoint(checkpoint_path, scene, fingerprints);
   if (checkpoint && refinement) replay_refinement(*checkpoint);
   if (parallel::world_size() > 1) share_among_ranks();
   mark_memory("shared");
@@ -556,8 +196,8 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
     adaptivity->distribute(distribution);
   }
   if (checkpoint)
-    check_checkpoint_state(*checkpoint, checkpoint_path,
-                           static_cast<std::size_t>(disc->model.dim()) * disc->whole_node_count());
+    detail::check_checkpoint_state(*checkpoint, checkpoint_path,
+                                   static_cast<std::size_t>(disc->model.dim()) * disc->whole_node_count());
   if (checkpoint && divides_state()) checkpoint->state = divided_state(checkpoint->state);
   mark_memory("solver");
 
@@ -803,8 +443,8 @@ void Simulation::Impl::apply_refinement() {
     state.displacement = transfer_nodal_field(transfer, state.displacement, d);
     state.velocity = transfer_nodal_field(transfer, state.velocity, d);
   }
-  const std::vector<int> origin = cell_origins(pending);
-  const CellLaws laws = cell_laws(disc->model);
+  const std::vector<int> origin = detail::cell_origins(pending);
+  const CellLaws laws = detail::cell_laws(disc->model);
   pending.clear();
   // The histories the solvers extrapolate from belong to the old mesh.
   state.warm_start.clear();
@@ -816,7 +456,7 @@ void Simulation::Impl::apply_refinement() {
   for (const Hold& hold : holds) disc->model.hold(hold.group, hold.displacement, hold.components);
   // Each new cell takes the law (and blend) of the cell it comes from,
   // before the new assembler's first assembly folds the linear-law cells.
-  if (const int missed = carry_laws(laws, origin, disc->model); missed > 0)
+  if (const int missed = detail::carry_laws(laws, origin, disc->model); missed > 0)
     report.statistics.warnings.push_back("step " + std::to_string(state.step) + ": " + std::to_string(missed) +
                                          " refined cells have no kernel for their parent's law and keep their "
                                          "material's law");
@@ -889,15 +529,15 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   if (writes_files()) write_tracks(tracks, scene.output.directory, report);
   if (failure.empty()) report.files.push_back("summary.json");
   report.state = divides_state() ? whole_state(end) : end;
-  time_loop(scene, end, adaptivity_seconds, report);
-  count_cells(disc->model, distribution, report);
+  detail::time_loop(scene, end, adaptivity_seconds, report);
+  detail::count_cells(disc->model, distribution, report);
   count_whole_mesh();
-  collect_adaptivity(adaptivity.get(), report);
-  locate_max_displacement(disc->model, report.state, report);
+  detail::collect_adaptivity(adaptivity.get(), report);
+  detail::locate_max_displacement(disc->model, report.state, report);
   if (scene.solver.type != SolverType::explicit_euler)
     report.linear_solver = disc->linear->name();  // after any fallback
   report.cells_per_rank = parallel::gather_to_root(disc->mesh.cell_count());
-  report.peak_memory_mib = parallel::gather_to_root(peak_memory_mib());
+  report.peak_memory_mib = parallel::gather_to_root(detail::peak_memory_mib());
   report.peak_memory_mib_by_phase.clear();
   for (const auto& [phase, mib] : memory_marks)  // the same phases on every rank: collective
     report.peak_memory_mib_by_phase.emplace_back(phase, parallel::gather_to_root(mib));
@@ -911,7 +551,7 @@ namespace {
 /// The scene's mesh, read and checked, with the thread count set before
 /// anything runs in parallel.
 StartMesh read_scene_mesh(const Scene& scene, const RunOptions& options) {
-  StartMesh start = read_start_mesh(scene, options);
+  StartMesh start = detail::read_start_mesh(scene, options);
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   return start;
 }
@@ -924,7 +564,7 @@ Simulation::Simulation(const Scene& scene, const RunOptions& options)
 Simulation::Simulation(const Scene& scene, Mesh mesh, const RunOptions& options) {
   mesh.validate();
   if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
-  impl_ = std::make_unique<Impl>(scene, whole_start_mesh(std::move(mesh)), options);
+  impl_ = std::make_unique<Impl>(scene, detail::whole_start_mesh(std::move(mesh)), options);
 }
 
 Simulation::~Simulation() = default;
