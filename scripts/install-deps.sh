@@ -10,7 +10,7 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   g++ cmake ninja-build git clang-format \
   python3 python3-sympy python3-jinja2 python3-pytest python3-numpy python3-dev pybind11-dev \
-  libeigen3-dev libsuitesparse-dev libyaml-cpp-dev nlohmann-json3-dev \
+  libeigen3-dev libsuitesparse-dev libyaml-cpp-dev nlohmann-json3-dev libxxhash-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libopenblas0-openmp \
   python3-meshio python3-matplotlib python3-gmsh gmsh libgmsh-dev calculix-ccx python3-dolfinx

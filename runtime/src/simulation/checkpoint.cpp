@@ -1,14 +1,19 @@
-// Checkpoints: a little-endian binary file, "tensormass checkpoint" and a
-// version, then the fields in a fixed order, each array preceded by its
-// length. Fingerprints are FNV-1a over the bytes of what they cover.
+// Checkpoints: a little-endian binary file, "tensormass checkpoint", a
+// version, the payload's size and its XXH3-64 checksum, then the payload:
+// the fields in a fixed order, each array preceded by its length.
+// Fingerprints are FNV-1a over the bytes of what they cover.
 #include "tensormass/simulation/checkpoint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <regex>
+#include <sstream>
 #include <type_traits>
 
+#include "common/checksum.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 #include "tensormass/kernels/registry.hpp"
@@ -18,7 +23,7 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 4;  // 2: refinement; 3: CHOLMOD's block of jumped rows; 4: its region ordering
+constexpr std::uint64_t kVersion = 5;  // 5: the payload's size and checksum in the header
 
 /// FNV-1a, 64 bits.
 class Fingerprint {
@@ -89,27 +94,45 @@ void add_solver(Fingerprint& f, const SolverSettings& s) {
 
 // --- Binary writing and reading ----------------------------------------------------
 
+/// Writes values to a stream, and the checksum and size of what it wrote.
 class Writer {
  public:
   explicit Writer(std::ostream& out) : out_(out) {}
   template <class T>
   void put(const T& value) {
     static_assert(std::is_arithmetic_v<T>);
-    out_.write(reinterpret_cast<const char*>(&value), sizeof value);
+    write(&value, sizeof value);
   }
   template <class T>
   void put(const std::vector<T>& values) {
     put(static_cast<std::uint64_t>(values.size()));
-    if (!values.empty()) out_.write(reinterpret_cast<const char*>(values.data()), sizeof(T) * values.size());
+    if (!values.empty()) write(values.data(), sizeof(T) * values.size());
   }
   void put(const std::string& text) {
     put(static_cast<std::uint64_t>(text.size()));
-    out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+    write(text.data(), text.size());
   }
+  std::uint64_t size() const { return size_; }
+  std::uint64_t checksum() const { return hash_.value(); }
 
  private:
+  void write(const void* data, std::size_t size) {
+    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+    hash_.update(data, size);
+    size_ += size;
+  }
   std::ostream& out_;
+  detail::Checksum hash_;
+  std::uint64_t size_ = 0;
 };
+
+/// The header before the payload: the magic text and the version.
+void put_header(std::ostream& out) {
+  const std::uint64_t magic_size = sizeof kMagic - 1;
+  out.write(reinterpret_cast<const char*>(&magic_size), sizeof magic_size);
+  out.write(kMagic, static_cast<std::streamsize>(magic_size));
+  out.write(reinterpret_cast<const char*>(&kVersion), sizeof kVersion);
+}
 
 class Reader {
  public:
@@ -134,7 +157,16 @@ class Reader {
     if (count > bytes_.size() - at_) fail("a string runs past the end of the file");
     return std::string(take(count), count);
   }
+  /// A count of items of at least `bytes_each` bytes each, refused when
+  /// they cannot fit in the bytes left (nothing is allocated for them).
+  std::uint64_t get_count(std::size_t bytes_each) {
+    const std::uint64_t count = get<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / bytes_each) fail("a count runs past the end of the file");
+    return count;
+  }
   bool at_end() const { return at_ == bytes_.size(); }
+  std::size_t left() const { return bytes_.size() - at_; }
+  const char* here() const { return bytes_.data() + at_; }
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError("checkpoint " + path_ + ": " + what + " (truncated or not a tensormass checkpoint)");
   }
@@ -239,7 +271,7 @@ void put_laws(Writer& w, const SavedLaws& l) {
 
 SavedLaws get_laws(Reader& r) {
   SavedLaws l;
-  const auto kernels = r.get<std::uint64_t>();
+  const auto kernels = r.get_count(sizeof(std::uint64_t));
   for (std::uint64_t k = 0; k < kernels; ++k) l.kernels.push_back(r.get_string());
   l.current = r.get_vector<int>();
   l.blend_from = r.get_vector<int>();
@@ -252,18 +284,18 @@ SavedLaws get_laws(Reader& r) {
   l.constants_changed = r.get<std::int64_t>() != 0;
   AdaptivityMemory& a = l.adaptivity;
   a.calm_evaluations = r.get_vector<int>();
-  const auto criteria = r.get<std::uint64_t>();
+  const auto criteria = r.get_count(sizeof(std::uint64_t));
   for (std::uint64_t c = 0; c < criteria; ++c) a.values.push_back(r.get_vector<double>());
   a.total_switches = static_cast<int>(r.get<std::int64_t>());
   a.criteria_seconds = r.get<double>();
   a.criterion_seconds = r.get_vector<double>();
-  const auto records = r.get<std::uint64_t>();
+  const auto records = r.get_count(4 * sizeof(std::int64_t));
   for (std::uint64_t i = 0; i < records; ++i) {
     AdaptivityRecord record;
     record.step = static_cast<int>(r.get<std::int64_t>());
     record.upgrades = static_cast<int>(r.get<std::int64_t>());
     record.downgrades = static_cast<int>(r.get<std::int64_t>());
-    const auto laws = r.get<std::uint64_t>();
+    const auto laws = r.get_count(2 * sizeof(std::int64_t));
     for (std::uint64_t k = 0; k < laws; ++k) {
       std::string law = r.get_string();
       record.cells_per_law.emplace_back(std::move(law), static_cast<int>(r.get<std::int64_t>()));
@@ -271,6 +303,57 @@ SavedLaws get_laws(Reader& r) {
     a.records.push_back(std::move(record));
   }
   return l;
+}
+
+/// The bytes of the checkpoint file at `path`: a regular file (a FIFO,
+/// device or directory is refused before it is opened for reading).
+std::string checkpoint_bytes(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (error || !fs::is_regular_file(status))
+    throw InputError("checkpoint " + path + " is not a regular file" + (error ? ": " + error.message() : ""));
+  std::ifstream in(path, std::ios::binary);
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!in || error) throw InputError("cannot open checkpoint " + path);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError("cannot read checkpoint " + path);
+  return bytes;
+}
+
+bool finite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
+
+/// The fields a checkpoint holds whatever the run: InputError naming the
+/// field when one is out of what a run writes.
+void check_fields(const Checkpoint& c, const std::string& path) {
+  const auto refuse = [&](const std::string& field, const std::string& what) {
+    throw InputError("checkpoint " + path + ": " + field + " " + what +
+                     " (damaged or forged; remove it to start afresh)");
+  };
+  const State& s = c.state;
+  if (s.step < 0) refuse("state.step", "is negative (" + std::to_string(s.step) + ")");
+  if (!std::isfinite(s.time) || s.time < 0) refuse("state.time", "is not a finite time >= 0");
+  for (const auto& [name, values] : {std::pair{"state.displacement", &s.displacement},
+                                     {"state.velocity", &s.velocity},
+                                     {"state.warm_start", &s.warm_start},
+                                     {"state.previous_displacement", &s.previous_displacement},
+                                     {"state.earlier_displacement", &s.earlier_displacement}})
+    if (!finite(*values)) refuse(name, "holds a value that is not finite");
+  static const std::regex frame_name("frame_[0-9]{6,}\\.p?vtu");
+  double previous = -1.0;
+  for (const io::SeriesEntry& e : c.series) {
+    if (!std::regex_match(e.file, frame_name)) refuse("series", "names a file a run does not write");
+    if (!std::isfinite(e.time) || e.time < previous) refuse("series", "has times out of order");
+    previous = e.time;
+  }
+  if (c.series.size() > static_cast<std::size_t>(s.step) + 1) refuse("series", "has more frames than steps");
+  for (const SavedTrack& t : c.tracks)
+    for (const TrackRow& row : t.rows)
+      if (!std::isfinite(row.time) || !finite({row.displacement.begin(), row.displacement.end()}))
+        refuse("tracks", "hold a value that is not finite");
 }
 
 }  // namespace
@@ -393,8 +476,11 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   io::write_atomically(
       path,
       [&](std::ostream& out) {
+        put_header(out);
+        const std::streampos sealed_at = out.tellp();
+        const std::uint64_t seal[2] = {0, 0};  // the payload's size and checksum, once written
+        out.write(reinterpret_cast<const char*>(seal), sizeof seal);
         Writer w(out);
-        w.put(std::string(kMagic)), w.put(kVersion);
         w.put(c.mesh_fingerprint), w.put(c.scene_fingerprint);
         put_state(w, c.state);
         w.put(c.linear_solver);
@@ -416,19 +502,29 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
         if (c.adaptive) put_laws(w, c.laws);
         w.put(static_cast<std::int64_t>(c.refining));
         if (c.refining) put_refinement(w, c.refinement);
+        const std::uint64_t written[2] = {w.size(), w.checksum()};
+        out.seekp(sealed_at);
+        out.write(reinterpret_cast<const char*>(written), sizeof written);
+        out.seekp(0, std::ios::end);
       },
       /*durable=*/true);
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open checkpoint " + path);
-  Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  Reader r(checkpoint_bytes(path), path);
   if (r.get_string() != kMagic) r.fail("no checkpoint header");
   const auto version = r.get<std::uint64_t>();
   if (version != kVersion)
     throw InputError("checkpoint " + path + " has version " + std::to_string(version) + "; this tensormass reads " +
                      std::to_string(kVersion));
+  const auto size = r.get<std::uint64_t>();
+  const auto checksum = r.get<std::uint64_t>();
+  if (size != r.left())
+    throw InputError("checkpoint " + path + " holds " + std::to_string(r.left()) + " bytes after its header, not the " +
+                     std::to_string(size) + " it was written with (truncated or damaged; remove it to start afresh)");
+  if (detail::checksum(r.here(), r.left()) != checksum)
+    throw InputError("checkpoint " + path +
+                     ": its checksum does not match its contents (damaged or edited; remove it to start afresh)");
   Checkpoint c;
   c.mesh_fingerprint = r.get<std::uint64_t>();
   c.scene_fingerprint = r.get<std::uint64_t>();
@@ -438,10 +534,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.step_assembly_ms = r.get_vector<double>();
   c.step_solve_ms = r.get_vector<double>();
   c.step_criteria_ms = r.get_vector<double>();
-  const auto tracks = r.get<std::uint64_t>();
+  const auto tracks = r.get_count(4 * sizeof(double));
   for (std::uint64_t t = 0; t < tracks; ++t) {
     SavedTrack track;
-    const auto rows = r.get<std::uint64_t>();
+    const auto rows = r.get_count(7 * sizeof(double));
     for (std::uint64_t i = 0; i < rows; ++i) {
       TrackRow row;
       row.time = r.get<double>();
@@ -452,7 +548,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     for (double& x : track.first_shift) x = r.get<double>();
     c.tracks.push_back(std::move(track));
   }
-  const auto frames = r.get<std::uint64_t>();
+  const auto frames = r.get_count(2 * sizeof(double));
   for (std::uint64_t i = 0; i < frames; ++i) {
     const double time = r.get<double>();
     c.series.push_back({time, r.get_string()});
@@ -462,6 +558,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.refining = r.get<std::int64_t>() != 0;
   if (c.refining) c.refinement = get_refinement(r);
   if (!r.at_end()) r.fail("bytes after the last field");
+  check_fields(c, path);
   return c;
 }
 

@@ -62,18 +62,19 @@ bool cuts_mesh(const Scene& scene, const RunOptions& options) {
 
 }  // namespace
 
-Discretisation::Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics, std::optional<CellCut> cut)
-      : mesh(std::move(mesh_in)),
-        model(build_model(mesh, scene.model, cut.has_value())),
-        distribution(distribute(model, std::move(cut))),
-        assembler(model, true, distribution.get()),
-        linear(make_linear_solver(scene.solver.linear)),
-        integration{model, assembler, *linear, scene.solver, statistics} {
-    if (distribution && distribution->holds_part()) {
-      complete_model_sums(model, *distribution);
-      distribution->number_global_rows();
-    }
+Discretisation::Discretisation(Mesh mesh_in, const Scene& scene, SolveStatistics& statistics,
+                               std::optional<CellCut> cut)
+    : mesh(std::move(mesh_in)),
+      model(build_model(mesh, scene.model, cut.has_value())),
+      distribution(distribute(model, std::move(cut))),
+      assembler(model, true, distribution.get()),
+      linear(make_linear_solver(scene.solver.linear)),
+      integration{model, assembler, *linear, scene.solver, statistics} {
+  if (distribution && distribution->holds_part()) {
+    complete_model_sums(model, *distribution);
+    distribution->number_global_rows();
   }
+}
 
 void Discretisation::prepare(const Scene& scene) {
   assembler.set_hessian_projection(scene.solver.project_hessian);

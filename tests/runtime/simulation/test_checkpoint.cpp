@@ -1,12 +1,18 @@
-// Checkpoints (checkpoint.cpp): the file round-trips, a damaged one is a
-// clear input error, fingerprints follow what changes a run and nothing
-// else, and `tensormass run --resume` refuses another run's checkpoint.
+// Checkpoints (checkpoint.cpp): the file round-trips, a damaged or forged
+// one is a clear input error naming the field, fingerprints follow what
+// changes a run and nothing else, and `tensormass run --resume` refuses
+// another run's checkpoint and one whose step, time or frames its run
+// cannot have written.
 // (The SIGKILL-and-resume runs, bitwise equal to uninterrupted ones, with
 // and without the adaptive model, are tests/examples/run_kill_resume.sh.)
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 
 #include "support/cantilever.hpp"
 #include "support/test_support.hpp"
@@ -127,6 +133,93 @@ TEST(Checkpoint, EveryTruncationIsAnInputErrorNamingTheFile) {
   EXPECT_THROW(read_checkpoint(dir.file("missing.bin")), InputError);
 }
 
+TEST(Checkpoint, AFlippedBitAnywhereIsRefused) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  write_checkpoint(path, sample());
+  const std::string bytes = test_support::read_file(path);
+  for (std::size_t at = 0; at < bytes.size(); at += 5) {
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x10);
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(damaged.data(), static_cast<std::streamsize>(damaged.size()));
+    try {
+      read_checkpoint(path);
+      ADD_FAILURE() << "a checkpoint with byte " << at << " flipped was read";
+    } catch (const InputError& e) {
+      expect_contains(e.what(), {"checkpoint " + path});
+    }
+  }
+  std::string payload_flip = bytes;
+  payload_flip[bytes.size() - 3] = static_cast<char>(payload_flip[bytes.size() - 3] ^ 1);
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(payload_flip.data(), static_cast<std::streamsize>(payload_flip.size()));
+  try {
+    read_checkpoint(path);
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"checksum does not match"});
+  }
+}
+
+/// read_checkpoint of `c` written with a valid checksum: the InputError's text.
+std::string refusal(const Checkpoint& c) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  write_checkpoint(path, c);
+  try {
+    read_checkpoint(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "read";
+}
+
+TEST(Checkpoint, ForgedFieldsAreRefusedNamingTheField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Checkpoint c = sample();
+  c.state.step = -1000000;
+  expect_contains(refusal(c), {"state.step", "negative"});
+  c = sample();
+  c.state.time = nan;
+  expect_contains(refusal(c), {"state.time"});
+  c = sample();
+  c.state.displacement[1] = nan;
+  expect_contains(refusal(c), {"state.displacement", "not finite"});
+  c = sample();
+  c.state.velocity[0] = std::numeric_limits<double>::infinity();
+  expect_contains(refusal(c), {"state.velocity"});
+  c = sample();
+  c.series[1].file = "../../outside.vtu";
+  expect_contains(refusal(c), {"series", "a file a run does not write"});
+  c = sample();
+  c.series[1].file = "frame_000010.vtu\n<evil/>";
+  expect_contains(refusal(c), {"series"});
+  c = sample();
+  c.series[0].time = 0.2;  // after the next frame's
+  expect_contains(refusal(c), {"series", "out of order"});
+  c = sample();
+  c.series.assign(11, {0.1, "frame_000010.vtu"});  // more frames than the 9 steps could write
+  expect_contains(refusal(c), {"series", "more frames than steps"});
+  c = sample();
+  c.tracks[0].rows[0].displacement[2] = nan;
+  expect_contains(refusal(c), {"tracks"});
+  EXPECT_EQ(refusal(sample()), "read");
+}
+
+TEST(Checkpoint, OnlyARegularFileIsRead) {
+  TempDir dir;
+  fs::create_directory(dir.path() / "checkpoint.bin");
+  try {
+    read_checkpoint(dir.file("checkpoint.bin"));
+    ADD_FAILURE() << "a directory was read";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"checkpoint " + dir.file("checkpoint.bin"), "not a regular file"});
+  }
+  ASSERT_EQ(::mkfifo(dir.file("fifo.bin").c_str(), 0600), 0);
+  EXPECT_THROW(read_checkpoint(dir.file("fifo.bin")), InputError);  // refused, not blocked on
+}
+
 TEST(Checkpoint, SceneFingerprintFollowsWhatChangesTheRun) {
   const Scene base = test::cantilever("stvk", SolverType::implicit_euler);
   const std::uint64_t reference = scene_fingerprint(base);
@@ -216,6 +309,40 @@ TEST_F(Resume, RefusesAnotherMeshesCheckpoint) {
   const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
   EXPECT_EQ(refused.exit_code, 2);
   expect_contains(refused.output, {"was written for another mesh than"});
+}
+
+/// The fixture's checkpoint changed by `forge` and written again, checksum
+/// and all: the checksum alone does not make a checkpoint its run's.
+class ForgedResume : public Resume {
+ protected:
+  std::string resume_forged(const std::function<void(Checkpoint&)>& forge) {
+    const std::string path = (dir_.path() / "out" / "checkpoint.bin").string();
+    Checkpoint c = read_checkpoint(path);
+    forge(c);
+    write_checkpoint(path, c);
+    const auto before = test_support::read_file(dir_.path() / "out" / "summary.json");
+    const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_EQ(test_support::read_file(dir_.path() / "out" / "summary.json"), before);
+    return refused.output;
+  }
+};
+
+TEST_F(ForgedResume, AStepPastTheRunIsRefused) {
+  expect_contains(resume_forged([](Checkpoint& c) { c.state.step = 50; }),
+                  {"checkpoint.bin: state.step 50 is past the run's 10 steps"});
+}
+
+TEST_F(ForgedResume, ATimeThatIsNotTheStepsIsRefused) {
+  expect_contains(resume_forged([](Checkpoint& c) { c.state.time += 0.001; }),
+                  {"state.time", "is not the time of step 8"});
+}
+
+TEST_F(ForgedResume, AFrameThisRunDoesNotWriteIsRefused) {
+  expect_contains(resume_forged([](Checkpoint& c) {
+                    c.series.push_back({0.09, "frame_000009.vtu"});
+                  }),
+                  {"series entry frame_000009.vtu is not a frame this run writes"});
 }
 
 TEST_F(Resume, RefusesACheckpointWrittenWithoutTheAdaptiveModel) {
