@@ -12,14 +12,16 @@
 PYBIND11_MODULE(_tensormass, m) {
   m.doc() = "tensormass: adaptive Tensor-Mass soft-tissue simulation (compiled core)";
   m.attr("__version__") = tensormass::kVersion;
-  // Input errors (file, line, key) are Python ValueErrors; numerical
-  // failures get their own type, a RuntimeError.
+  // Input errors (file, line, key) are Python ValueErrors, failed writes
+  // OSErrors; numerical failures get their own type, a RuntimeError.
   pybind11::register_exception<tensormass::NumericalError>(m, "NumericalError", PyExc_RuntimeError);
   pybind11::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const tensormass::InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const tensormass::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
     }
   });
   tensormass::python::bind_kernels(m);

@@ -23,7 +23,7 @@ Under ``mpirun -n N python script.py`` with ``solver.backend: petsc`` every
 rank runs the script and the run is shared among the ranks (each holds the
 whole state; rank 0 writes the files; ``tm.mpi_rank()``, ``tm.mpi_size()``).
 
-Bad input raises ValueError; a numerical failure raises tensormass.NumericalError.
+Bad input raises ValueError; a numerical failure raises tensormass.NumericalError; a failed write, OSError.
 See docs/python.md.
 """
 import os as _os

@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
     return code;
   } catch (const tensormass::NumericalError& error) {
     return parallel::end_after_error(std::string("tensormass: numerical failure: ") + error.what(), 3);
+  } catch (const tensormass::OutputError& error) {
+    return parallel::end_after_error(std::string("tensormass: output failure: ") + error.what(), 4);
   } catch (const std::exception& error) {
     return parallel::end_after_error(std::string("tensormass: error: ") + error.what(), 2);
   }

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "tensormass/common/errors.hpp"
+
 namespace tensormass::io {
 namespace {
 
@@ -36,13 +38,14 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
   const std::string temporary = temporary_name(path);
   errno = 0;
   std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-  if (!stream) throw std::runtime_error("cannot write " + path + system_reason());
+  // A path that cannot be created is a bad argument; a write that fails after it, an output failure.
+  if (!stream) throw InputError("cannot write " + path + system_reason());
   try {
     write(stream);
     stream.flush();
-    if (!stream) throw std::runtime_error("cannot write " + path + ": write failed (disk full?)");
+    if (!stream) throw OutputError("cannot write " + path + ": write failed (disk full?)");
     stream.close();
-    if (!stream) throw std::runtime_error("cannot write " + path + ": closing failed");
+    if (!stream) throw OutputError("cannot write " + path + ": closing failed");
   } catch (...) {
     stream.close();
     std::remove(temporary.c_str());
@@ -52,12 +55,12 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
   if (durable && !sync_path(temporary, O_RDONLY)) {
     const std::string reason = system_reason();
     std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write " + path + ": fsync failed" + reason);
+    throw OutputError("cannot write " + path + ": fsync failed" + reason);
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     const std::string reason = system_reason();
     std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write " + path + reason);
+    throw OutputError("cannot write " + path + reason);
   }
   if (durable) sync_path(directory_of(path), O_RDONLY | O_DIRECTORY);  // the rename itself
 }

@@ -21,6 +21,7 @@
 #include "simulation/state_frames.hpp"
 #include "simulation/summary_json.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/io/output_directory.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
@@ -66,6 +67,7 @@ struct Simulation::Impl {
   std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
   bool step();
   [[noreturn]] void fail(const NumericalError& failure);
+  [[noreturn]] void fail_output(const OutputError& failure);
   void finish_run();
   void close_report(const State& end, const std::string& failure);
   void share_among_ranks();
@@ -136,7 +138,8 @@ struct Simulation::Impl {
   std::unique_ptr<Adaptivity> adaptivity;
   std::vector<GroupTrack> tracks;
   std::string checkpoint_path;
-  Checkpoint fingerprints;  // this run's; a checkpoint written starts from them
+  std::unique_ptr<io::OutputDirectoryLock> output_lock;  // rank 0's, from before the checkpoint is read to the end
+  Checkpoint fingerprints;                               // this run's; a checkpoint written starts from them
   State state, last_good;
   std::vector<io::SeriesEntry> series;
   detail::Progress progress;
@@ -183,6 +186,7 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   // The scene's mesh, before any refinement.
   fingerprints.mesh_fingerprint = holds_part() ? start.fingerprint : mesh_fingerprint(disc->mesh);
   fingerprints.scene_fingerprint = scene_fingerprint(scene);
+  if (parallel::world_rank() == 0) output_lock = std::make_unique<io::OutputDirectoryLock>(scene.output.directory);
   std::optional<Checkpoint> checkpoint;
   if (options.resume) checkpoint = detail::matching_checkpoint(checkpoint_path, scene, fingerprints);
   if (checkpoint && refinement) replay_refinement(*checkpoint);
@@ -494,8 +498,14 @@ bool Simulation::Impl::step() {
     disc->stepper().finish(state);
   } catch (const NumericalError& failure) {
     fail(failure);
+  } catch (const OutputError& failure) {
+    fail_output(failure);
   }
-  finish_run();
+  try {
+    finish_run();
+  } catch (const OutputError& failure) {
+    fail_output(failure);
+  }
   return stepped;
 }
 
@@ -508,6 +518,22 @@ void Simulation::Impl::fail(const NumericalError& failure) {
   close_report(last_good, failure.what());
   throw NumericalError(std::string(failure.what()) + "; last good state (step " + std::to_string(last_good.step) +
                        ") written to " + output_path(file));
+}
+
+/// A failed write: the run stops, and summary.json says why when it can
+/// be written (on one process: over MPI ranks every rank ends at once).
+void Simulation::Impl::fail_output(const OutputError& failure) {
+  done = true;
+  progress.finish();
+  if (parallel::world_size() == 1) {
+    try {
+      close_report(last_good, std::string("output failure: ") + failure.what());
+    } catch (const std::exception&) {  // the disk is still full: the error is reported all the same
+    }
+  }
+  output_lock.reset();
+  throw OutputError(std::string(failure.what()) + "; the files written before it are whole (output " +
+                    scene.output.directory + ")");
 }
 
 /// final.vtu, series.pvd, the tracks and summary.json.
@@ -544,6 +570,7 @@ void Simulation::Impl::close_report(const State& end, const std::string& failure
   report.peak_memory_mib_by_phase.emplace_back("end", report.peak_memory_mib);
   report.wall_seconds = detail::seconds_since(start);
   if (writes_files()) detail::write_summary(output_path("summary.json"), scene, disc->model, report, failure);
+  output_lock.reset();  // the run has written everything: another may take the directory
 }
 
 namespace {

@@ -1,6 +1,10 @@
-// `tensormass run` end to end through the binary: outputs, exit codes 0, 2
-// and 3, nothing written on bad input, last_good.vtu on a numerical failure.
+// `tensormass run` end to end through the binary: outputs, exit codes 0, 2,
+// 3 and 4, nothing written on bad input, last_good.vtu on a numerical
+// failure, one run per output directory, no temporaries left behind.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -131,6 +135,51 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"UnknownGroup",
                                "  type: static\nprescribed: [{region: nowhere, displacement: [0, 1]}]\n", "nowhere"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+TEST_F(RunCommand, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheHolder) {
+  fs::create_directories(out());
+  const int fd = ::open((out() / ".tensormass.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);  // this process plays the running run
+  ASSERT_EQ(::write(fd, "4242\n", 5), 5);
+  const Result second = run("run " + write_scene(kStatic).string());
+  ::close(fd);
+  EXPECT_EQ(second.exit_code, 2) << second.output;
+  EXPECT_NE(second.output.find("output directory " + out().string() + " is in use by another run (process 4242)"),
+            std::string::npos)
+      << second.output;
+  EXPECT_FALSE(fs::exists(out() / "summary.json"));
+  EXPECT_EQ(run("run --quiet " + write_scene(kStatic).string()).exit_code, 0);  // released: the next run goes
+}
+
+TEST_F(RunCommand, ATemporaryOfAKilledRunIsRemovedByTheNextRun) {
+  fs::create_directories(out());
+  std::ofstream(out() / "frame_000002.vtu.tmp-99999") << "<VTKFile";
+  const Result result = run("run --quiet " + write_scene(kStatic).string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const auto& entry : fs::directory_iterator(out()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+TEST_F(RunCommand, AFailedWriteIsExitFourWithAFailedSummaryAndNoPartialFile) {
+  // A file-size limit makes every write past 8 KiB fail (EFBIG, SIGXFSZ
+  // ignored) as a full disk would: the frames of this beam (14 KB) are larger,
+  // its summary.json (2 KB) is not.
+  const Result result = test_support::shell("trap '' XFSZ; ulimit -f 8; exec '" TENSORMASS_BINARY "' run --quiet " +
+                                            write_scene(kStatic).string());
+  EXPECT_EQ(result.exit_code, 4) << result.output;
+  EXPECT_NE(result.output.find("tensormass: output failure: cannot write " + (out() / "frame_000002.vtu").string()),
+            std::string::npos)
+      << result.output;
+  const auto summary = nlohmann::json::parse(read_file(out() / "summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_NE(summary["error"].get<std::string>().find("frame_000002.vtu"), std::string::npos);
+  for (const auto& entry : fs::directory_iterator(out())) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+    EXPECT_NE(name, "frame_000002.vtu");
+  }
+}
 
 TEST_F(RunCommand, MissingSceneIsExitTwo) {
   const Result result = run("run " + dir_.file("absent.yaml"));
