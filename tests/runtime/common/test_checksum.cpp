@@ -1,12 +1,12 @@
 // XXH3-64 checksums (common/checksum.hpp): xxHash's published value of the
 // empty input, a piecewise checksum equal to the one-shot one, and every
 // flipped bit of a buffer changing it.
-#include "common/checksum.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
+
+#include "common/checksum.hpp"
 
 namespace tensormass::detail {
 namespace {
