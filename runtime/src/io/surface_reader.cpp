@@ -19,6 +19,7 @@
 #include <unordered_map>
 
 #include "common/input_cursor.hpp"
+#include "common/regular_file.hpp"
 #include "io/gmsh_session.hpp"
 #include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
@@ -589,7 +590,7 @@ TriangleSurface read_surface(const std::string& path) {
   const std::string extension = surface_extension(path);
   if (extension != ".stl" && extension != ".obj" && extension != ".msh")
     throw InputError(path + ": unknown surface format '" + extension + "' (expected .stl, .obj or .msh)");
-  const std::string data = detail::read_whole_file(path, "surface");
+  const std::string data = detail::read_regular_file(path, "surface");
   if (extension != ".msh") return detail::read_surface_data(path, data);
   check_not_empty(path, data);
   SurfaceBuilder builder(path, "element");

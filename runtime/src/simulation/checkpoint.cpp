@@ -9,6 +9,7 @@
 #include <iterator>
 #include <type_traits>
 
+#include "common/regular_file.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 #include "tensormass/kernels/registry.hpp"
@@ -421,9 +422,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open checkpoint " + path);
-  Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  Reader r(detail::read_regular_file(path, "checkpoint"), path);
   if (r.get_string() != kMagic) r.fail("no checkpoint header");
   const auto version = r.get<std::uint64_t>();
   if (version != kVersion)

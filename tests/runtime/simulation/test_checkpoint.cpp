@@ -226,4 +226,16 @@ TEST_F(Resume, RefusesACheckpointWrittenWithoutTheAdaptiveModel) {
 }
 
 }  // namespace
+TEST(Checkpoint, ADirectoryIsRefusedByName) {
+  TempDir dir;
+  const std::string path = dir.file("checkpoint.bin");
+  fs::create_directory(path);
+  try {
+    read_checkpoint(path);
+    ADD_FAILURE() << "a directory was read as a checkpoint";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {path + ": is a directory", "regular file"});
+  }
+}
+
 }  // namespace tensormass
