@@ -1,44 +1,13 @@
 #include "common/input_cursor.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <climits>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail {
-
-std::string read_whole_file(const std::string& path, std::string_view kind) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error))
-    throw InputError(path + ": is a directory, not a " + std::string(kind) + " file");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open " + std::string(kind) + " file (" + std::strerror(errno) + ")");
-  // Sized from the file's length (a stream's buffer doubles: a 36 MB mesh
-  // took 67 MB); a file with no length (a pipe), or one that changed while
-  // read, is read to its end as a stream.
-  std::string data;
-  file.seekg(0, std::ios::end);
-  if (const std::streamoff size = file.tellg(); size > 0) {
-    data.resize(static_cast<std::size_t>(size));
-    file.seekg(0, std::ios::beg);
-    file.read(data.data(), size);
-    data.resize(static_cast<std::size_t>(file.gcount()));
-    if (file.bad()) throw InputError(path + ": read error");
-    if (file.gcount() == size && file.peek() == std::ifstream::traits_type::eof()) return data;
-  }
-  file.clear();
-  file.seekg(static_cast<std::streamoff>(data.size()), std::ios::beg);
-  std::ostringstream rest;
-  rest << file.rdbuf();
-  if (file.bad()) throw InputError(path + ": read error");
-  return data + std::move(rest).str();
-}
 
 namespace {
 

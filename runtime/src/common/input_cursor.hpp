@@ -1,9 +1,8 @@
 /// \file input_cursor.hpp
-/// Internal (not installed): reading input files held in memory.
-///   read_whole_file  a file's bytes, with an InputError naming it on failure;
-///   InputCursor      walks the bytes (text tokens with line numbers, binary
-///                    values with byte offsets) and throws InputError
-///                    "FILE:LINE: what" or "FILE: byte N: what".
+/// Internal (not installed): reading input files held in memory (read by
+/// read_regular_file, common/regular_file.hpp). InputCursor walks the bytes
+/// (text tokens with line numbers, binary values with byte offsets) and
+/// throws InputError "FILE:LINE: what" or "FILE: byte N: what".
 #ifndef TENSORMASS_COMMON_INPUT_CURSOR_HPP
 #define TENSORMASS_COMMON_INPUT_CURSOR_HPP
 
@@ -15,10 +14,6 @@
 #include <utility>
 
 namespace tensormass::detail {
-
-/// The whole content of `path`; `kind` names the file in messages ("mesh",
-/// "surface"). Throws InputError for a directory, a missing file or a read error.
-std::string read_whole_file(const std::string& path, std::string_view kind);
 
 /// `text` in single quotes for messages, at most 40 characters, non-printable ones as '?'.
 std::string quoted(std::string_view text);

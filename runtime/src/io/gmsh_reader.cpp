@@ -72,6 +72,9 @@ std::string supported_list() {
 
 long group_key(int dim, long tag) { return (static_cast<long>(dim) << 32) | (tag & 0xffffffffL); }
 
+/// Gmsh tags of physical groups are ints: a larger one cannot be a group.
+bool is_physical_tag(long tag) { return tag >= -static_cast<long>(INT_MAX) && tag <= INT_MAX; }
+
 class GmshReader {
  public:
   explicit GmshReader(InputCursor& input) : in_(input), builder_(input.path(), "element") {}
@@ -110,6 +113,7 @@ class GmshReader {
   std::map<std::pair<int, long>, std::string> names_;
   std::map<std::pair<int, long>, std::vector<long>> entity_groups_;
   std::vector<long> ours_;
+  std::size_t group_memberships_ = 0;  ///< elements times their groups, over the 4.1 element blocks
 };
 
 Mesh GmshReader::read() {
@@ -204,7 +208,11 @@ void GmshReader::read_entities_ascii() {
       for (int c = 0; c < (dim == 0 ? 3 : 6); ++c) in_.real("an entity bounding box");
       const long physicals = in_.count("physical tags", 2);
       std::vector<long>& groups = entity_groups_[{dim, tag}];
-      for (long p = 0; p < physicals; ++p) groups.push_back(std::abs(in_.integer("a physical tag")));
+      for (long p = 0; p < physicals; ++p) {
+        const long physical = in_.integer("a physical tag");
+        if (!is_physical_tag(physical)) in_.fail("physical tag " + std::to_string(physical) + " is not an int");
+        groups.push_back(std::abs(physical));
+      }
       if (dim == 0) continue;
       const long bounding = in_.count("bounding entities", 2);
       for (long b = 0; b < bounding; ++b) in_.integer("a bounding entity tag");
@@ -324,6 +332,7 @@ void GmshReader::read_elements_22() {
         const long tag = in_.integer("an element tag");
         if (t == 0) physical = tag;
       }
+      if (!is_physical_tag(physical)) in_.fail_at(where, "physical tag " + std::to_string(physical) + " is not an int");
       nodes.resize(static_cast<std::size_t>(type->nodes));
       for (long& node : nodes) node = in_.integer("a node id");
       const long group = group_key(type->dim, physical);
@@ -393,9 +402,19 @@ void GmshReader::read_elements_41() {
     const std::size_t bytes_each = (binary_ ? 8 : 2) * static_cast<std::size_t>(1 + type->nodes);
     const long count =
         binary_ ? binary_size("elements in the block", bytes_each) : in_.count("elements in the block", bytes_each);
+    if (entity_dim < 0 || entity_dim > 3)
+      in_.fail_at(where, "entity dimension " + std::to_string(entity_dim) + " is not 0..3");
     std::vector<long> groups;
     if (const auto found = entity_groups_.find({entity_dim, entity}); found != entity_groups_.end())
       for (long tag : found->second) groups.push_back(group_key(entity_dim, tag));
+    // Each element of the block is stored with every group of its entity:
+    // an entity of many physical tags times a block of many elements would
+    // take memory without bound, so the memberships stay within one per byte.
+    group_memberships_ += groups.size() * static_cast<std::size_t>(count);
+    if (group_memberships_ > in_.data().size())
+      in_.fail_at(where, "the element blocks put elements into " + std::to_string(group_memberships_) +
+                             " physical groups in all, more than the file's " + std::to_string(in_.data().size()) +
+                             " bytes can describe (bad physical tag lists in $Entities?)");
     nodes.resize(static_cast<std::size_t>(type->nodes));
     for (long i = 0; i < count; ++i) {
       const Location element_where = in_.here();

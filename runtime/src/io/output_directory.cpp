@@ -47,8 +47,7 @@ OutputDirectoryLock::OutputDirectoryLock(const std::string& directory) : directo
   if (error) throw InputError("cannot create output directory " + directory + ": " + error.message());
   const std::string path = (fs::path(directory) / kOutputLockFile).string();
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd_ < 0)
-    throw InputError("cannot write into output directory " + directory + ": " + std::strerror(errno));
+  if (fd_ < 0) throw InputError("cannot write into output directory " + directory + ": " + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const std::string pid = holder(fd_);
     ::close(fd_);

@@ -3,13 +3,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <new>
 
 #include "common/input_cursor.hpp"
+#include "common/regular_file.hpp"
 #include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
 
@@ -48,7 +46,11 @@ Mesh read_mesh_data(const std::string& path, std::string data) {
 
 Mesh read_mesh(const std::string& path) {
   check_extension(path, lower_extension(path));
-  return detail::read_mesh_data(path, detail::read_whole_file(path, "mesh"));
+  try {
+    return detail::read_mesh_data(path, detail::read_regular_file(path, "mesh"));
+  } catch (const std::bad_alloc&) {  // a mesh too large for this machine: say which file
+    throw InputError(path + ": not enough memory to read this mesh");
+  }
 }
 
 }  // namespace tensormass

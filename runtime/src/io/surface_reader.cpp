@@ -14,11 +14,13 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <new>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
 
 #include "common/input_cursor.hpp"
+#include "common/regular_file.hpp"
 #include "io/gmsh_session.hpp"
 #include "io/mesh_readers.hpp"
 #include "tensormass/common/errors.hpp"
@@ -589,12 +591,16 @@ TriangleSurface read_surface(const std::string& path) {
   const std::string extension = surface_extension(path);
   if (extension != ".stl" && extension != ".obj" && extension != ".msh")
     throw InputError(path + ": unknown surface format '" + extension + "' (expected .stl, .obj or .msh)");
-  const std::string data = detail::read_whole_file(path, "surface");
-  if (extension != ".msh") return detail::read_surface_data(path, data);
-  check_not_empty(path, data);
-  SurfaceBuilder builder(path, "element");
-  read_msh_with_gmsh(path, builder);
-  return finish(path, builder);
+  try {
+    const std::string data = detail::read_regular_file(path, "surface");
+    if (extension != ".msh") return detail::read_surface_data(path, data);
+    check_not_empty(path, data);
+    SurfaceBuilder builder(path, "element");
+    read_msh_with_gmsh(path, builder);
+    return finish(path, builder);
+  } catch (const std::bad_alloc&) {  // a surface too large for this machine: say which file
+    throw InputError(path + ": not enough memory to read this surface");
+  }
 }
 
 }  // namespace tensormass

@@ -138,9 +138,10 @@ Mesh build_mesh(const InputCursor& in, const Grid& grid) {
   return builder.build([](long key) { return GroupInfo{"region_" + std::to_string(key), -1}; });
 }
 
-/// Checks offsets (leading 0, non-decreasing, ending at the connectivity size).
-void check_offsets(const InputCursor& in, const Grid& grid, Location where) {
-  for (std::size_t c = 0; c + 1 < grid.offsets.size(); ++c)
+/// Checks offsets (leading 0, non-decreasing, ending at the connectivity size)
+/// from cell `first_cell` on (the cells before it were checked already).
+void check_offsets(const InputCursor& in, const Grid& grid, Location where, std::size_t first_cell = 0) {
+  for (std::size_t c = first_cell; c + 1 < grid.offsets.size(); ++c)
     if (grid.offsets[c + 1] < grid.offsets[c] || grid.offsets[c + 1] > static_cast<long>(grid.connectivity.size()))
       in.fail_at(where,
                  "cell offsets are not increasing within the connectivity size (cell " + std::to_string(c) + ")");
@@ -452,7 +453,9 @@ struct XmlElement {
   std::size_t begin = 0;  ///< offset of '<'
   std::size_t content_begin = 0;
   std::size_t content_end = 0;
+  long line = 1;  ///< line of '<'
   int parent = -1;
+  std::vector<int> children;  ///< indices into XmlDocument::elements, in file order
 
   std::string attribute(std::string_view key, std::string fallback = {}) const {
     for (const auto& [k, v] : attributes)
@@ -493,11 +496,13 @@ class XmlDocument {
   std::size_t appended_begin = std::string::npos;  ///< first byte after '_'
   std::string appended_encoding = "raw";
 
+  /// The children of `parent` (nullptr: the top level) named `name`; only
+  /// the parent's own children are looked at, so reading a file stays linear.
   std::vector<const XmlElement*> children(const XmlElement* parent, std::string_view name) const {
     std::vector<const XmlElement*> result;
-    const int index = parent ? static_cast<int>(parent - elements.data()) : -1;
-    for (const XmlElement& e : elements)
-      if (e.parent == index && e.name == name) result.push_back(&e);
+    for (const int index : parent ? parent->children : top_level_)
+      if (elements[static_cast<std::size_t>(index)].name == name)
+        result.push_back(&elements[static_cast<std::size_t>(index)]);
     return result;
   }
   const XmlElement* child(const XmlElement* parent, std::string_view name) const {
@@ -518,8 +523,18 @@ class XmlDocument {
     return found + marker.size();
   }
 
+  /// Line of `offset`, counted on from the previous call (offsets only grow).
+  long line_of(std::size_t offset) {
+    for (; counted_to_ < offset; ++counted_to_)
+      if (text_[counted_to_] == '\n') ++counted_line_;
+    return counted_line_;
+  }
+
   const InputCursor& in_;
   std::string_view text_;
+  std::vector<int> top_level_;
+  std::size_t counted_to_ = 0;
+  long counted_line_ = 1;
 };
 
 void XmlDocument::parse() {
@@ -544,6 +559,7 @@ void XmlDocument::parse() {
 std::size_t XmlDocument::start_tag(std::size_t lt, std::vector<int>& open) {
   XmlElement element;
   element.begin = lt;
+  element.line = line_of(lt);
   element.parent = open.empty() ? -1 : open.back();
   std::size_t i = lt + 1;
   auto is_name_char = [](char c) {
@@ -575,6 +591,8 @@ std::size_t XmlDocument::start_tag(std::size_t lt, std::vector<int>& open) {
   const bool self_closing = text_[i] == '/';
   i += self_closing ? 2 : 1;
   element.content_begin = element.content_end = i;
+  const int index = static_cast<int>(elements.size());
+  (element.parent < 0 ? top_level_ : elements[static_cast<std::size_t>(element.parent)].children).push_back(index);
   elements.push_back(std::move(element));
   if (elements.back().name == "AppendedData" && !self_closing) {
     appended_encoding = elements.back().attribute("encoding", "raw");
@@ -673,7 +691,7 @@ double load_value(const unsigned char* bytes, std::string_view type, std::endian
 
 class VtuReader {
  public:
-  explicit VtuReader(InputCursor& in) : in_(in), xml_(in) {}
+  explicit VtuReader(InputCursor& in) : in_(in), xml_(in), data_bytes_left_(in.data().size()) {}
   Mesh read();
 
  private:
@@ -683,15 +701,16 @@ class VtuReader {
     std::string type;
     std::size_t size;
   };
-  Location where(const XmlElement& e) const { return {in_.line_at(e.begin), false}; }
+  Location where(const XmlElement& e) const { return {e.line, false}; }
   [[noreturn]] void fail(const XmlElement& e, const std::string& message) const { in_.fail_at(where(e), message); }
   void read_piece(const XmlElement& piece);
   long count_attribute(const XmlElement& e, std::string_view key, std::size_t min_bytes_each) const;
   std::vector<double> read_array(const XmlElement& e, long expected, long components);
-  std::vector<double> ascii_values(const Array& array) const;
-  std::vector<double> inline_values(const Array& array) const;
-  std::vector<double> appended_values(const Array& array) const;
+  std::vector<double> ascii_values(const Array& array);
+  std::vector<double> inline_values(const Array& array);
+  std::vector<double> appended_values(const Array& array);
   std::vector<double> convert(const Array& array, std::span<const unsigned char> bytes) const;
+  void take_data_bytes(const Array& array, std::size_t bytes, Location at);
   std::size_t header_value(const Array& array, std::span<const unsigned char> bytes, Location at) const;
   const XmlElement* data_array(const XmlElement* parent, std::string_view name) const;
 
@@ -701,6 +720,11 @@ class VtuReader {
   std::size_t header_size_ = 4;
   Grid grid_;
   bool every_piece_has_regions_ = true;
+  /// What the arrays may still decode, in bytes: each byte of the file holds
+  /// at most one byte of array data (or one ASCII value), so arrays that
+  /// share appended data, or declare more than they hold, are refused
+  /// before their memory is taken.
+  std::size_t data_bytes_left_;
 };
 
 Mesh VtuReader::read() {
@@ -766,11 +790,12 @@ void VtuReader::read_piece(const XmlElement& piece) {
                                               where(*connectivity), "connectivity");
   const std::vector<long> cell_types = to_integers(in_, read_array(*types, cells, 1), where(*types), "types");
   const long first = grid_.offsets.back();
+  const std::size_t first_cell = grid_.offsets.size() - 1;
   for (long end : ends) grid_.offsets.push_back(first + end);
   for (long node : nodes) grid_.connectivity.push_back(node + base);
   grid_.types.insert(grid_.types.end(), cell_types.begin(), cell_types.end());
   grid_.cell_where.insert(grid_.cell_where.end(), static_cast<std::size_t>(cells), where(*connectivity));
-  check_offsets(in_, grid_, where(*offsets));
+  check_offsets(in_, grid_, where(*offsets), first_cell);
 
   std::vector<long> regions;
   int priority = 99;
@@ -804,7 +829,15 @@ std::vector<double> VtuReader::read_array(const XmlElement& e, long expected, lo
   return values;
 }
 
-std::vector<double> VtuReader::ascii_values(const Array& array) const {
+void VtuReader::take_data_bytes(const Array& array, std::size_t bytes, Location at) {
+  if (bytes > data_bytes_left_)
+    in_.fail_at(at, "DataArray '" + array.name + "' brings the arrays to more data in total than the file's " +
+                        std::to_string(in_.data().size()) +
+                        " bytes hold (arrays sharing appended data, or a bad size)");
+  data_bytes_left_ -= bytes;
+}
+
+std::vector<double> VtuReader::ascii_values(const Array& array) {
   std::vector<double> values;
   const std::string_view text =
       in_.data().substr(array.element->content_begin, array.element->content_end - array.element->content_begin);
@@ -821,6 +854,7 @@ std::vector<double> VtuReader::ascii_values(const Array& array) const {
                       "' in DataArray '" + array.name + "'");
     values.push_back(value);
   }
+  take_data_bytes(array, values.size(), where(*array.element));
   return values;
 }
 
@@ -846,7 +880,7 @@ std::vector<double> VtuReader::convert(const Array& array, std::span<const unsig
   return values;
 }
 
-std::vector<double> VtuReader::inline_values(const Array& array) const {
+std::vector<double> VtuReader::inline_values(const Array& array) {
   std::string text;
   for (std::size_t i = array.element->content_begin; i < array.element->content_end; ++i)
     if (!std::isspace(static_cast<unsigned char>(in_.data()[i]))) text += in_.data()[i];
@@ -858,6 +892,7 @@ std::vector<double> VtuReader::inline_values(const Array& array) const {
       header.size() < header_size_)
     fail(*array.element, bad);
   const std::size_t bytes = header_value(array, header, where(*array.element));
+  take_data_bytes(array, bytes, where(*array.element));
   if (text[header_chars - 1] == '=') {  // header and data encoded separately (VTK)
     if (base64_length(bytes) > text.size() - header_chars)
       fail(*array.element, bad + " (" + std::to_string(bytes) + " bytes declared)");
@@ -876,7 +911,7 @@ std::vector<double> VtuReader::inline_values(const Array& array) const {
   return convert(array, data);
 }
 
-std::vector<double> VtuReader::appended_values(const Array& array) const {
+std::vector<double> VtuReader::appended_values(const Array& array) {
   if (xml_.appended_begin == std::string::npos)
     fail(*array.element, "DataArray '" + array.name + "' is appended but the file has no <AppendedData>");
   long offset = 0;
@@ -893,6 +928,7 @@ std::vector<double> VtuReader::appended_values(const Array& array) const {
     if (size > data.size() - start - header_size_)
       in_.fail_at(at, "appended array '" + array.name + "' declares " + std::to_string(size) + " bytes but only " +
                           std::to_string(data.size() - start - header_size_) + " are left");
+    take_data_bytes(array, size, at);
     return convert(array, {bytes + header_size_, size});
   }
   if (xml_.appended_encoding != "base64")
@@ -906,6 +942,7 @@ std::vector<double> VtuReader::appended_values(const Array& array) const {
       header.size() < header_size_)
     in_.fail_at(at, bad);
   const std::size_t size = header_value(array, header, at);
+  take_data_bytes(array, size, at);
   const bool separate = text[header_chars - 1] == '=';
   const std::size_t first = separate ? header_chars : 0;
   const std::size_t length = separate ? base64_length(size) : base64_length(header_size_ + size);

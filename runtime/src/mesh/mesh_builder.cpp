@@ -44,6 +44,8 @@ const Shape* shape_of(const tm_element_info* element) {
 // ---------------------------------------------------------------- builder
 
 /// File node id -> raw node index: a dense table when ids are compact, a hash map otherwise.
+/// Ids may be any 64-bit values: differences are taken as unsigned, where
+/// they cannot overflow.
 class MeshBuilder::NodeIndex {
  public:
   /// Indexes `ids`; throws at the second occurrence of a duplicate id.
@@ -51,11 +53,12 @@ class MeshBuilder::NodeIndex {
     if (ids.empty()) throw InputError(source + ": the file has no nodes");
     const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
     min_id_ = *lo;
-    const unsigned long long span = static_cast<unsigned long long>(*hi - *lo) + 1;
-    dense_mode_ = span <= 4 * ids.size() + 1024;
-    if (dense_mode_) dense_.assign(span, -1);
+    const unsigned long long span_minus_one = offset_of(*hi);
+    dense_mode_ = span_minus_one < 4 * static_cast<unsigned long long>(ids.size()) + 1024;
+    if (dense_mode_) dense_.assign(static_cast<std::size_t>(span_minus_one) + 1, -1);
+    else sparse_.reserve(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      int& slot = dense_mode_ ? dense_[static_cast<std::size_t>(ids[i] - min_id_)]
+      int& slot = dense_mode_ ? dense_[static_cast<std::size_t>(offset_of(ids[i]))]
                               : sparse_.try_emplace(ids[i], -1).first->second;
       if (slot >= 0)
         throw InputError(format_location(source, where[i]) + ": duplicate node id " + std::to_string(ids[i]) +
@@ -70,11 +73,17 @@ class MeshBuilder::NodeIndex {
       const auto found = sparse_.find(id);
       return found == sparse_.end() ? -1 : found->second;
     }
-    const long k = id - min_id_;
-    return k >= 0 && k < static_cast<long>(dense_.size()) ? dense_[static_cast<std::size_t>(k)] : -1;
+    if (id < min_id_) return -1;
+    const unsigned long long k = offset_of(id);
+    return k < dense_.size() ? dense_[static_cast<std::size_t>(k)] : -1;
   }
 
  private:
+  /// `id - min_id_` for id >= min_id_, exact for any two 64-bit ids.
+  unsigned long long offset_of(long id) const {
+    return static_cast<unsigned long long>(id) - static_cast<unsigned long long>(min_id_);
+  }
+
   long min_id_ = 0;
   bool dense_mode_ = true;
   std::vector<int> dense_;

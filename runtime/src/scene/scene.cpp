@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
+#include <new>
 #include <set>
 
 #include "scene/yaml_reader.hpp"
@@ -587,6 +588,8 @@ Scene scene_from(const std::string& path, const std::vector<std::string>& overri
     return read_scene(top, path);
   } catch (const YAML::Exception& e) {  // defensive: yaml-cpp errors not caught above
     throw InputError(path + ": " + e.what());
+  } catch (const std::bad_alloc&) {  // a scene too large for this machine: say which file
+    throw InputError(path + ": not enough memory to read this scene");
   }
 }
 

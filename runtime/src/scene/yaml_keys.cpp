@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "scene/yaml_limits.hpp"
 #include "scene/yaml_reader.hpp"
 #include "tensormass/common/errors.hpp"
 
@@ -57,6 +58,7 @@ Assignment parse_assignment(const std::string& text) {
   } catch (const YAML::Exception& e) {
     fail_override(out.typed, "cannot read the value '" + value + "' as YAML: " + e.msg);
   }
+  check_yaml_limits(out.value, "--set " + out.typed, value.size());
   return out;
 }
 

@@ -1,13 +1,14 @@
 #include "scene/yaml_reader.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
+#include "common/regular_file.hpp"
+#include "scene/yaml_limits.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::scene_yaml {
@@ -99,35 +100,36 @@ std::string Source::where(const Path& path, const YAML::Node& node) const {
 
 namespace {
 
-/// Parses `in`; `name` labels messages.
-YAML::Node parse_yaml(std::istream& in, const std::string& name) {
+/// Parses `text`; `name` labels messages. The document is refused when it
+/// passes the bounds of yaml_limits.hpp.
+YAML::Node parse_yaml(const std::string& text, const std::string& name) {
+  if (text.size() > kMaxYamlBytes)
+    throw InputError(name + ": the scene is " + std::to_string(text.size()) + " bytes, more than the " +
+                     std::to_string(kMaxYamlBytes) + " a scene may have");
   YAML::Node root;
   try {
-    root = YAML::Load(in);
+    root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's own guard, far deeper than kMaxYamlDepth
+    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
+    throw InputError(name + (line > 0 ? ":" + std::to_string(line) : std::string()) +
+                     ": maps and lists nest deeper than " + std::to_string(kMaxYamlDepth) + " levels");
   } catch (const YAML::Exception& e) {
     const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
     throw InputError(name + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": YAML syntax error: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull())
     throw InputError(name + ":1: the scene is empty (expected keys mesh, materials, solver, ...)");
+  check_yaml_limits(root, name, text.size());
   return root;
 }
 
 }  // namespace
 
 YAML::Node read_yaml_file(const std::string& file) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (fs::is_directory(file, error)) throw InputError(file + ": is a directory, not a scene file");
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open the scene file (missing or unreadable)");
-  return parse_yaml(in, file);
+  return parse_yaml(detail::read_regular_file(file, "scene", kMaxYamlBytes), file);
 }
 
-YAML::Node read_yaml_text(const std::string& text, const std::string& name) {
-  std::istringstream in(text);
-  return parse_yaml(in, name);
-}
+YAML::Node read_yaml_text(const std::string& text, const std::string& name) { return parse_yaml(text, name); }
 
 // --- Value -----------------------------------------------------------------
 

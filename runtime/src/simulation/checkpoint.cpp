@@ -7,13 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <type_traits>
 
 #include "common/checksum.hpp"
+#include "common/regular_file.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/atomic_file.hpp"
 #include "tensormass/kernels/registry.hpp"
@@ -305,23 +303,6 @@ SavedLaws get_laws(Reader& r) {
   return l;
 }
 
-/// The bytes of the checkpoint file at `path`: a regular file (a FIFO,
-/// device or directory is refused before it is opened for reading).
-std::string checkpoint_bytes(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (error || !fs::is_regular_file(status))
-    throw InputError("checkpoint " + path + " is not a regular file" + (error ? ": " + error.message() : ""));
-  std::ifstream in(path, std::ios::binary);
-  const std::uintmax_t size = fs::file_size(path, error);
-  if (!in || error) throw InputError("cannot open checkpoint " + path);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(size));
-  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError("cannot read checkpoint " + path);
-  return bytes;
-}
-
 bool finite(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
 }
@@ -511,7 +492,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  Reader r(checkpoint_bytes(path), path);
+  Reader r(detail::read_regular_file(path, "checkpoint"), path);
   if (r.get_string() != kMagic) r.fail("no checkpoint header");
   const auto version = r.get<std::uint64_t>();
   if (version != kVersion)

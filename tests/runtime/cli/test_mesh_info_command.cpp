@@ -3,6 +3,7 @@
 // elements are listed with a warning (exit 0), bad input exits 2 with one
 // line on stderr naming the file.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <string>
@@ -99,6 +100,26 @@ TEST(MeshInfo, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(line_count(missing.error), 1) << missing.error;
   EXPECT_NE(missing.error.find("absent.vtu"), std::string::npos);
+}
+
+// The extreme node ids of a hostile file are read (they crashed the index),
+// a FIFO is refused at once (it blocked the open): exit 0 and 2, never a signal or a hang.
+TEST(MeshInfo, HostileFilesEndWithAnExitCode) {
+  test_support::TempDir dir;
+  const std::string extreme = dir.write("extreme.msh",
+                                        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n-9223372036854775808 0 0 0\n"
+                                        "9223372036854775807 1 0 0\n2 0 1 0\n3 0 0 1\n$EndNodes\n$Elements\n1\n"
+                                        "1 4 2 1 1 -9223372036854775808 9223372036854775807 2 3\n$EndElements\n");
+  const Result read = mesh_info(quoted(extreme));
+  EXPECT_EQ(read.exit_code, 0) << read.error;
+  EXPECT_NE(read.output.find("cells           1"), std::string::npos) << read.output;
+
+  ASSERT_EQ(::mkfifo(dir.file("pipe.msh").c_str(), 0600), 0);
+  const Result fifo =
+      test_support::shell_apart("timeout 20 '" TENSORMASS_BINARY "' mesh-info " + quoted(dir.file("pipe.msh")));
+  EXPECT_EQ(fifo.exit_code, 2);
+  EXPECT_EQ(line_count(fifo.error), 1) << fifo.error;
+  EXPECT_NE(fifo.error.find("pipe.msh: is a FIFO"), std::string::npos) << fifo.error;
 }
 
 TEST(MeshInfo, UsageErrors) {

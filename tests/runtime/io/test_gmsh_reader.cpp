@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -281,6 +282,53 @@ TEST(GmshReader, BigEndianBinaryMsh22) {
   ASSERT_NE(mesh.group("5"), nullptr);
   const std::vector<double> cell = tensormass::cell_coordinates(mesh, mesh.blocks[0], 0);
   EXPECT_NEAR(tensormass::cell_volume(*mesh.blocks[0].element, 3, cell), 8.0 / 6.0, 1e-14);
+}
+
+// Node ids are any 64-bit values: the span of the smallest and largest
+// overflows a signed difference, so the index takes the ids as they are.
+TEST(GmshReader, NodeIdsOfAnySixtyFourBitValueAreRead) {
+  const long lowest = std::numeric_limits<long>::min();
+  const long highest = std::numeric_limits<long>::max();
+  test_support::TempDir dir;
+  const std::string path = dir.write(
+      "extreme_ids.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n" + std::to_string(lowest) + " 0 0 0\n" +
+                             std::to_string(highest) + " 1 0 0\n2 0 1 0\n3 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 " +
+                             std::to_string(lowest) + " " + std::to_string(highest) + " 2 3\n$EndElements\n");
+  const Mesh mesh = tensormass::read_mesh(path);
+  EXPECT_EQ(mesh.node_source_ids, (std::vector<long>{lowest, highest, 2, 3}));
+  EXPECT_EQ(mesh.blocks[0].connectivity, (std::vector<int>{0, 1, 2, 3}));
+}
+
+// Compact negative ids (a dense table) and an element naming the largest id,
+// which the file does not define: refused, not looked up past the table.
+TEST(GmshReader, AnUndefinedNodeIdFarFromTheOthersIsRefused) {
+  test_support::TempDir dir;
+  const std::string path =
+      dir.write("far_id.msh",
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n-4 0 0 0\n-3 1 0 0\n-2 0 1 0\n-1 0 0 1\n"
+                "$EndNodes\n$Elements\n1\n1 4 2 1 1 -4 -3 -2 " +
+                    std::to_string(std::numeric_limits<long>::max()) + "\n$EndElements\n");
+  meshtest::expect_input_error(path, {"far_id.msh:13", "refers to node 9223372036854775807", "does not define"});
+}
+
+// One entity with 2,000 physical tags and a block of 2,000 points in it: each
+// point would be stored with all 2,000 groups (4 million entries from a 20 kB
+// file), so the memberships are bounded by the file's size.
+TEST(GmshReader, GroupMembershipsBeyondTheFileSizeAreRefused) {
+  std::string tags;
+  for (int t = 1; t <= 2000; ++t) tags += " " + std::to_string(t);
+  std::string points;
+  for (int p = 1; p <= 2000; ++p) points += std::to_string(p) + " 1\n";
+  test_support::TempDir dir;
+  const std::string path = dir.write("memberships.msh",
+                                     "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                                     "$Entities\n1 0 0 0\n1 0 0 0 2000" +
+                                         tags +
+                                         "\n$EndEntities\n"
+                                         "$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n"
+                                         "$Elements\n1 2000 1 2000\n0 1 15 2000\n" +
+                                         points + "$EndElements\n");
+  meshtest::expect_input_error(path, {"memberships.msh:", "physical groups in all"});
 }
 
 }  // namespace

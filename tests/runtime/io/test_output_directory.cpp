@@ -3,8 +3,6 @@
 // released one can be taken again, taking it removes the temporaries of
 // dead runs and nothing else, and a path that cannot be a directory is
 // refused.
-#include "tensormass/io/output_directory.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,6 +11,7 @@
 
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/io/output_directory.hpp"
 
 namespace tensormass::io {
 namespace {
@@ -31,8 +30,8 @@ TEST(OutputDirectoryLock, CreatesTheDirectoryAndRefusesASecondHolder) {
     OutputDirectoryLock second(out);
     ADD_FAILURE() << "two locks on one directory";
   } catch (const InputError& e) {
-    expect_contains(e.what(), {"output directory " + out, "in use by another run",
-                               "process " + std::to_string(::getpid())});
+    expect_contains(e.what(),
+                    {"output directory " + out, "in use by another run", "process " + std::to_string(::getpid())});
   }
   first.release();
   EXPECT_NO_THROW(OutputDirectoryLock again(out));
@@ -41,8 +40,8 @@ TEST(OutputDirectoryLock, CreatesTheDirectoryAndRefusesASecondHolder) {
 TEST(OutputDirectoryLock, RemovesTheTemporariesOfDeadRunsOnly) {
   TempDir dir;
   fs::create_directory(dir.path() / "out");
-  for (const char* name : {"frame_000002.vtu.tmp-4242", "checkpoint.bin.tmp-17", "frame_000001.vtu", "notes.tmp",
-                           "series.pvd.tmp-x1"})
+  for (const char* name :
+       {"frame_000002.vtu.tmp-4242", "checkpoint.bin.tmp-17", "frame_000001.vtu", "notes.tmp", "series.pvd.tmp-x1"})
     std::ofstream(dir.path() / "out" / name) << "x";
   const OutputDirectoryLock lock(dir.file("out"));
   EXPECT_EQ(lock.removed_temporaries(), 2);

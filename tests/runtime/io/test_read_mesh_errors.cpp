@@ -3,6 +3,10 @@
 // what is wrong; then truncated and corrupted copies of every committed
 // mesh, which must be read or refused with InputError, never crash or hang.
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -406,6 +410,34 @@ TEST(ReadMeshRobustness, CorruptedCopiesAreReadOrRefusedCleanly) {
       read_or_refuse(dir.write("bad_" + name, copy));
     }
   }
+}
+
+// Only regular files are read: a FIFO would block the open, a device
+// (/dev/zero through a link) never ends, a socket cannot be read.
+TEST(ReadMeshErrors, FifoIsRefusedWithoutBlocking) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo(dir.file("pipe.msh").c_str(), 0600), 0);
+  expect_input_error(dir.file("pipe.msh"), {"pipe.msh", "FIFO", "regular file"});
+}
+
+TEST(ReadMeshErrors, DeviceThroughALinkIsRefused) {
+  TempDir dir;
+  std::filesystem::create_symlink("/dev/zero", dir.file("zero.vtk"));
+  expect_input_error(dir.file("zero.vtk"), {"zero.vtk", "character device", "regular file"});
+}
+
+TEST(ReadMeshErrors, SocketIsRefused) {
+  TempDir dir;
+  const std::string path = dir.file("socket.vtu");
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  ASSERT_LT(path.size(), sizeof(address.sun_path));
+  std::memcpy(address.sun_path, path.c_str(), path.size() + 1);
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)), 0);
+  expect_input_error(path, {"socket.vtu", "socket", "regular file"});
+  ::close(fd);
 }
 
 }  // namespace

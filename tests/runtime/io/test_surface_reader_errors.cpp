@@ -1,7 +1,9 @@
 // Bad surface files: each refused with InputError naming the file and the
 // line (or byte) and what is wrong.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <string>
 
 #include "support/test_surfaces.hpp"
@@ -116,6 +118,16 @@ TEST(SurfaceBadInput, GmshErrors) {
                               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n"
                               "$EndNodes\n$Elements\n1\n7 3 2 0 1 1 2 3 4\n$EndElements\n"),
                     {"quads.msh", "element 7", "type 3"});
+}
+
+TEST(SurfaceBadInput, OnlyRegularFilesAreRead) {
+  TempDir dir;
+  ASSERT_EQ(::mkfifo(dir.file("pipe.stl").c_str(), 0600), 0);
+  expect_read_error(dir.file("pipe.stl"), {"pipe.stl", "FIFO", "regular file"});
+  std::filesystem::create_symlink("/dev/zero", dir.file("zero.obj"));
+  expect_read_error(dir.file("zero.obj"), {"zero.obj", "character device"});
+  std::filesystem::create_directory(dir.file("folder.msh"));
+  expect_read_error(dir.file("folder.msh"), {"folder.msh", "directory"});
 }
 
 }  // namespace

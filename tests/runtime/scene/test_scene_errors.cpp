@@ -1,5 +1,9 @@
 // Every validation error class: the message names the file, the line and the key.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
 
 #include "scene_test_support.hpp"
 
@@ -247,6 +251,81 @@ TEST(SceneFile, DirectoryIsAnInputError) {
   TempDir dir;
   const std::string message = load_error(dir.path().string());
   EXPECT_NE(message.find("directory"), std::string::npos) << message;
+}
+
+/// Nine levels of ten aliases each under `fixed:`, anchored on line 2: 10^9
+/// names once expanded, from a 400-byte file.
+std::string alias_bomb() {
+  std::string levels = "&a0 [x, x, x, x, x, x, x, x, x, x]";
+  for (int level = 1; level < 9; ++level) {
+    std::string previous = "*a" + std::to_string(level - 1);
+    std::string items = previous;
+    for (int k = 1; k < 10; ++k) items += ", " + previous;
+    levels += ",\n  &a" + std::to_string(level) + " [" + items + "]";
+  }
+  return "mesh: beam.msh\nfixed: [\n  " + levels + "]\n";
+}
+
+TEST(SceneLimits, AliasBombIsRefusedAtOnce) {
+  TempDir dir;
+  const std::string path = dir.write("bomb.yaml", alias_bomb());
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = load_error(path);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(message.find(path + ":"), std::string::npos) << message;
+  EXPECT_NE(message.find("aliases are expanded"), std::string::npos) << message;
+  EXPECT_LT(seconds, 10.0);
+}
+
+TEST(SceneLimits, AliasesWithinTheLimitAreRead) {
+  TempDir dir;
+  const std::string path =
+      dir.write("aliases.yaml", replaced(kBaseScene, "fixed: [clamp]", "fixed: &clamped [clamp]\nprescribed: []"));
+  EXPECT_NO_THROW(tensormass::load_scene(path));
+}
+
+TEST(SceneLimits, AliasBombInAnOverrideIsRefused) {
+  TempDir dir;
+  const std::string path = dir.write("scene.yaml", kBaseScene);
+  std::string levels = "&b0 [x, x, x, x, x, x, x, x, x, x]";
+  for (int level = 1; level < 7; ++level) {
+    std::string items = "*b" + std::to_string(level - 1);
+    for (int k = 1; k < 10; ++k) items += ", *b" + std::to_string(level - 1);
+    levels += ", &b" + std::to_string(level) + " [" + items + "]";
+  }
+  const std::string message = load_error(path, {"fixed=[" + levels + "]"});
+  EXPECT_NE(message.find("--set fixed"), std::string::npos) << message;
+  EXPECT_NE(message.find("aliases are expanded"), std::string::npos) << message;
+}
+
+TEST(SceneLimits, DeepNestingIsRefusedWithItsLine) {
+  TempDir dir;
+  for (const int depth : {100, 100000}) {
+    const std::string path = dir.write("deep" + std::to_string(depth) + ".yaml",
+                                       kBaseScene + "loads: " + std::string(static_cast<std::size_t>(depth), '[') +
+                                           std::string(static_cast<std::size_t>(depth), ']') + "\n");
+    const std::string message = load_error(path);
+    EXPECT_NE(message.find(path + ":8: maps and lists nest deeper than 64 levels"), std::string::npos) << message;
+  }
+}
+
+TEST(SceneLimits, OversizedFileIsRefusedBeforeParsing) {
+  TempDir dir;
+  const std::string path = dir.write("huge.yaml", kBaseScene + "# " + std::string(17u << 20, 'x') + "\n");
+  const std::string message = load_error(path);
+  EXPECT_NE(message.find(path + ": the scene file is larger than 16777216 bytes"), std::string::npos) << message;
+}
+
+TEST(SceneFile, OnlyRegularFilesAreRead) {
+  TempDir dir;
+  const std::string fifo = (dir.path() / "pipe.yaml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string message = load_error(fifo);
+  EXPECT_NE(message.find(fifo + ": is a FIFO"), std::string::npos) << message;
+  const std::string zero = (dir.path() / "zero.yaml").string();
+  std::filesystem::create_symlink("/dev/zero", zero);
+  message = load_error(zero);
+  EXPECT_NE(message.find(zero + ": is a character device"), std::string::npos) << message;
 }
 
 }  // namespace
