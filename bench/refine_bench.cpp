@@ -16,12 +16,12 @@
 #include "tensormass/adaptivity/zz_indicator.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/integrators/integrators.hpp"
 #include "tensormass/io/atomic_file.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/refinement/hierarchical_mesh.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "tensormass/solvers/integrators.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass::bench {
 

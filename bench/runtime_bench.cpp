@@ -30,11 +30,11 @@
 #include "machine_info.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/integrators/integrators.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/meshing/beam.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "tensormass/solvers/integrators.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 #ifndef TENSORMASS_BENCH_BUILD_INFO
 #define TENSORMASS_BENCH_BUILD_INFO "unknown build flags"

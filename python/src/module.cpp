@@ -6,8 +6,8 @@
 #include "simulation_bindings.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/common/version.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 PYBIND11_MODULE(_tensormass, m) {
   m.doc() = "tensormass: adaptive Tensor-Mass soft-tissue simulation (compiled core)";

@@ -457,13 +457,13 @@ the trailing block alone (0.2 to 1.0 of a whole factorisation's flops).
 - **The reused factor.** CHOLMOD's factor preconditions CG while CG
   converges within `linear.reuse_iterations` (12). While the non-linear
   cells' rows reach at most 90 % of the factor's entries, CG runs on those
-  rows only (`restricted_cg`, `solvers/factor_reach.hpp`). When the reused
+  rows only (`restricted_cg`, `linear_solvers/factor_reach.hpp`). When the reused
   factor stops converging, `CholmodSolver` corrects it with an exact factor
   of the block of rows that jumped (an entry moved by more than 5 % of the
   row's diagonal; at most 60 % of the rows and 10 % of a whole
   factorisation's flops); only when that fails too is the whole matrix
   factorised.
-- **The region ordered last** (`runtime/src/solvers/region_last_ordering.cpp`):
+- **The region ordered last** (`runtime/src/linear_solvers/region_last_ordering.cpp`):
   at a whole factorisation, the changing rows and two rings of their
   neighbours are ordered after all the other rows, each part by METIS, so
   that the changed rows reach only the trailing block. It is kept while the

@@ -16,7 +16,7 @@
 #include "tensormass/io/track_csv.hpp"
 #include "tensormass/kernels/law_parameters.hpp"
 #include "tensormass/kernels/registry.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 
 namespace tensormass {
 

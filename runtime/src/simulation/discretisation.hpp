@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/integrators/integrators.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/parallel/distribution.hpp"
@@ -18,8 +20,6 @@
 #include "tensormass/scene/scene.hpp"
 #include "tensormass/simulation/simulation.hpp"
 #include "tensormass/simulation/track.hpp"
-#include "tensormass/solvers/integrators.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass::detail {
 

@@ -8,9 +8,9 @@
 #include <string>
 
 #include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/integrators/integrators.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/parallel/distribution.hpp"
-#include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass::detail {
 

@@ -12,9 +12,9 @@
 #include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/common/errors.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/parallel/cell_partition.hpp"
 #include "tensormass/parallel/distribution.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace tensormass {
 namespace {

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "scene_test_support.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 
 #include "scene_test_support.hpp"
 #include "tensormass/kernels/registry.hpp"
+#include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/meshing/beam.hpp"
-#include "tensormass/solvers/linear_solver.hpp"
 
 namespace {
 

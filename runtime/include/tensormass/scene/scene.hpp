@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "tensormass/adaptivity/adaptivity_settings.hpp"
+#include "tensormass/integrators/solver_settings.hpp"
 #include "tensormass/io/output_settings.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/model/model_spec.hpp"
 #include "tensormass/refinement/refinement_settings.hpp"
-#include "tensormass/solvers/solver_settings.hpp"
 
 namespace tensormass {
 

@@ -22,11 +22,11 @@
 
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
+#include "tensormass/integrators/integrators.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/scene/scene.hpp"
 #include "tensormass/simulation/track.hpp"
-#include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass {
 

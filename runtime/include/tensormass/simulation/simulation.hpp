@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "tensormass/adaptivity/adaptivity.hpp"
+#include "tensormass/integrators/integrators.hpp"
 #include "tensormass/scene/scene.hpp"
-#include "tensormass/solvers/integrators.hpp"
 
 namespace tensormass {
 
