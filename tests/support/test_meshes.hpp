@@ -126,6 +126,35 @@ inline void expect_identical(const tensormass::Mesh& a, const tensormass::Mesh& 
   }
 }
 
+/// Reads the meshio conversion `vtk_file` (.vtu or .vtk) of the test mesh
+/// `stem` and expects the cells of its Gmsh 4.1 file and one group
+/// "region_TAG" per physical group of expected.json, with the same cells,
+/// facets and node positions as the Gmsh group.
+inline void expect_same_mesh_as_gmsh(const std::string& vtk_file, const std::string& stem) {
+  const tensormass::Mesh gmsh = tensormass::read_mesh(data_file(stem + ".msh41.msh"));
+  const tensormass::Mesh vtk = tensormass::read_mesh(data_file(vtk_file));
+  expect_same_cells(gmsh, vtk);
+  const nlohmann::json& groups = expected_meshes()[stem]["groups"];
+  ASSERT_EQ(vtk.groups.size(), groups.size());
+  for (const auto& [name, expected] : groups.items()) {
+    const tensormass::Group* from_gmsh = gmsh.group(name);
+    const tensormass::Group* from_vtk = vtk.group("region_" + std::to_string(expected["tag"].get<int>()));
+    ASSERT_NE(from_gmsh, nullptr);
+    ASSERT_NE(from_vtk, nullptr) << name;
+    EXPECT_EQ(from_vtk->dim, from_gmsh->dim) << name;
+    EXPECT_EQ(from_vtk->cells, from_gmsh->cells) << name;
+    EXPECT_EQ(from_vtk->facets.count(), from_gmsh->facets.count()) << name;
+    EXPECT_EQ(positions(vtk, from_vtk->nodes), positions(gmsh, from_gmsh->nodes)) << name;
+  }
+}
+
+/// A gtest parameter name made of `file`: every character that is not a letter or digit as '_'.
+inline std::string test_name_of(std::string file) {
+  for (char& c : file)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return file;
+}
+
 }  // namespace meshtest
 
 #endif

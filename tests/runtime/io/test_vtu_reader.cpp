@@ -1,14 +1,12 @@
-// VTK readers: files written by meshio (tests/data/meshes) read to the same
-// mesh as the Gmsh file they came from; every VTU DataArray encoding
+// VTU reader (.vtu): files written by meshio (tests/data/meshes) read to
+// the same mesh as the Gmsh file they came from; every DataArray encoding
 // (ascii, inline base64 with the header encoded with or apart from the
-// data, appended raw and base64, UInt32 and UInt64 headers, big-endian) and
-// the legacy keywords a reader meets (SCALARS/LOOKUP_TABLE, FIELD,
-// POINT_DATA, METADATA) on files written here.
+// data, appended raw and base64, UInt32 and UInt64 headers, big-endian) on
+// files written here; several pieces, many pieces in linear time, and
+// arrays sharing appended data refused by their total size.
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
-#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -24,43 +22,18 @@ namespace {
 
 using tensormass::Mesh;
 
-struct Conversion {
-  std::string vtk_file;
-  std::string stem;
-};
+class MeshioVtuFile : public testing::TestWithParam<std::string> {};
 
-class MeshioFile : public testing::TestWithParam<Conversion> {};
-
-TEST_P(MeshioFile, ReadsToTheSameMeshAsTheGmshFile) {
-  const Mesh gmsh = tensormass::read_mesh(meshtest::data_file(GetParam().stem + ".msh41.msh"));
-  const Mesh vtk = tensormass::read_mesh(meshtest::data_file(GetParam().vtk_file));
-  meshtest::expect_same_cells(gmsh, vtk);
-  const nlohmann::json& groups = meshtest::expected_meshes()[GetParam().stem]["groups"];
-  ASSERT_EQ(vtk.groups.size(), groups.size());
-  for (const auto& [name, expected] : groups.items()) {
-    const tensormass::Group* from_gmsh = gmsh.group(name);
-    const tensormass::Group* from_vtk = vtk.group("region_" + std::to_string(expected["tag"].get<int>()));
-    ASSERT_NE(from_gmsh, nullptr);
-    ASSERT_NE(from_vtk, nullptr) << name;
-    EXPECT_EQ(from_vtk->dim, from_gmsh->dim) << name;
-    EXPECT_EQ(from_vtk->cells, from_gmsh->cells) << name;
-    EXPECT_EQ(from_vtk->facets.count(), from_gmsh->facets.count()) << name;
-    EXPECT_EQ(meshtest::positions(vtk, from_vtk->nodes), meshtest::positions(gmsh, from_gmsh->nodes)) << name;
-  }
+TEST_P(MeshioVtuFile, ReadsToTheSameMeshAsTheGmshFile) {
+  const std::string& file = GetParam();
+  meshtest::expect_same_mesh_as_gmsh(file, file.substr(0, file.find('.')));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Meshio, MeshioFile,
-    testing::Values(Conversion{"box_tet_o2.ascii.vtu", "box_tet_o2"}, Conversion{"hybrid_o1.b64.vtu", "hybrid_o1"},
-                    Conversion{"plate2d_o1.b64u64.vtu", "plate2d_o1"}, Conversion{"box_hex_o2.v51.vtk", "box_hex_o2"},
-                    Conversion{"box_tet_o1.v51b.vtk", "box_tet_o1"}, Conversion{"hybrid_o1.v42b.vtk", "hybrid_o1"},
-                    Conversion{"plate2d_o2.v42.vtk", "plate2d_o2"}),
-    [](const testing::TestParamInfo<Conversion>& info) {
-      std::string name = info.param.vtk_file;
-      for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Meshio, MeshioVtuFile,
+                         testing::Values("box_tet_o2.ascii.vtu", "hybrid_o1.b64.vtu", "plate2d_o1.b64u64.vtu"),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                           return meshtest::test_name_of(info.param);
+                         });
 
 // --- A small VTU writer covering every encoding ---------------------------------
 
@@ -197,35 +170,6 @@ TEST(VtuReader, SeveralPiecesAreConcatenated) {
   EXPECT_EQ(mesh.node_count(), 6);
   EXPECT_EQ(mesh.blocks[0].connectivity, (std::vector<int>{0, 1, 2, 3, 4, 5}));
   EXPECT_TRUE(mesh.groups.empty());
-}
-
-// Classic legacy layout with SCALARS + LOOKUP_TABLE, POINT_DATA to skip,
-// a VTK 9 METADATA block and a "group" array when no gmsh:physical exists.
-TEST(LegacyVtkReader, AttributesAreSkippedAndScalarsMakeGroups) {
-  test_support::TempDir dir;
-  const std::string path = dir.write("legacy.vtk",
-                                     "# vtk DataFile Version 3.0\nhand written\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                                     "FIELD FieldData 1\nTIME 1 1 double\n0.5\n"
-                                     "POINTS 5 float\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n"
-                                     "METADATA\nINFORMATION 0\n\n"
-                                     "CELLS 3 11\n4 0 1 2 3\n1 4\n3 0 1 2\n"
-                                     "CELL_TYPES 3\n10\n1\n5\n"
-                                     "POINT_DATA 5\nVECTORS u double\n0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n"
-                                     "CELL_DATA 3\nSCALARS group int 1\nLOOKUP_TABLE default\n4\n9\n4\n"
-                                     "SCALARS quality double\nLOOKUP_TABLE default\n1.5\n2.5\n3.5\n");
-  // The vertex (point 4) lies on no tetrahedron: its group cannot be built.
-  meshtest::expect_input_error(path, {"legacy.vtk:", "cell 1 (point)", "node 4", "belongs to no 3D element"});
-  const std::string fixed = dir.write(
-      "legacy2.vtk", test_support::read_file(path).replace(test_support::read_file(path).find("1 4\n"), 4, "1 3\n"));
-  const Mesh mesh = tensormass::read_mesh(fixed);
-  EXPECT_EQ(mesh.cell_count(), 1);
-  ASSERT_EQ(mesh.groups.size(), 2u);
-  EXPECT_EQ(mesh.groups[0].name, "region_4");
-  EXPECT_EQ(mesh.groups[0].cells, (std::vector<int>{0}));
-  EXPECT_EQ(mesh.groups[0].facets.count(), 1);
-  EXPECT_EQ(mesh.groups[1].name, "region_9");
-  EXPECT_EQ(mesh.groups[1].dim, 0);
-  EXPECT_EQ(mesh.groups[1].nodes, (std::vector<int>{3}));
 }
 
 /// A VTU of `empty_pieces` pieces without points or cells, then one triangle.
