@@ -30,4 +30,4 @@ cmake -S . -B "$build" -G Ninja -DTENSORMASS_SANITIZE=ON -DTENSORMASS_BUILD_BENC
 cmake --build "$build"
 
 ctest --test-dir "$build" --output-on-failure --parallel "${CTEST_PARALLEL_LEVEL:-$(nproc)}" \
-  --label-exclude '^(examples|scripts|validation|install)$' --exclude-regex '^generator\.pytest$' "$@"
+  --label-exclude '^(examples|scripts|validation|install|hostile)$' --exclude-regex '^generator\.pytest$' "$@"

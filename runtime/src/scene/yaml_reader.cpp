@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/depthguard.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -100,6 +101,14 @@ std::string Source::where(const Path& path, const YAML::Node& node) const {
 
 namespace {
 
+/// "name:LINE" of a parser's mark (1-based), or "name" without one. A mark
+/// at the end of the stream is on the text's last line, not past it.
+std::string located(const std::string& name, const YAML::Mark& mark, const std::string& text) {
+  if (mark.is_null() || mark.line < 0) return name;
+  const long lines = std::count(text.begin(), text.end(), '\n') + (text.empty() || text.back() == '\n' ? 0 : 1);
+  return name + ":" + std::to_string(std::min<long>(mark.line + 1, std::max(lines, 1L)));
+}
+
 /// Parses `text`; `name` labels messages. The document is refused when it
 /// passes the bounds of yaml_limits.hpp.
 YAML::Node parse_yaml(const std::string& text, const std::string& name) {
@@ -110,12 +119,10 @@ YAML::Node parse_yaml(const std::string& text, const std::string& name) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's own guard, far deeper than kMaxYamlDepth
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(name + (line > 0 ? ":" + std::to_string(line) : std::string()) +
-                     ": maps and lists nest deeper than " + std::to_string(kMaxYamlDepth) + " levels");
+    throw InputError(located(name, e.mark, text) + ": maps and lists nest deeper than " +
+                     std::to_string(kMaxYamlDepth) + " levels");
   } catch (const YAML::Exception& e) {
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(name + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": YAML syntax error: " + e.msg);
+    throw InputError(located(name, e.mark, text) + ": YAML syntax error: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull())
     throw InputError(name + ":1: the scene is empty (expected keys mesh, materials, solver, ...)");

@@ -307,6 +307,10 @@ TEST(SceneLimits, DeepNestingIsRefusedWithItsLine) {
     const std::string message = load_error(path);
     EXPECT_NE(message.find(path + ":8: maps and lists nest deeper than 64 levels"), std::string::npos) << message;
   }
+  // A scene of one line is refused on that line, not on the one after it.
+  const std::string one_line = dir.write("one_line.yaml", std::string(100000, '[') + std::string(100000, ']') + "\n");
+  const std::string message = load_error(one_line);
+  EXPECT_NE(message.find(one_line + ":1: maps and lists nest deeper than 64 levels"), std::string::npos) << message;
 }
 
 TEST(SceneLimits, OversizedFileIsRefusedBeforeParsing) {
