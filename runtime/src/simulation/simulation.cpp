@@ -23,6 +23,7 @@
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/output_directory.hpp"
 #include "tensormass/io/vtk_writer.hpp"
+#include "tensormass/model/locking_warning.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 #include "tensormass/simulation/checkpoint.hpp"
 #include "tensormass/simulation/track.hpp"
@@ -71,6 +72,14 @@ struct Simulation::Impl {
   void finish_run();
   void close_report(const State& end, const std::string& failure);
   void share_among_ranks();
+  /// The locking warnings of the model (locking_warning.hpp), in the report
+  /// and, unless quiet, on stderr.
+  void warn_of_locking(const RunOptions& options) {
+    for (const std::string& warning : locking_warnings(disc->model, scene.model)) {
+      if (options.progress && writes_files()) std::fprintf(stderr, "tensormass: warning: %s\n", warning.c_str());
+      report.statistics.warnings.push_back(warning);
+    }
+  }
   /// Whether this process writes the files: the only one, or rank 0 of several.
   bool writes_files() const { return !distribution || distribution->rank() == 0; }
   /// Whether this rank's model holds only its part of the mesh (read_start_mesh).
@@ -216,6 +225,7 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   state.displacement.assign(disc->model.dof_count(), 0.0);
   state.velocity.assign(disc->model.dof_count(), 0.0);
   last_good = state;
+  warn_of_locking(options);
   if (checkpoint) {
     restore(*checkpoint);
     return;
@@ -255,7 +265,9 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
     throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
   if (adaptivity) restore_laws(checkpoint.laws, disc->model, disc->assembler, *adaptivity);
   disc->linear->restore_state(checkpoint.linear_solver, disc->assembler.pattern());
+  std::vector<std::string> warnings = std::move(statistics.warnings);  // this run's, not the checkpoint's
   statistics = checkpoint.statistics;
+  statistics.warnings = std::move(warnings);
   report.step_assembly_ms = checkpoint.step_assembly_ms;
   report.step_solve_ms = checkpoint.step_solve_ms;
   report.step_criteria_ms = checkpoint.step_criteria_ms;

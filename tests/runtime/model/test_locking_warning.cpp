@@ -1,0 +1,60 @@
+// Locking warnings (model/locking_warning.hpp): first-order cells under a
+// material whose Poisson's ratio passes 0.45 are named, per material and
+// element type; quadratic cells, laws without a Poisson's ratio and ratios
+// up to 0.45 give none.
+#include "tensormass/model/locking_warning.hpp"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+
+#include "support/cantilever.hpp"
+#include "support/test_support.hpp"
+
+namespace tensormass {
+namespace {
+
+using test_support::expect_contains;
+
+std::vector<std::string> warnings_of(const Mesh& mesh, double poisson, const std::string& law = "stvk") {
+  Scene scene = test::cantilever(law);
+  if (law == "stvk") scene.model.materials[0].constants = elastic_constants(1e6, poisson);
+  scene.model.materials[0].line = 7;
+  const Model model(mesh, scene.model);
+  return locking_warnings(model, scene.model);
+}
+
+TEST(LockingWarning, FirstOrderCellsNearIncompressibilityAreNamed) {
+  for (const auto& [cut, element] : {std::pair{"tet6", "tet4"}, {"hex8", "hex8"}, {"prism6", "prism6"},
+                                     {"pyramid5", "pyramid5"}}) {
+    const std::vector<std::string> warnings = warnings_of(test::beam(3, cut, {4, 2, 2}), 0.49);
+    ASSERT_EQ(warnings.size(), 1u) << element;
+    expect_contains(warnings[0], {"material 0 (region all, scene line 7)", std::string("its ") + element + " cells",
+                                  "poisson = 0.49", "first-order", "raise-order"});
+  }
+  const std::vector<std::string> plane = warnings_of(test::beam(2, "quad4", {4, 2, 1}), 0.499);
+  ASSERT_EQ(plane.size(), 1u);
+  expect_contains(plane[0], {"quad4", "poisson = 0.499"});
+}
+
+TEST(LockingWarning, NoneAtOrBelowTheThreshold) {
+  EXPECT_TRUE(warnings_of(test::beam(3, "tet6", {4, 2, 2}), 0.45).empty());
+  EXPECT_TRUE(warnings_of(test::beam(3, "tet6", {4, 2, 2}), 0.3).empty());
+}
+
+TEST(LockingWarning, NoneForQuadraticElements) {
+  EXPECT_TRUE(warnings_of(test::beam(3, "tet6", {4, 2, 2}, 2), 0.49).empty());
+  EXPECT_TRUE(warnings_of(test::beam(3, "hex8", {4, 2, 2}, 2), 0.49).empty());
+}
+
+TEST(LockingWarning, NoneForALawWithoutAPoissonsRatio) {
+  Scene scene = test::cantilever("stvk");
+  scene.model.materials[0].law = "mooney_rivlin";
+  scene.model.materials[0].constants = {{"c10", 1e5}, {"c01", 2e4}, {"kappa", 1e8}};
+  const Mesh mesh = test::beam(3, "tet6", {4, 2, 2});
+  const Model model(mesh, scene.model);
+  EXPECT_TRUE(locking_warnings(model, scene.model).empty());
+}
+
+}  // namespace
+}  // namespace tensormass
