@@ -210,9 +210,9 @@ StepFigures run_implicit(const Model& model, const Assembler& assembler, const S
   };
   solve_implicit(run, state, observer);
   StepFigures f;
-  const std::vector<double> counted(statistics.step_ms.begin() + 1, statistics.step_ms.end());
+  const std::vector<double> counted(statistics.step_ms.listed().begin() + 1, statistics.step_ms.listed().end());
   f.steps = static_cast<int>(counted.size());
-  f.first_step_ms = statistics.step_ms.front();
+  f.first_step_ms = statistics.step_ms[0];
   f.step_ms_mean = mean(counted);
   f.step_ms_median = median(counted);
   f.assembly_ms = 1e3 * (statistics.assembly_seconds - warm.assembly_seconds) / f.steps;
@@ -711,7 +711,7 @@ bool run_quad_beam(const Options& options, Json& json, std::vector<Target>& targ
       return false;
     });
     StepFigures f;
-    const std::vector<double> counted(statistics.step_ms.begin() + 1, statistics.step_ms.end());
+    const std::vector<double> counted(statistics.step_ms.listed().begin() + 1, statistics.step_ms.listed().end());
     f.steps = static_cast<int>(counted.size());
     f.step_ms_mean = mean(counted);
     f.step_ms_median = median(counted);

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstring>
 #include <regex>
+#include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "common/checksum.hpp"
 #include "common/regular_file.hpp"
@@ -21,7 +23,7 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 5;  // 5: the payload's size and checksum in the header
+constexpr std::uint64_t kVersion = 6;  // 5: the payload's size and checksum in the header; 6: step series
 
 /// FNV-1a, 64 bits.
 class Fingerprint {
@@ -199,11 +201,34 @@ State get_state(Reader& r) {
   return s;
 }
 
+template <class T>
+void put_series(Writer& w, const StepSeries<T>& series) {
+  const typename StepSeries<T>::Saved saved = series.saved();
+  w.put(saved.listed), w.put(saved.count), w.put(saved.sum), w.put(saved.bins);
+  w.put(saved.last), w.put(static_cast<std::int64_t>(saved.can_take_back));
+}
+
+template <class T>
+StepSeries<T> get_series(Reader& r) {
+  typename StepSeries<T>::Saved saved;
+  saved.listed = r.get_vector<T>();
+  saved.count = r.get<std::uint64_t>();
+  saved.sum = r.get<double>();
+  saved.bins = r.get_vector<std::uint64_t>();
+  saved.last = r.get<T>();
+  saved.can_take_back = r.get<std::int64_t>() != 0;
+  try {
+    return StepSeries<T>(std::move(saved));
+  } catch (const std::invalid_argument&) {
+    r.fail("inconsistent per-step series");
+  }
+}
+
 void put_statistics(Writer& w, const SolveStatistics& s) {
   w.put(s.assembly_seconds), w.put(s.solve_seconds), w.put(s.stable_dt);
   w.put(static_cast<std::int64_t>(s.newton_iterations)), w.put(static_cast<std::int64_t>(s.shortened_steps));
   w.put(static_cast<std::int64_t>(s.linear_iterations)), w.put(static_cast<std::int64_t>(s.factorizations));
-  w.put(s.newton_per_step), w.put(s.step_ms);
+  put_series(w, s.newton_per_step), put_series(w, s.step_ms);
 }
 
 SolveStatistics get_statistics(Reader& r) {
@@ -215,8 +240,8 @@ SolveStatistics get_statistics(Reader& r) {
   s.shortened_steps = static_cast<int>(r.get<std::int64_t>());
   s.linear_iterations = r.get<std::int64_t>();
   s.factorizations = static_cast<int>(r.get<std::int64_t>());
-  s.newton_per_step = r.get_vector<int>();
-  s.step_ms = r.get_vector<double>();
+  s.newton_per_step = get_series<int>(r);
+  s.step_ms = get_series<double>(r);
   return s;
 }
 
@@ -466,7 +491,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
         put_state(w, c.state);
         w.put(c.linear_solver);
         put_statistics(w, c.statistics);
-        w.put(c.step_assembly_ms), w.put(c.step_solve_ms), w.put(c.step_criteria_ms);
+        put_series(w, c.step_assembly_ms), put_series(w, c.step_solve_ms), put_series(w, c.step_criteria_ms);
         w.put(static_cast<std::uint64_t>(c.tracks.size()));
         for (const SavedTrack& t : c.tracks) {
           w.put(static_cast<std::uint64_t>(t.rows.size()));
@@ -512,9 +537,9 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.state = get_state(r);
   c.linear_solver = r.get_vector<double>();
   c.statistics = get_statistics(r);
-  c.step_assembly_ms = r.get_vector<double>();
-  c.step_solve_ms = r.get_vector<double>();
-  c.step_criteria_ms = r.get_vector<double>();
+  c.step_assembly_ms = get_series<double>(r);
+  c.step_solve_ms = get_series<double>(r);
+  c.step_criteria_ms = get_series<double>(r);
   const auto tracks = r.get_count(4 * sizeof(double));
   for (std::uint64_t t = 0; t < tracks; ++t) {
     SavedTrack track;

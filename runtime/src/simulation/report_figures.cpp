@@ -74,7 +74,7 @@ void time_loop(const Scene& scene, const State& state, double adaptivity_seconds
   if (scene.solver.is_static()) return;
   report.simulated_seconds = state.step * scene.solver.dt;
   report.loop_seconds = adaptivity_seconds;
-  for (double ms : report.statistics.step_ms) report.loop_seconds += ms / 1e3;
+  report.loop_seconds += report.statistics.step_ms.sum() / 1e3;
 }
 
 }  // namespace tensormass::detail

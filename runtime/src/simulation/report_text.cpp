@@ -26,7 +26,7 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 
 std::string format_report(const Scene& scene, const RunReport& report) {
   const SolveStatistics& s = report.statistics;
-  const auto [mean, median] = detail::mean_and_median(s.step_ms);
+  const double mean = s.step_ms.mean(), median = s.step_ms.median();
   const bool dynamic = scene.solver.is_dynamic();
   std::ostringstream text;
   text << "tensormass run " << scene.path << "\n";

@@ -275,7 +275,7 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
     tracks[t].restore(checkpoint.tracks[t].rows, checkpoint.tracks[t].first_shift);
   series = checkpoint.series;
   counted_steps = statistics.step_ms.size();
-  stepping_ms = std::accumulate(statistics.step_ms.begin(), statistics.step_ms.end(), 0.0);
+  stepping_ms = statistics.step_ms.sum();
   phase_marks = {statistics.assembly_seconds, statistics.solve_seconds, 0.0};
   report.resumed_from_step = state.step;
   if (refinement) restore_refinement(checkpoint.refinement);
@@ -375,8 +375,8 @@ const std::vector<double>& Simulation::Impl::tracked_displacement(const State& n
 bool Simulation::Impl::observe(const State& now) {
   SolveStatistics& statistics = report.statistics;
   if (carried_ms > 0 || carried_iterations > 0) {  // the solves of this load step before a refinement
-    statistics.step_ms.back() += carried_ms;
-    statistics.newton_per_step.back() += carried_iterations;
+    statistics.step_ms.set_back(statistics.step_ms.back() + carried_ms);
+    statistics.newton_per_step.set_back(statistics.newton_per_step.back() + carried_iterations);
     carried_ms = 0, carried_iterations = 0;
   }
   if (refinement && !dynamic && refine_load_step(now)) return false;  // solved again on the refined mesh
@@ -418,9 +418,10 @@ bool Simulation::Impl::observe(const State& now) {
     series.push_back({now.time, file});
     if (writes_files()) io::write_pvd(output_path("series.pvd"), series);
   }
-  // Running sum of the finished steps (a repeated static step is popped
-  // before it is ever counted here).
-  for (; counted_steps < statistics.step_ms.size(); ++counted_steps) stepping_ms += statistics.step_ms[counted_steps];
+  // The finished steps and their time (a repeated static step is taken
+  // back before it is ever counted here).
+  counted_steps = statistics.step_ms.size();
+  stepping_ms = statistics.step_ms.sum();
   const int every = scene.output.checkpoint_every;
   if (every > 0 && now.step % every == 0) write_checkpoint_now(now);
   progress.update(now.step, counted_steps ? stepping_ms / counted_steps : 0.0);

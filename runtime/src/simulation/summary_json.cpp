@@ -107,7 +107,7 @@ Json refinement(const RefinementSettings& settings, const RunReport& report) {
 
 Json run_summary(const Scene& scene, const Model& model, const RunReport& report, const std::string& failure) {
   const SolveStatistics& s = report.statistics;
-  const auto [mean, median] = mean_and_median(s.step_ms);
+  const double mean = s.step_ms.mean(), median = s.step_ms.median();
   const bool dynamic = scene.solver.is_dynamic();
   Json j;
   j["status"] = failure.empty() ? "ok" : "failed";
@@ -130,12 +130,15 @@ Json run_summary(const Scene& scene, const Model& model, const RunReport& report
   if (report.resumed_from_step >= 0) j["resumed_from_step"] = report.resumed_from_step;
   j["time_per_step_ms"] = {{"mean", number(mean)}, {"median", number(median)}};
   j["time_per_phase_s"] = timings(report);
-  j["newton_iterations"] = {
-      {"total", s.newton_iterations}, {"per_step", s.newton_per_step}, {"shortened_by_line_search", s.shortened_steps}};
-  j["per_step_ms"] = {{"total", numbers(s.step_ms)},
-                      {"assembly", numbers(report.step_assembly_ms)},
-                      {"solve", numbers(report.step_solve_ms)},
-                      {"criteria", numbers(report.step_criteria_ms)}};
+  j["newton_iterations"] = {{"total", s.newton_iterations},
+                            {"per_step", s.newton_per_step.listed()},
+                            {"shortened_by_line_search", s.shortened_steps}};
+  // The first StepSeries::kListed steps; the means and medians cover all.
+  j["per_step_ms"] = {{"listed_steps", s.step_ms.listed().size()},
+                      {"total", numbers(s.step_ms.listed())},
+                      {"assembly", numbers(report.step_assembly_ms.listed())},
+                      {"solve", numbers(report.step_solve_ms.listed())},
+                      {"criteria", numbers(report.step_criteria_ms.listed())}};
   j["linear_iterations"] = s.linear_iterations;
   j["factorizations"] = s.factorizations;
   j["elements_per_law"] = counts(report.cells_per_law);

@@ -2,14 +2,13 @@
 // material whose Poisson's ratio passes 0.45 are named, per material and
 // element type; quadratic cells, laws without a Poisson's ratio and ratios
 // up to 0.45 give none.
-#include "tensormass/model/locking_warning.hpp"
-
 #include <gtest/gtest.h>
 
 #include <utility>
 
 #include "support/cantilever.hpp"
 #include "support/test_support.hpp"
+#include "tensormass/model/locking_warning.hpp"
 
 namespace tensormass {
 namespace {
@@ -25,8 +24,8 @@ std::vector<std::string> warnings_of(const Mesh& mesh, double poisson, const std
 }
 
 TEST(LockingWarning, FirstOrderCellsNearIncompressibilityAreNamed) {
-  for (const auto& [cut, element] : {std::pair{"tet6", "tet4"}, {"hex8", "hex8"}, {"prism6", "prism6"},
-                                     {"pyramid5", "pyramid5"}}) {
+  for (const auto& [cut, element] :
+       {std::pair{"tet6", "tet4"}, {"hex8", "hex8"}, {"prism6", "prism6"}, {"pyramid5", "pyramid5"}}) {
     const std::vector<std::string> warnings = warnings_of(test::beam(3, cut, {4, 2, 2}), 0.49);
     ASSERT_EQ(warnings.size(), 1u) << element;
     expect_contains(warnings[0], {"material 0 (region all, scene line 7)", std::string("its ") + element + " cells",

@@ -15,6 +15,7 @@
 
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/integrators/solver_settings.hpp"
+#include "tensormass/integrators/step_series.hpp"
 #include "tensormass/linear_solvers/linear_solver.hpp"
 #include "tensormass/model/model.hpp"
 
@@ -42,10 +43,10 @@ struct SolveStatistics {
   int newton_iterations = 0;
   int shortened_steps = 0;  ///< Newton steps the line search cut below full length
   long linear_iterations = 0;
-  int factorizations = 0;            ///< numeric factorisations of a direct solver
-  std::vector<int> newton_per_step;  ///< per step (load step)
-  std::vector<double> step_ms;       ///< wall time of each step
-  double stable_dt = 0;              ///< explicit: the estimated stable time step
+  int factorizations = 0;           ///< numeric factorisations of a direct solver
+  StepSeries<int> newton_per_step;  ///< per step (load step)
+  StepSeries<double> step_ms;       ///< wall time of each step
+  double stable_dt = 0;             ///< explicit: the estimated stable time step
   std::vector<std::string> warnings;
 };
 

@@ -79,7 +79,7 @@ struct Checkpoint {
   State state;
   std::vector<double> linear_solver;  ///< LinearSolver::save_state()
   SolveStatistics statistics;         ///< counts and per-step series so far (warnings not kept)
-  std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
+  StepSeries<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
   std::vector<SavedTrack> tracks;       ///< in output.track order
   std::vector<io::SeriesEntry> series;  ///< frames written so far
   bool adaptive = false;                ///< the run has adaptivity: `laws` holds its state

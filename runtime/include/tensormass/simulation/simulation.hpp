@@ -83,7 +83,7 @@ struct RunReport {
   /// one record per change of the mesh.
   std::vector<RefinementRecord> refinement;
   /// Per finished step: milliseconds in assembly, solve and criteria.
-  std::vector<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
+  StepSeries<double> step_assembly_ms, step_solve_ms, step_criteria_ms;
 };
 
 class Model;
