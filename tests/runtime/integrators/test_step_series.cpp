@@ -2,8 +2,6 @@
 // every value is listed, the mean exact and the median within 1 % beyond,
 // memory that stops growing, the last value changed or taken back once,
 // and a saved series given back whole.
-#include "tensormass/integrators/step_series.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +9,8 @@
 #include <random>
 #include <stdexcept>
 #include <vector>
+
+#include "tensormass/integrators/step_series.hpp"
 
 namespace tensormass {
 namespace {
