@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "support/cantilever.hpp"
+#include "report_test_support.hpp"
 #include "support/test_support.hpp"
 #include "tensormass/simulation/simulation.hpp"
 
@@ -19,30 +19,7 @@ using test_support::expect_contains;
 
 class ReportText : public ::testing::Test {
  protected:
-  ReportText() : scene_(test::cantilever("stvk")) {
-    scene_.path = "scenes/beam.yaml";
-    scene_.mesh = "meshes/beam.msh";
-    scene_.solver.load_steps = 4;
-    scene_.solver.tolerance = 1e-8;
-    report_.output_directory = "out";
-    report_.nodes = 15;
-    report_.dofs = 30;
-    report_.free_dofs = 24;
-    report_.linear_solver = "cholmod";
-    report_.statistics.step_ms = {4.0, 1.0, 3.0, 10.0};  // mean 4.5, median 3.5
-    report_.statistics.newton_iterations = 9;
-    report_.statistics.newton_per_step = {3, 2, 2, 2};
-    report_.statistics.factorizations = 9;
-    report_.statistics.assembly_seconds = 0.25;
-    report_.statistics.solve_seconds = 0.5;
-    report_.output_seconds = 0.125;
-    report_.wall_seconds = 2.0;
-    report_.cells_per_law = {{"stvk", 6}, {"hooke", 2}};
-    report_.cells_per_type = {{"quad4", 8}};
-    report_.max_displacement = 0.75;
-    report_.max_displacement_node = 14;
-    report_.files = {"final.vtu", "series.pvd", "summary.json"};
-  }
+  ReportText() : scene_(test::report_scene()), report_(test::report_of_four_steps()) {}
 
   std::string text() const { return format_report(scene_, report_); }
 

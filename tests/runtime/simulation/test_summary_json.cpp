@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "report_test_support.hpp"
 #include "simulation/summary_json.hpp"
 #include "support/cantilever.hpp"
 #include "support/test_support.hpp"
@@ -27,32 +28,11 @@ using nlohmann::json;
 
 class SummaryJson : public ::testing::Test {
  protected:
-  SummaryJson() : mesh_(test::beam(2, "quad4", {4, 2, 1})), scene_(test::cantilever("stvk")) {
-    scene_.path = "scenes/beam.yaml";
-    scene_.mesh = "meshes/beam.msh";
-    scene_.solver.load_steps = 4;
-    scene_.solver.tolerance = 1e-8;
-    model_ = std::make_unique<Model>(mesh_, scene_.model);
-    report_.nodes = 15;
-    report_.cells = 8;
-    report_.dofs = 30;
-    report_.free_dofs = 24;
-    report_.linear_solver = "cholmod";
-    report_.statistics.step_ms = {4.0, 1.0, 3.0, 10.0};  // mean 4.5, median (3 + 4) / 2 = 3.5
-    report_.statistics.newton_iterations = 9;
-    report_.statistics.newton_per_step = {3, 2, 2, 2};
-    report_.statistics.linear_iterations = 0;
-    report_.statistics.factorizations = 9;
-    report_.statistics.assembly_seconds = 0.25;
-    report_.statistics.solve_seconds = 0.5;
-    report_.output_seconds = 0.125;
-    report_.wall_seconds = 2.0;
-    report_.cells_per_law = {{"stvk", 6}, {"hooke", 2}};
-    report_.cells_per_type = {{"quad4", 8}};
-    report_.max_displacement = 0.75;
-    report_.max_displacement_node = 14;
-    report_.files = {"final.vtu", "series.pvd", "summary.json"};
-  }
+  SummaryJson()
+      : mesh_(test::beam(2, "quad4", {4, 2, 1})),
+        scene_(test::report_scene()),
+        model_(std::make_unique<Model>(mesh_, scene_.model)),
+        report_(test::report_of_four_steps()) {}
 
   /// write_summary's file, parsed.
   json summary(const std::string& failure = "") const {
