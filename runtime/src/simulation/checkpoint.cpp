@@ -348,7 +348,7 @@ void check_fields(const Checkpoint& c, const std::string& path) {
                                      {"state.previous_displacement", &s.previous_displacement},
                                      {"state.earlier_displacement", &s.earlier_displacement}})
     if (!finite(*values)) refuse(name, "holds a value that is not finite");
-  static const std::regex frame_name("frame_[0-9]{6,}\\.p?vtu");
+  static const std::regex frame_name("frame_[0-9]{6,9}\\.p?vtu");  // a step fits an int
   double previous = -1.0;
   for (const io::SeriesEntry& e : c.series) {
     if (!std::regex_match(e.file, frame_name)) refuse("series", "names a file a run does not write");

@@ -193,6 +193,9 @@ TEST(Checkpoint, ForgedFieldsAreRefusedNamingTheField) {
   c.series[1].file = "../../outside.vtu";
   expect_contains(refusal(c), {"series", "a file a run does not write"});
   c = sample();
+  c.series[1].file = "frame_99999999999999999999.vtu";  // a step past any int
+  expect_contains(refusal(c), {"series", "a file a run does not write"});
+  c = sample();
   c.series[1].file = "frame_000010.vtu\n<evil/>";
   expect_contains(refusal(c), {"series"});
   c = sample();
