@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Resident memory of a long explicit run: flat after its first steps.
 
-Runs one small explicit scene (a 2D beam of 8 x 2 quads, no frames, no
-tracks) for a thousand steps and for many more, each in its own process,
-and compares their peak resident memory (ru_maxrss of the child, from
-os.wait4). A run keeps per-step records in bounded memory
-(integrators/step_series.hpp), so the long run's peak must stay within 1 %
-of the short one's. With --baseline BINARY the same runs of another build
+Runs one small explicit scene (a 2D beam of 8 x 2 quads, no frames, the
+body's centroid tracked, the adaptive model evaluated at every step, a
+checkpoint every 100,000 steps) for a thousand steps and for many more,
+each in its own process, and compares their peak resident memory
+(ru_maxrss of the child, from os.wait4). A run keeps its per-step records
+in bounded memory (integrators/step_series.hpp) and streams its track rows
+and adaptivity records to their files (io/streamed_file.hpp), so the long
+run's peak must stay within 1 % of the short one's. With --baseline BINARY the same runs of another build
 are measured side by side.
 
 usage: /usr/bin/python3 scripts/soak_steps.py [--binary build/tensormass]
@@ -25,7 +27,8 @@ materials:
 fixed: [clamp]
 loads: {{gravity: [0, -9.81]}}
 solver: {{type: explicit, dt: 1.0e-5, steps: {steps}, damping: {{mass: 5}}}}
-output: {{directory: out_{steps}}}
+output: {{directory: out_{steps}, track: [body], checkpoint_every: 100000}}
+adaptivity: {{criteria: [{{name: R_NL, threshold: 0.01}}], ladder: [stvk, neohookean]}}
 """
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A run killed with SIGKILL part way and resumed with --resume
 # ends bit for bit where the uninterrupted run ends (final state, frames,
-# tracks, series), for each integrator: implicit (CHOLMOD, whose factor is
+# streamed tracks and adaptivity records, series), for each integrator: implicit (CHOLMOD, whose factor is
 # restored), static (load-step extrapolation history) and explicit, and for
 # the adaptive model (laws switching up and down with blends, the folded
 # linear part's sums, the counters), and for runs that refine their mesh
@@ -53,8 +53,11 @@ kill_and_resume() {  # name, frame to wait for
   kill -KILL "$pid"
   wait "$pid" 2> /dev/null || true
   [[ ! -f out-$name/final.vtu ]] || { echo "$name: killed too late (final.vtu exists)"; exit 1; }
+  [[ -f out-$name/track_body.csv.partial ]] || { echo "$name: the killed run left no streamed track"; exit 1; }
   "$binary" run "$name.yaml" --resume 2>&1 | grep "resuming from"
-  for file in final.vtu series.pvd track_body.csv; do
+  local files="final.vtu series.pvd track_body.csv"
+  [[ ! -f reference-$name/adaptivity.jsonl ]] || files+=" adaptivity.jsonl"
+  for file in $files; do
     cmp "reference-$name/$file" "out-$name/$file" || { echo "$name: $file differs after resuming"; exit 1; }
   done
   for frame_file in reference-$name/frame_*.vtu; do

@@ -346,13 +346,14 @@ materials:
 fixed: [clamp]
 loads: {{gravity: [0, -9.81]}}
 solver: {{type: implicit, dt: 0.01, steps: {steps}}}
-output: {{directory: out{every}, checkpoint_every: {checkpoint_every}}}
+output: {{directory: out{every}, checkpoint_every: {checkpoint_every}{track}}}
 """
 
 
-def scene(mesh: str = "beam.msh", steps: int = 10, every: int | None = None, checkpoint_every: int = 4) -> str:
+def scene(mesh: str = "beam.msh", steps: int = 10, every: int | None = None, checkpoint_every: int = 4,
+          track: bool = False) -> str:
     return SCENE.format(mesh=mesh, steps=steps, every="" if every is None else f", every: {every}",
-                        checkpoint_every=checkpoint_every)
+                        checkpoint_every=checkpoint_every, track=", track: [body]" if track else "")
 
 
 def alias_bomb_scene() -> str:
@@ -684,12 +685,13 @@ def case_stale_temporary_removed(ctx: CaseContext) -> None:
 
 
 def case_killed_run_resumes(ctx: CaseContext) -> None:
-    """A 400-step run writing a frame every step and a checkpoint every 50,
-    killed with SIGKILL at about 0.5 s (once a checkpoint exists; earlier
-    if frame 150 appears first, so a fast machine kills it before its
-    end), then resumed: --resume exits 0 from the checkpoint, writes the
-    last frame, and no `*.tmp-*` file is left in out/."""
-    with_beam_scene(ctx, steps=400, every=1, checkpoint_every=50)
+    """A 400-step run writing a frame every step, a track and a checkpoint
+    every 50, killed with SIGKILL at about 0.5 s (once a checkpoint exists;
+    earlier if frame 150 appears first, so a fast machine kills it before
+    its end), then resumed: --resume exits 0 from the checkpoint, writes the
+    last frame and the whole track (401 rows), and no `*.tmp-*` or
+    `*.partial` file is left in out/."""
+    with_beam_scene(ctx, steps=400, every=1, checkpoint_every=50, track=True)
     checkpoint = ctx.path("out/checkpoint.bin")
     late_frame = ctx.path("out/frame_000150.vtu")
 
@@ -710,6 +712,28 @@ def case_killed_run_resumes(ctx: CaseContext) -> None:
     ctx.run(["run", "scene.yaml", "--resume"], expect_code=0, expect_text=["resuming from"])
     ctx.check(ctx.path("out/frame_000400.vtu").is_file(), "the resumed run wrote no out/frame_000400.vtu")
     ctx.check(ctx.path("out/final.vtu").is_file(), "the resumed run wrote no out/final.vtu")
+    track = ctx.path("out/track_body.csv")
+    rows = len(track.read_text().splitlines()) - 1 if track.is_file() else 0
+    ctx.check(rows == 401, f"out/track_body.csv holds {rows} rows, expected 401")
+    partial = [path.name for path in ctx.path("out").glob("*.partial")]
+    ctx.check(not partial, f"unfinished files left after the resume: {', '.join(partial)}")
+
+
+def case_track_file_edited(ctx: CaseContext) -> None:
+    """A finished 10-step run with a track, one digit of its
+    out/track_body.csv changed: --resume (to 14 steps) is refused (exit 2,
+    naming the file: it is not the one the checkpoint marked) and the track
+    file is left as it was."""
+    with_beam_scene(ctx, track=True)
+    ctx.run(["run", "--quiet", "scene.yaml"], expect_code=0)
+    track = ctx.path("out/track_body.csv")
+    data = bytearray(track.read_bytes())
+    at = data.index(b"\n") + 1
+    data[at] = ord("1") if data[at] == ord("0") else ord("0")
+    track.write_bytes(bytes(data))
+    ctx.run(["run", "scene.yaml", "--resume", "--set", "solver.steps=14"], expect_code=2,
+            expect_text=["out/track_body.csv", "not the file the checkpoint was written with"], seconds_past_start=2)
+    ctx.check(track.read_bytes() == bytes(data), "the refused resume changed out/track_body.csv")
 
 
 def case_disk_full(ctx: CaseContext) -> None:
@@ -754,6 +778,7 @@ CASES: list[Callable[[CaseContext], None]] = [
     case_output_directory_locked,
     case_stale_temporary_removed,
     case_killed_run_resumes,
+    case_track_file_edited,
     case_disk_full,
 ]
 

@@ -139,7 +139,7 @@ void Adaptivity::follow(Model& model, const Assembler& assembler, std::span<cons
 
 AdaptivityMemory Adaptivity::memory() const {
   refresh_values();
-  return {calm_evaluations_, values_, total_switches_, criteria_seconds_, criterion_seconds_, records_};
+  return {calm_evaluations_, values_, total_switches_, criteria_seconds_, criterion_seconds_, records_, last_record_};
 }
 
 void Adaptivity::restore(AdaptivityMemory memory) {
@@ -155,6 +155,7 @@ void Adaptivity::restore(AdaptivityMemory memory) {
   criteria_seconds_ = memory.criteria_seconds;
   criterion_seconds_ = std::move(memory.criterion_seconds);
   records_ = std::move(memory.records);
+  last_record_ = std::move(memory.last_record);
   stale_ = false;
   restart_screen();
 }
@@ -218,8 +219,9 @@ int Adaptivity::start(std::span<const double> u) {
   settings_.blend_steps = blend_steps;
   criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (record.upgrades == 0) return 0;
-  records_.push_back(record);
-  return record.upgrades;
+  records_.add(record);
+  last_record_ = std::move(record);
+  return last_record_.upgrades;
 }
 
 int Adaptivity::update(std::span<const double> u, int step) {
@@ -228,9 +230,10 @@ int Adaptivity::update(std::span<const double> u, int step) {
   AdaptivityRecord record;
   record.step = step;
   assess(u, record);
-  records_.push_back(record);
+  records_.add(record);
+  last_record_ = std::move(record);
   criteria_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return record.upgrades + record.downgrades;
+  return last_record_.upgrades + last_record_.downgrades;
 }
 
 /// The cells' rungs, read again from their kernels when the model's laws

@@ -1,9 +1,6 @@
 #include "tensormass/io/track_csv.hpp"
 
 #include <cstdio>
-#include <ostream>
-
-#include "tensormass/io/atomic_file.hpp"
 
 namespace tensormass {
 
@@ -17,16 +14,13 @@ std::string track_file_name(const std::string& group) {
   return "track_" + name + ".csv";
 }
 
-void write_track_csv(const std::string& path, std::span<const TrackRow> rows) {
-  io::write_atomically(path, [&](std::ostream& out) {
-    out << "time,x,y,z,ux,uy,uz\n";
-    char line[256];
-    for (const TrackRow& r : rows) {
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r.time, r.position[0],
-                    r.position[1], r.position[2], r.displacement[0], r.displacement[1], r.displacement[2]);
-      out << line;
-    }
-  });
+std::string track_csv_header() { return "time,x,y,z,ux,uy,uz\n"; }
+
+std::string track_csv_row(const TrackRow& r) {
+  char line[256];
+  const int n = std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r.time, r.position[0],
+                              r.position[1], r.position[2], r.displacement[0], r.displacement[1], r.displacement[2]);
+  return std::string(line, static_cast<std::size_t>(n));
 }
 
 }  // namespace tensormass

@@ -23,7 +23,9 @@ namespace tensormass {
 namespace {
 
 constexpr char kMagic[] = "tensormass checkpoint";
-constexpr std::uint64_t kVersion = 6;  // 5: the payload's size and checksum in the header; 6: step series
+// 5: the payload's size and checksum in the header; 6: step series; 7: track
+// files and adaptivity records streamed, their marks kept
+constexpr std::uint64_t kVersion = 7;
 
 /// FNV-1a, 64 bits.
 class Fingerprint {
@@ -271,6 +273,43 @@ const tm_kernel* saved_kernel(const SavedLaws& saved, int index, const Model& mo
   return kernel;
 }
 
+void put_records(Writer& w, const std::vector<AdaptivityRecord>& records) {
+  w.put(static_cast<std::uint64_t>(records.size()));
+  for (const AdaptivityRecord& r : records) {
+    w.put(static_cast<std::int64_t>(r.step)), w.put(static_cast<std::int64_t>(r.upgrades));
+    w.put(static_cast<std::int64_t>(r.downgrades)), w.put(static_cast<std::uint64_t>(r.cells_per_law.size()));
+    for (const auto& [law, count] : r.cells_per_law) w.put(law), w.put(static_cast<std::int64_t>(count));
+  }
+}
+
+std::vector<AdaptivityRecord> get_records(Reader& r) {
+  std::vector<AdaptivityRecord> records;
+  const auto count = r.get_count(4 * sizeof(std::int64_t));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    AdaptivityRecord record;
+    record.step = static_cast<int>(r.get<std::int64_t>());
+    record.upgrades = static_cast<int>(r.get<std::int64_t>());
+    record.downgrades = static_cast<int>(r.get<std::int64_t>());
+    const auto laws = r.get_count(2 * sizeof(std::int64_t));
+    for (std::uint64_t k = 0; k < laws; ++k) {
+      std::string law = r.get_string();
+      record.cells_per_law.emplace_back(std::move(law), static_cast<int>(r.get<std::int64_t>()));
+    }
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+void put_mark(Writer& w, const io::StreamMark& m) { w.put(m.rows), w.put(m.bytes), w.put(m.checksum); }
+
+io::StreamMark get_mark(Reader& r) {
+  io::StreamMark m;
+  m.rows = r.get<std::uint64_t>();
+  m.bytes = r.get<std::uint64_t>();
+  m.checksum = r.get<std::uint64_t>();
+  return m;
+}
+
 void put_laws(Writer& w, const SavedLaws& l) {
   w.put(static_cast<std::uint64_t>(l.kernels.size()));
   for (const std::string& name : l.kernels) w.put(name);
@@ -284,12 +323,11 @@ void put_laws(Writer& w, const SavedLaws& l) {
   w.put(static_cast<std::uint64_t>(a.values.size()));
   for (const auto& v : a.values) w.put(v);
   w.put(static_cast<std::int64_t>(a.total_switches)), w.put(a.criteria_seconds), w.put(a.criterion_seconds);
-  w.put(static_cast<std::uint64_t>(a.records.size()));
-  for (const AdaptivityRecord& r : a.records) {
-    w.put(static_cast<std::int64_t>(r.step)), w.put(static_cast<std::int64_t>(r.upgrades));
-    w.put(static_cast<std::int64_t>(r.downgrades)), w.put(static_cast<std::uint64_t>(r.cells_per_law.size()));
-    for (const auto& [law, count] : r.cells_per_law) w.put(law), w.put(static_cast<std::int64_t>(count));
-  }
+  put_records(w, a.records.listed);
+  put_records(w, a.records.switching);
+  w.put(static_cast<std::int64_t>(a.records.evaluations));
+  w.put(static_cast<std::int64_t>(a.records.switching_evaluations));
+  put_records(w, {a.last_record});
 }
 
 SavedLaws get_laws(Reader& r) {
@@ -312,19 +350,13 @@ SavedLaws get_laws(Reader& r) {
   a.total_switches = static_cast<int>(r.get<std::int64_t>());
   a.criteria_seconds = r.get<double>();
   a.criterion_seconds = r.get_vector<double>();
-  const auto records = r.get_count(4 * sizeof(std::int64_t));
-  for (std::uint64_t i = 0; i < records; ++i) {
-    AdaptivityRecord record;
-    record.step = static_cast<int>(r.get<std::int64_t>());
-    record.upgrades = static_cast<int>(r.get<std::int64_t>());
-    record.downgrades = static_cast<int>(r.get<std::int64_t>());
-    const auto laws = r.get_count(2 * sizeof(std::int64_t));
-    for (std::uint64_t k = 0; k < laws; ++k) {
-      std::string law = r.get_string();
-      record.cells_per_law.emplace_back(std::move(law), static_cast<int>(r.get<std::int64_t>()));
-    }
-    a.records.push_back(std::move(record));
-  }
+  a.records.listed = get_records(r);
+  a.records.switching = get_records(r);
+  a.records.evaluations = r.get<std::int64_t>();
+  a.records.switching_evaluations = r.get<std::int64_t>();
+  const std::vector<AdaptivityRecord> last = get_records(r);
+  if (last.size() != 1) r.fail("no last adaptivity record");
+  a.last_record = last.front();
   return l;
 }
 
@@ -356,10 +388,13 @@ void check_fields(const Checkpoint& c, const std::string& path) {
     previous = e.time;
   }
   if (c.series.size() > static_cast<std::size_t>(s.step) + 1) refuse("series", "has more frames than steps");
-  for (const SavedTrack& t : c.tracks)
-    for (const TrackRow& row : t.rows)
-      if (!std::isfinite(row.time) || !finite({row.displacement.begin(), row.displacement.end()}))
-        refuse("tracks", "hold a value that is not finite");
+  for (const SavedTrack& t : c.tracks) {
+    if (!finite({t.first_shift.begin(), t.first_shift.end()})) refuse("tracks", "hold a value that is not finite");
+    if (t.file.rows == 0 || t.file.rows > static_cast<std::uint64_t>(s.step) + 1 || t.file.bytes < t.file.rows)
+      refuse("tracks", "mark more rows than the steps recorded, or none");
+  }
+  if (c.adaptive && c.adaptivity_records.rows != static_cast<std::uint64_t>(c.laws.adaptivity.records.evaluations))
+    refuse("adaptivity records", "mark another count of evaluations than the adaptive model's");
 }
 
 }  // namespace
@@ -494,18 +529,13 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
         put_series(w, c.step_assembly_ms), put_series(w, c.step_solve_ms), put_series(w, c.step_criteria_ms);
         w.put(static_cast<std::uint64_t>(c.tracks.size()));
         for (const SavedTrack& t : c.tracks) {
-          w.put(static_cast<std::uint64_t>(t.rows.size()));
-          for (const TrackRow& row : t.rows) {
-            w.put(row.time);
-            for (double x : row.position) w.put(x);
-            for (double x : row.displacement) w.put(x);
-          }
+          put_mark(w, t.file);
           for (double x : t.first_shift) w.put(x);
         }
         w.put(static_cast<std::uint64_t>(c.series.size()));
         for (const io::SeriesEntry& e : c.series) w.put(e.time), w.put(e.file);
         w.put(static_cast<std::int64_t>(c.adaptive));
-        if (c.adaptive) put_laws(w, c.laws);
+        if (c.adaptive) put_laws(w, c.laws), put_mark(w, c.adaptivity_records);
         w.put(static_cast<std::int64_t>(c.refining));
         if (c.refining) put_refinement(w, c.refinement);
         const std::uint64_t written[2] = {w.size(), w.checksum()};
@@ -540,17 +570,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.step_assembly_ms = get_series<double>(r);
   c.step_solve_ms = get_series<double>(r);
   c.step_criteria_ms = get_series<double>(r);
-  const auto tracks = r.get_count(4 * sizeof(double));
+  const auto tracks = r.get_count(6 * sizeof(double));
   for (std::uint64_t t = 0; t < tracks; ++t) {
     SavedTrack track;
-    const auto rows = r.get_count(7 * sizeof(double));
-    for (std::uint64_t i = 0; i < rows; ++i) {
-      TrackRow row;
-      row.time = r.get<double>();
-      for (double& x : row.position) x = r.get<double>();
-      for (double& x : row.displacement) x = r.get<double>();
-      track.rows.push_back(row);
-    }
+    track.file = get_mark(r);
     for (double& x : track.first_shift) x = r.get<double>();
     c.tracks.push_back(std::move(track));
   }
@@ -560,7 +583,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.series.push_back({time, r.get_string()});
   }
   c.adaptive = r.get<std::int64_t>() != 0;
-  if (c.adaptive) c.laws = get_laws(r);
+  if (c.adaptive) c.laws = get_laws(r), c.adaptivity_records = get_mark(r);
   c.refining = r.get<std::int64_t>() != 0;
   if (c.refining) c.refinement = get_refinement(r);
   if (!r.at_end()) r.fail("bytes after the last field");

@@ -1,4 +1,5 @@
 // The one-screen summary at the end of `tensormass run`.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -57,20 +58,17 @@ std::string format_report(const Scene& scene, const RunReport& report) {
     for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
       text << (i ? ", " : "") << scene.adaptivity.criteria[i].name << " " << scene.adaptivity.criteria[i].threshold;
     text << ": " << report.switches << " switches" << format(", criteria %.3f s\n", report.criteria_seconds);
-    // The checks that switched something (per-step records are in summary.json).
-    int shown = 0, hidden = 0;
+    // The first checks that switched something (every check is in adaptivity.jsonl).
     std::ostringstream steps;
-    for (const AdaptivityRecord& record : report.adaptivity) {
-      if (record.upgrades + record.downgrades == 0) continue;
-      if (shown == 6) {
-        ++hidden;
-        continue;
-      }
-      steps << (shown++ ? ", " : "") << "step " << record.step << " +" << record.upgrades;
-      if (record.downgrades) steps << " -" << record.downgrades;
+    const std::vector<AdaptivityRecord>& switching = report.adaptivity.switching;
+    const std::size_t shown = std::min<std::size_t>(switching.size(), 6);
+    for (std::size_t i = 0; i < shown; ++i) {
+      steps << (i ? ", " : "") << "step " << switching[i].step << " +" << switching[i].upgrades;
+      if (switching[i].downgrades) steps << " -" << switching[i].downgrades;
     }
+    const long hidden = report.adaptivity.switching_evaluations - static_cast<long>(shown);
     if (shown)
-      text << "  switched  " << steps.str() << (hidden ? " and " + std::to_string(hidden) + " more" : "") << "\n";
+      text << "  switched  " << steps.str() << (hidden > 0 ? " and " + std::to_string(hidden) + " more" : "") << "\n";
   }
   if (dynamic)
     text << format("  speed     real-time factor %.3g (%.4g s simulated in %.4g s)\n", report.real_time_factor(),

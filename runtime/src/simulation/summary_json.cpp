@@ -80,6 +80,13 @@ Json timings(const RunReport& report) {
           {"total", number(report.wall_seconds)}};
 }
 
+Json record_json(const AdaptivityRecord& r) {
+  return {{"step", r.step},
+          {"upgrades", r.upgrades},
+          {"downgrades", r.downgrades},
+          {"elements_per_law", counts(r.cells_per_law)}};
+}
+
 Json adaptivity(const Scene& scene, const RunReport& report) {
   Json criteria = Json::array();
   for (std::size_t i = 0; i < scene.adaptivity.criteria.size(); ++i)
@@ -87,12 +94,12 @@ Json adaptivity(const Scene& scene, const RunReport& report) {
                         {"threshold", number(scene.adaptivity.criteria[i].threshold)},
                         {"seconds", number(i < report.criterion_seconds.size() ? report.criterion_seconds[i] : 0.0)}});
   Json per_step = Json::array();
-  for (const AdaptivityRecord& r : report.adaptivity)
-    per_step.push_back({{"step", r.step},
-                        {"upgrades", r.upgrades},
-                        {"downgrades", r.downgrades},
-                        {"elements_per_law", counts(r.cells_per_law)}});
-  return {{"criteria", criteria}, {"per_step", per_step}};
+  for (const AdaptivityRecord& r : report.adaptivity.listed) per_step.push_back(record_json(r));
+  return {{"criteria", criteria},
+          {"evaluations", report.adaptivity.evaluations},
+          {"switching_evaluations", report.adaptivity.switching_evaluations},
+          {"records", kAdaptivityRecordsFile},
+          {"per_step", per_step}};
 }
 
 Json refinement(const RefinementSettings& settings, const RunReport& report) {
@@ -171,6 +178,10 @@ void write_summary(const std::string& path, const Scene& scene, const Model& mod
   const std::string text =
       run_summary(scene, model, report, failure).dump(2, ' ', false, Json::error_handler_t::replace);
   io::write_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
+}
+
+std::string adaptivity_record_line(const AdaptivityRecord& record) {
+  return record_json(record).dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace tensormass::detail

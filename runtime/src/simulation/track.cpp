@@ -1,5 +1,5 @@
 // Centroid tracks of groups (output.track): fixed node weights from the rest
-// volumes, one row per recorded state (io/track_csv writes them).
+// volumes, one row per recorded state (the run streams them as io/track_csv rows).
 #include "tensormass/simulation/track.hpp"
 
 #include <algorithm>
@@ -62,18 +62,16 @@ std::array<double, 3> GroupTrack::centroid(std::span<const double> u) const {
   return {rest_centroid_[0] + shift[0], rest_centroid_[1] + shift[1], rest_centroid_[2] + shift[2]};
 }
 
-void GroupTrack::record(double time, std::span<const double> u) {
+TrackRow GroupTrack::record(double time, std::span<const double> u) {
   const std::array<double, 3> shift = weighted_displacement(u);
-  if (rows_.empty()) first_ = shift;
+  if (!recorded_) first_ = shift, recorded_ = true;
   TrackRow row;
   row.time = time;
   for (int c = 0; c < 3; ++c) {
     row.position[c] = rest_centroid_[c] + shift[c];
     row.displacement[c] = shift[c] - first_[c];
   }
-  rows_.push_back(row);
+  return row;
 }
-
-void GroupTrack::write_csv(const std::string& path) const { write_track_csv(path, rows_); }
 
 }  // namespace tensormass

@@ -80,8 +80,8 @@ TEST_F(AdaptiveBeam, ZeroThresholdIsExactlyPureStvk) {
   const RunReport stvk = run(scene("stvk"));
   const RunReport adaptive = run(scene("hooke", "R_NL", 0.0));
   EXPECT_EQ(adaptive.switches, 150);  // all before the first load step
-  ASSERT_FALSE(adaptive.adaptivity.empty());
-  EXPECT_EQ(adaptive.adaptivity.front().step, 0);
+  ASSERT_FALSE(adaptive.adaptivity.listed.empty());
+  EXPECT_EQ(adaptive.adaptivity.listed.front().step, 0);
   EXPECT_EQ(max_difference(stvk, adaptive), 0.0);
 }
 
@@ -124,8 +124,8 @@ TEST_F(AdaptiveBeam, IntermediateThresholdUpgradesSomeAndBeatsHooke) {
   EXPECT_LT(max_difference(stvk, adaptive), 0.5 * max_difference(stvk, hooke));
   // The final state is in equilibrium for the final laws: the last
   // evaluation switched nothing.
-  ASSERT_FALSE(adaptive.adaptivity.empty());
-  EXPECT_EQ(adaptive.adaptivity.back().upgrades, 0);
+  ASSERT_FALSE(adaptive.adaptivity.listed.empty());
+  EXPECT_EQ(adaptive.adaptivity.listed.back().upgrades, 0);
 }
 
 TEST_F(AdaptiveBeam, EveryCriterionRunsAndWritesItsField) {
@@ -267,8 +267,8 @@ TEST(Adaptivity, StartClimbsAsFarAsTheCriteriaAsk) {
     EXPECT_STREQ(model.kernel(cell).law, "neohookean");
     EXPECT_EQ(model.blend_from(cell), nullptr);
   }
-  ASSERT_EQ(adaptivity.records().size(), 1u);
-  EXPECT_EQ(adaptivity.records()[0].step, 0);
+  ASSERT_EQ(adaptivity.records().listed.size(), 1u);
+  EXPECT_EQ(adaptivity.records().listed[0].step, 0);
 }
 
 /// u = (R - I) X: a rigid rotation by `angle` about z (in the plane in 2D).

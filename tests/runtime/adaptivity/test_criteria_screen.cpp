@@ -159,7 +159,7 @@ TEST(CriteriaScreen, DecidesEveryCellAsAFullEvaluationDoes) {
       const std::vector<double> u = displacement_at(mesh, step, steps);
       if (step == 0) ASSERT_EQ(screened.start(u), full.start(u));
       else ASSERT_EQ(screened.update(u, step), full.update(u, step)) << "step " << step;
-      if (step > 0) downgrades += full.records().back().downgrades;
+      if (step > 0) downgrades += full.records().listed.back().downgrades;
       for (int cell = 0; cell < mesh.cell_count(); ++cell)
         ASSERT_EQ(&screened_model.kernel(cell), screened_model.law_kernel(cell, full_model.kernel(cell).law))
             << "step " << step << ", " << mesh.describe_cell(cell);

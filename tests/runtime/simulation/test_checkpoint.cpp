@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -38,7 +39,7 @@ Checkpoint sample() {
   c.statistics.newton_per_step = {2, 2, 3};
   c.statistics.step_ms = {1.5, 2.5, 3.5};
   c.step_solve_ms = {0.5};
-  c.tracks = {{{{0.0, {1, 2, 3}, {0, 0, 0}}, {0.1, {1, 2, 2.5}, {0, 0, -0.5}}}, {0.0, 0.0, 1e-9}}};
+  c.tracks = {{{2, 120, 0xfedcba9876543210u}, {0.0, 0.0, 1e-9}}};
   c.series = {{0.05, "frame_000005.vtu"}, {0.1, "frame_000010.vtu"}};
   c.refining = true;
   SavedRefinement& r = c.refinement;
@@ -78,9 +79,9 @@ TEST(Checkpoint, RoundTripsEveryField) {
   EXPECT_EQ(r.statistics.step_ms, c.statistics.step_ms);
   EXPECT_EQ(r.step_solve_ms, c.step_solve_ms);
   ASSERT_EQ(r.tracks.size(), 1u);
-  ASSERT_EQ(r.tracks[0].rows.size(), 2u);
-  EXPECT_EQ(r.tracks[0].rows[1].position, c.tracks[0].rows[1].position);
-  EXPECT_EQ(r.tracks[0].rows[1].displacement, c.tracks[0].rows[1].displacement);
+  EXPECT_EQ(r.tracks[0].file.rows, 2u);
+  EXPECT_EQ(r.tracks[0].file.bytes, 120u);
+  EXPECT_EQ(r.tracks[0].file.checksum, 0xfedcba9876543210u);
   EXPECT_EQ(r.tracks[0].first_shift, c.tracks[0].first_shift);
   ASSERT_EQ(r.series.size(), 2u);
   EXPECT_EQ(r.series[1].file, "frame_000010.vtu");
@@ -205,8 +206,11 @@ TEST(Checkpoint, ForgedFieldsAreRefusedNamingTheField) {
   c.series.assign(11, {0.1, "frame_000010.vtu"});  // more frames than the 9 steps could write
   expect_contains(refusal(c), {"series", "more frames than steps"});
   c = sample();
-  c.tracks[0].rows[0].displacement[2] = nan;
-  expect_contains(refusal(c), {"tracks"});
+  c.tracks[0].first_shift[2] = nan;
+  expect_contains(refusal(c), {"tracks", "not finite"});
+  c = sample();
+  c.tracks[0].file.rows = 11;  // more rows than the 9 steps and the start recorded
+  expect_contains(refusal(c), {"tracks", "more rows"});
   EXPECT_EQ(refusal(sample()), "read");
 }
 
@@ -312,6 +316,40 @@ TEST_F(Resume, RefusesAnotherMeshesCheckpoint) {
   const auto refused = test_support::tensormass("run " + dir_.file("scene.yaml") + " --resume");
   EXPECT_EQ(refused.exit_code, 2);
   expect_contains(refused.output, {"was written for another mesh than"});
+}
+
+// The track file is written row by row: a resumed run keeps the rows up to
+// its checkpoint's and goes on; a track file that is not the checkpoint's
+// is refused (exit 2) and left as it was.
+TEST_F(Resume, KeepsTheTrackRowsOfTheCheckpointAndRefusesAnEditedTrackFile) {
+  const std::string track = " --set output.track=[body]";
+  const auto reference = test_support::tensormass("run --quiet " + dir_.file("scene.yaml") + track +
+                                                  " --set solver.steps=14 --set output.directory=" + dir_.file("ref"));
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  const auto first = test_support::tensormass("run --quiet " + dir_.file("scene.yaml") + track);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const fs::path file = dir_.path() / "out" / "track_body.csv";
+  const std::string finished = test_support::read_file(file);
+  EXPECT_EQ(std::count(finished.begin(), finished.end(), '\n'), 12);  // the header and steps 0 to 10
+  const auto more =
+      test_support::tensormass("run --quiet " + dir_.file("scene.yaml") + track + " --resume --set solver.steps=14");
+  ASSERT_EQ(more.exit_code, 0) << more.output;  // from the checkpoint at step 8: rows 9 and 10 written again
+  EXPECT_EQ(test_support::read_file(file), test_support::read_file(dir_.path() / "ref" / "track_body.csv"));
+  EXPECT_FALSE(fs::exists(file.string() + ".partial"));
+
+  std::string edited = test_support::read_file(file);
+  edited[edited.find('\n') + 1] = edited[edited.find('\n') + 1] == '0' ? '1' : '0';
+  dir_.write("out/track_body.csv", edited);
+  const auto refused =
+      test_support::tensormass("run " + dir_.file("scene.yaml") + track + " --resume --set solver.steps=14");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  expect_contains(refused.output, {"track_body.csv is not the file the checkpoint was written with"});
+  EXPECT_EQ(test_support::read_file(file), edited);
+  fs::remove(file);
+  const auto missing =
+      test_support::tensormass("run " + dir_.file("scene.yaml") + track + " --resume --set solver.steps=14");
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  expect_contains(missing.output, {"track_body.csv.partial is missing"});
 }
 
 /// The fixture's checkpoint changed by `forge` and written again, checksum

@@ -105,7 +105,8 @@ TEST_F(ReportText, AdaptivityGivesCriteriaSwitchesAndTheStepsThatSwitched) {
   scene_.adaptivity.criteria = {{"R_EL", 0.1, 0, ""}, {"R_V", 0.2, 0, ""}};
   report_.switches = 5;
   report_.criteria_seconds = 0.5;
-  report_.adaptivity = {{1, 0, 0, {}}, {2, 3, 0, {}}, {3, 1, 1, {}}};
+  for (const AdaptivityRecord& r : {AdaptivityRecord{1, 0, 0, {}}, {2, 3, 0, {}}, {3, 1, 1, {}}})
+    report_.adaptivity.add(r);
   const std::string t = text();
   expect_contains(
       t, {"  adapt     R_EL 0.1, R_V 0.2: 5 switches, criteria 0.500 s\n", "  switched  step 2 +3, step 3 +1 -1\n"});
@@ -115,7 +116,7 @@ TEST_F(ReportText, AdaptivityGivesCriteriaSwitchesAndTheStepsThatSwitched) {
 TEST_F(ReportText, AdaptivityListsSixSwitchingStepsAndCountsTheRest) {
   scene_.adaptivity.enabled = true;
   scene_.adaptivity.criteria = {{"R_EL", 0.1, 0, ""}};
-  for (int step = 1; step <= 9; ++step) report_.adaptivity.push_back({step, 1, 0, {}});
+  for (int step = 1; step <= 9; ++step) report_.adaptivity.add({step, 1, 0, {}});
   expect_contains(text(),
                   {"  switched  step 1 +1, step 2 +1, step 3 +1, step 4 +1, step 5 +1, step 6 +1 and 3 more\n"});
 }
@@ -123,7 +124,8 @@ TEST_F(ReportText, AdaptivityListsSixSwitchingStepsAndCountsTheRest) {
 TEST_F(ReportText, NoSwitchedLineWhenNothingSwitched) {
   scene_.adaptivity.enabled = true;
   scene_.adaptivity.criteria = {{"R_EL", 0.1, 0, ""}};
-  report_.adaptivity = {{1, 0, 0, {}}, {2, 0, 0, {}}};
+  report_.adaptivity.add({1, 0, 0, {}});
+  report_.adaptivity.add({2, 0, 0, {}});
   const std::string t = text();
   expect_contains(t, {"  adapt     R_EL 0.1: 0 switches"});
   EXPECT_EQ(t.find("switched"), std::string::npos) << t;

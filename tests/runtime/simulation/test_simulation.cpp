@@ -110,7 +110,7 @@ TEST_F(SteppedBeam, SteppingEqualsWholeRunWhenLoadStepsAreSolvedAgain) {
   };
   const RunReport whole = run_scene(adaptive("adaptive-whole"), quiet());
   // Cells switched after a load step, which was then solved again.
-  ASSERT_TRUE(std::any_of(whole.adaptivity.begin(), whole.adaptivity.end(),
+  ASSERT_TRUE(std::any_of(whole.adaptivity.listed.begin(), whole.adaptivity.listed.end(),
                           [](const AdaptivityRecord& r) { return r.step > 0 && r.upgrades > 0; }));
   Simulation simulation(adaptive("adaptive-stepped"), quiet());
   EXPECT_EQ(step_through(simulation), 4);

@@ -216,7 +216,8 @@ TEST_F(SummaryJson, AdaptivityAndRefinementAppearOnlyWhenOn) {
   scene_.adaptivity.enabled = true;
   scene_.adaptivity.criteria = {{"R_EL", 0.1, 0, ""}, {"R_V", 0.2, 0, ""}};
   report_.criterion_seconds = {0.5};  // the second criterion has no time: 0
-  report_.adaptivity = {{3, 2, 1, {{"hooke", 1}, {"stvk", 7}}}};
+  report_.adaptivity.add({0, 0, 0, {{"hooke", 8}}});
+  report_.adaptivity.add({3, 2, 1, {{"hooke", 1}, {"stvk", 7}}});
   scene_.refinement.enabled = true;
   scene_.refinement.threshold = 0.6;
   scene_.refinement.max_level = 3;
@@ -226,12 +227,17 @@ TEST_F(SummaryJson, AdaptivityAndRefinementAppearOnlyWhenOn) {
   ASSERT_EQ(criteria.size(), 2u);
   EXPECT_EQ(criteria[0], json({{"name", "R_EL"}, {"threshold", 0.1}, {"seconds", 0.5}}));
   EXPECT_EQ(criteria[1], json({{"name", "R_V"}, {"threshold", 0.2}, {"seconds", 0.0}}));
+  EXPECT_EQ(j.at("adaptivity").at("evaluations"), 2);
+  EXPECT_EQ(j.at("adaptivity").at("switching_evaluations"), 1);
+  EXPECT_EQ(j.at("adaptivity").at("records"), "adaptivity.jsonl");
   const json& per_step = j.at("adaptivity").at("per_step");
-  ASSERT_EQ(per_step.size(), 1u);
-  EXPECT_EQ(per_step[0].at("step"), 3);
-  EXPECT_EQ(per_step[0].at("upgrades"), 2);
-  EXPECT_EQ(per_step[0].at("downgrades"), 1);
-  EXPECT_EQ(per_step[0].at("elements_per_law"), json({{"hooke", 1}, {"stvk", 7}}));
+  ASSERT_EQ(per_step.size(), 2u);
+  EXPECT_EQ(per_step[1].at("step"), 3);
+  EXPECT_EQ(per_step[1].at("upgrades"), 2);
+  EXPECT_EQ(per_step[1].at("downgrades"), 1);
+  EXPECT_EQ(per_step[1].at("elements_per_law"), json({{"hooke", 1}, {"stvk", 7}}));
+  // A record file's line is the same object.
+  EXPECT_EQ(json::parse(detail::adaptivity_record_line(report_.adaptivity.listed[1])), per_step[1]);
   const json& refinement = j.at("refinement");
   EXPECT_EQ(refinement.at("criterion"), "R_ZZ");
   EXPECT_EQ(refinement.at("threshold"), 0.6);

@@ -31,6 +31,24 @@ struct AdaptivityRecord {
   std::vector<std::pair<std::string, int>> cells_per_law;
 };
 
+/// A run's evaluations in bounded memory (a run streams every one to a
+/// file, simulation/): the first kListed in full, the first kListed of
+/// those that switched cells, and counts of all.
+struct AdaptivityRecords {
+  static constexpr std::size_t kListed = 1000;
+  std::vector<AdaptivityRecord> listed;
+  std::vector<AdaptivityRecord> switching;  ///< the first evaluations that switched cells
+  long evaluations = 0;
+  long switching_evaluations = 0;
+  void add(const AdaptivityRecord& record) {
+    ++evaluations;
+    if (listed.size() < kListed) listed.push_back(record);
+    if (record.upgrades + record.downgrades == 0) return;
+    ++switching_evaluations;
+    if (switching.size() < kListed) switching.push_back(record);
+  }
+};
+
 /// What the adaptive model carries from one evaluation to the next besides
 /// the model's laws and blends, for checkpoints.
 struct AdaptivityMemory {
@@ -39,7 +57,8 @@ struct AdaptivityMemory {
   int total_switches = 0;
   double criteria_seconds = 0;
   std::vector<double> criterion_seconds;
-  std::vector<AdaptivityRecord> records;
+  AdaptivityRecords records;
+  AdaptivityRecord last_record;
 };
 
 class Adaptivity {
@@ -71,7 +90,9 @@ class Adaptivity {
   double criteria_seconds() const { return criteria_seconds_; }
   /// Running time of each criterion (same order as criterion_names()).
   const std::vector<double>& criterion_seconds() const { return criterion_seconds_; }
-  const std::vector<AdaptivityRecord>& records() const { return records_; }
+  const AdaptivityRecords& records() const { return records_; }
+  /// The latest evaluation's record (records().evaluations counts them).
+  const AdaptivityRecord& last_record() const { return last_record_; }
   /// The criteria screen (criteria_screen.hpp), or null when every cell is evaluated every time.
   const CriteriaScreen* screen() const { return screen_.get(); }
   const std::vector<std::string>& criterion_names() const { return names_; }
@@ -182,7 +203,8 @@ class Adaptivity {
   int total_switches_ = 0;
   mutable double criteria_seconds_ = 0;
   std::vector<double> criterion_seconds_;
-  std::vector<AdaptivityRecord> records_;
+  AdaptivityRecords records_;
+  AdaptivityRecord last_record_;
 };
 
 }  // namespace tensormass

@@ -1,12 +1,12 @@
 /// \file track_csv.hpp
 /// The track file of a group (scene key `output.track`, simulation/track.hpp):
 /// `track_<group>.csv`, header `time,x,y,z,ux,uy,uz`, then one row per
-/// recorded state, every number with 17 significant digits (round trip exact).
+/// recorded state, every number with 17 significant digits (round trip
+/// exact). A run writes it row by row (io/streamed_file.hpp).
 #ifndef TENSORMASS_IO_TRACK_CSV_HPP
 #define TENSORMASS_IO_TRACK_CSV_HPP
 
 #include <array>
-#include <span>
 #include <string>
 
 namespace tensormass {
@@ -22,8 +22,11 @@ struct TrackRow {
 /// letter, a digit, '.', '-' or '_' replaced by '_'.
 std::string track_file_name(const std::string& group);
 
-/// Writes the rows as CSV, atomically (io/atomic_file.hpp).
-void write_track_csv(const std::string& path, std::span<const TrackRow> rows);
+/// The header line, with its line end.
+std::string track_csv_header();
+
+/// One row's line, with its line end.
+std::string track_csv_row(const TrackRow& row);
 
 }  // namespace tensormass
 

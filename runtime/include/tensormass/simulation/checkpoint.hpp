@@ -4,7 +4,7 @@
 /// directory, so that `tensormass run SCENE --resume` continues a killed run
 /// and ends bit for bit where the uninterrupted run would have: the state
 /// and what the integrator carries between steps, the linear solver's
-/// factor, the tracks, the frame series and the statistics of the steps so
+/// factor, the marks of the streamed track and record files, the frame series and the statistics of the steps so
 /// far. A checkpoint names the scene and the mesh it belongs to by
 /// fingerprints; restoring it into another is refused.
 ///
@@ -23,6 +23,7 @@
 #include "tensormass/adaptivity/adaptivity.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/integrators/integrators.hpp"
+#include "tensormass/io/streamed_file.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/mesh/mesh.hpp"
 #include "tensormass/scene/scene.hpp"
@@ -33,8 +34,10 @@ namespace tensormass {
 /// The file name of a run's checkpoint inside its output directory.
 inline constexpr const char* kCheckpointFile = "checkpoint.bin";
 
+/// A track of a run: its file's mark (its rows are in the file) and the
+/// displacement its rows are measured from.
 struct SavedTrack {
-  std::vector<TrackRow> rows;
+  io::StreamMark file;
   std::array<double, 3> first_shift{};
 };
 
@@ -84,7 +87,8 @@ struct Checkpoint {
   std::vector<io::SeriesEntry> series;  ///< frames written so far
   bool adaptive = false;                ///< the run has adaptivity: `laws` holds its state
   SavedLaws laws;
-  bool refining = false;  ///< the run has adaptivity.refine: `refinement` holds its state
+  io::StreamMark adaptivity_records;  ///< the adaptive run's record file (adaptivity.jsonl)
+  bool refining = false;              ///< the run has adaptivity.refine: `refinement` holds its state
   SavedRefinement refinement;
 };
 

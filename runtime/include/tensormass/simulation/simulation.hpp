@@ -78,7 +78,7 @@ struct RunReport {
   double criteria_seconds = 0;
   std::vector<double> criterion_seconds;  ///< per scene criterion
   int switches = 0;
-  std::vector<AdaptivityRecord> adaptivity;
+  AdaptivityRecords adaptivity;  ///< in bounded memory; every one is in adaptivity.jsonl
   /// Refinement (empty without adaptivity.refine): the starting mesh, then
   /// one record per change of the mesh.
   std::vector<RefinementRecord> refinement;

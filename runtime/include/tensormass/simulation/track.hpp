@@ -14,12 +14,11 @@
 /// parallelograms, parallelepipeds and right prisms (so C is the group's
 /// volume centroid on meshes of these cells), not for pyramids or curved cells.
 ///
-/// CSV (io/track_csv.hpp): header `time,x,y,z,ux,uy,uz`, then one row per recorded state
-/// (time in seconds, or the load factor for static solves), (x, y, z) = C(u)
-/// and (ux, uy, uz) = C(u) - C(u_first) = S(u) - S(u_first), S(u) = sum_i W_i u_i
-/// (the first row's displacement is exactly 0, and S is evaluated as
-/// u_0 + sum_i W_i (u_i - u_0), exact for a rigid translation); every number
-/// with 17 significant digits (round trip exact); z = 0 in 2D.
+/// CSV (io/track_csv.hpp, written row by row as the run goes): header `time,x,y,z,ux,uy,uz`, then one row per recorded
+/// state (time in seconds, or the load factor for static solves), (x, y, z) = C(u) and (ux, uy, uz) = C(u) - C(u_first)
+/// = S(u) - S(u_first), S(u) = sum_i W_i u_i (the first row's displacement is exactly 0, and S is evaluated as u_0 +
+/// sum_i W_i (u_i - u_0), exact for a rigid translation); every number with 17 significant digits (round trip exact); z
+/// = 0 in 2D.
 #ifndef TENSORMASS_TRACK_HPP
 #define TENSORMASS_TRACK_HPP
 
@@ -48,20 +47,21 @@ class GroupTrack {
   double rest_volume() const { return rest_volume_; }
   /// The current centroid C(u); u holds mesh.dim components per node (node-major).
   std::array<double, 3> centroid(std::span<const double> u) const;
-  /// Appends the state at `time`; the first call sets the reference of the displacements.
-  void record(double time, std::span<const double> u);
-  const std::vector<TrackRow>& rows() const { return rows_; }
+  /// The row of the state at `time`; the first call sets the reference of
+  /// the displacements. The rows are not kept: the run streams them to the
+  /// track file (io/streamed_file.hpp).
+  TrackRow record(double time, std::span<const double> u);
   /// The nodes whose displacement the track reads (sorted, unique).
   const std::vector<int>& nodes() const { return nodes_; }
   /// The weighted displacement of the first row, which later rows are measured from.
   const std::array<double, 3>& first_shift() const { return first_; }
-  /// Replaces the rows and the first shift by saved ones (a resumed run).
-  void restore(std::vector<TrackRow> rows, const std::array<double, 3>& first_shift) {
-    rows_ = std::move(rows);
+  /// Whether a row was recorded (the first shift is set).
+  bool recorded() const { return recorded_; }
+  /// Takes a saved first shift (a resumed run, whose rows so far are in its track file).
+  void restore(const std::array<double, 3>& first_shift) {
     first_ = first_shift;
+    recorded_ = true;
   }
-  /// Writes the rows as CSV (see the file comment), atomically.
-  void write_csv(const std::string& path) const;
 
  private:
   /// sum_i W_i v_i over the first min(dim, stride) components of v (`stride` values per node).
@@ -76,7 +76,7 @@ class GroupTrack {
   std::array<double, 3> rest_centroid_{};
   std::array<double, 3> first_{};  ///< weighted displacement of the first row
   double rest_volume_ = 0;
-  std::vector<TrackRow> rows_;
+  bool recorded_ = false;
 };
 
 }  // namespace tensormass
