@@ -5,8 +5,10 @@
 # fuzz/dict/<target>.dict. A crash, sanitizer report, hang (over 10 s on one
 # input), an exception other than InputError or an InputError that does not
 # name the file fails the run; the input is kept in
-# BUILD/fuzz-artifacts/<target>/ (see docs/sanitizers-and-fuzzing.md to
-# reproduce it). What a run learns is kept in BUILD/fuzz-corpus/<target>/
+# BUILD/fuzz-artifacts/<target>/ and copied to
+# tests/data/fuzz_regressions/<target>/, where ctest fuzz.replay.<target>
+# replays it in every build until the reader is fixed (commit it; see
+# docs/sanitizers-and-fuzzing.md). What a run learns is kept in BUILD/fuzz-corpus/<target>/
 # and extends the next run.
 # Usage: scripts/run-fuzzers.sh [SECONDS_PER_TARGET [TARGET...]]
 #   SECONDS_PER_TARGET  default 30 (CI); 600 or more for a real hunt
@@ -58,6 +60,13 @@ for target in "${targets[@]}"; do
   else
     echo "fuzz $target: FINDING (log $log, input in $artifacts/):" >&2
     grep -E 'ERROR|runtime error|InputError without|terminate|SUMMARY|Test unit written' "$log" | head -20 >&2 || tail -30 "$log" >&2
+    keep=tests/data/fuzz_regressions/$target
+    mkdir -p "$keep"
+    for input in "$artifacts"/*; do
+      [ -f "$input" ] || continue
+      cp "$input" "$keep/"
+      echo "fuzz $target: kept as $keep/$(basename "$input") (a regression input of ctest fuzz.replay.$target)" >&2
+    done
     failed+=("$target")
   fi
 done
