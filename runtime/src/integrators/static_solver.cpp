@@ -121,12 +121,29 @@ std::vector<double> predicted_start(const Model& model, const State& state, cons
   return u;
 }
 
+/// The largest relative residual taken for a round-off floor: an
+/// ill-conditioned tangent (a nearly incompressible material, nu 0.49 on a
+/// fine mesh) leaves the exact linear solve's residual near 1e-8, where the
+/// iterations only move round-off about.
+constexpr double kFloorLimit = 1e-6;
+
+/// The warning, once per run, that a load step stopped at its round-off floor.
+void warn_of_floor(Integration& run, const std::string& where, double relative) {
+  const std::string text = "Newton stopped at the round-off floor ";
+  for (const std::string& w : run.statistics.warnings)
+    if (w.rfind(text, 0) == 0) return;
+  run.statistics.warnings.push_back(text + where + " (relative residual " + format_number(relative) +
+                                    " above the tolerance " + format_number(run.settings.tolerance) +
+                                    " and no longer falling: an ill-conditioned tangent)");
+}
+
 /// Newton iterations at a fixed load; returns the iterations used.
 /// A full step is taken when it lowers the residual; otherwise the step
 /// length is halved until the potential energy satisfies Armijo's condition
 /// (bending-dominated StVK often raises the residual on the way to the
 /// solution while the energy falls). Stops at the tolerance, or when the
-/// residual stalls below 1e-8 (the round-off floor of g - f).
+/// residual stalls below 1e-8 (the round-off floor of g - f), or, with a
+/// warning, below kFloorLimit when two iterations have not halved it.
 int newton(Integration& run, std::vector<double>& u, const std::vector<double>& f, const std::string& where) {
   const Model& model = run.model;
   const SolverSettings& settings = run.settings;
@@ -152,6 +169,7 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
   const double reference = std::max({rows.norm_free(f_free), residual, rows.norm_dofs(g), 1e-300});
   const bool debug = std::getenv("TENSORMASS_DEBUG_NEWTON") != nullptr;
   int shifted_steps = 0;
+  double previous = INFINITY;  // the residual before the last iteration
   for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
     if (residual <= settings.tolerance * reference) return iteration - 1;
     std::vector<double> rhs(n);
@@ -183,13 +201,18 @@ int newton(Integration& run, std::vector<double>& u, const std::vector<double>& 
     if (debug)
       std::fprintf(stderr, "newton %d: residual %.3e, step %.3g%s\n", iteration, trial_residual / reference, alpha,
                    shifted ? " (shifted tangent)" : "");
-    const double previous = residual;
+    const double earlier = previous;
+    previous = residual;
     u.swap(trial_u);
     g.swap(trial_g);
     r.swap(trial_r);
     residual = trial_residual;
     if (residual <= settings.tolerance * reference) return iteration;
     if (alpha == 1.0 && residual <= 1e-8 * reference && residual > 0.1 * previous) return iteration;
+    if (residual <= kFloorLimit * reference && residual > 0.5 * earlier) {
+      warn_of_floor(run, where, residual / reference);
+      return iteration;
+    }
   }
   throw NumericalError("Newton did not converge " + where + " in " + std::to_string(settings.max_iterations) +
                        " iterations (relative residual " + format_number(residual / reference) + ", tolerance " +
