@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""Volumetric locking: a cantilever under its weight as Poisson's ratio nears 1/2.
+
+A 10 x 1 x 1 m beam (`tensormass beam --size 10,1,1`), clamped at x = 0,
+Hooke (E = 1 MPa, density 10 kg/m^3), static, gravity -9.81 m/s^2 along y,
+on a coarse mesh of 20 x 2 x 2 cubes cut into each element type, for each
+Poisson's ratio; the largest displacement (summary.json's
+max_displacement) against the reference: hex20 on 80 x 8 x 8 cubes at the
+same ratio. Each run uses the default settings.
+
+    /usr/bin/python3 bench/locking_cantilever.py --json docs/results/locking.json
+    /usr/bin/python3 scripts/results/render_locking.py docs/results/locking.json > docs/results/locking.md
+    /usr/bin/python3 bench/locking_cantilever.py --quick   # ctest: two elements, two ratios, a coarse reference
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_metadata import metadata  # noqa: E402
+
+# label -> `tensormass beam` options making it
+ELEMENTS = {
+    "tet4": ["--type", "tet6"],
+    "hex8": ["--type", "hex8"],
+    "prism6": ["--type", "prism6"],
+    "pyramid5": ["--type", "pyramid5"],
+    "tet10": ["--type", "tet6", "--order", "2"],
+    "hex20": ["--type", "hex20"],
+}
+RATIOS = [0.3, 0.45, 0.49, 0.499]
+COARSE = (20, 2, 2)
+FINE = (80, 8, 8)
+
+SCENE = """mesh: {mesh}
+materials: [{{region: all, law: hooke, young: 1.0e6, poisson: {poisson}, density: 10}}]
+fixed: [clamp]
+loads: {{gravity: [0, -9.81, 0]}}
+solver: {{type: static}}
+output: {{directory: {out}}}
+"""
+
+
+def beam(binary, work, label, cells):
+    path = os.path.join(work, f"{label}_{'x'.join(map(str, cells))}.msh")
+    if not os.path.exists(path):
+        subprocess.run([binary, "beam", "--dim", "3", "--cells", ",".join(map(str, cells)), "--size", "10,1,1",
+                        *ELEMENTS[label], "-o", path], check=True, stdout=subprocess.DEVNULL)
+    return path
+
+
+def sag(binary, work, label, cells, poisson):
+    """The run's summary.json figures: largest displacement, cells, dofs, wall seconds, warnings."""
+    mesh = beam(binary, work, label, cells)
+    name = f"{label}_{'x'.join(map(str, cells))}_{poisson}"
+    scene = os.path.join(work, name + ".yaml")
+    out = os.path.join(work, "out_" + name)
+    with open(scene, "w", encoding="utf-8") as handle:
+        handle.write(SCENE.format(mesh=mesh, poisson=poisson, out=out))
+    run = subprocess.run([binary, "run", "--quiet", scene], capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"locking_cantilever: {binary} run {scene} exited {run.returncode}: {run.stderr}")
+    with open(os.path.join(out, "summary.json"), encoding="utf-8") as handle:
+        summary = json.load(handle)
+    return {"element": label, "cells": summary["elements"], "dofs": summary["dofs"], "poisson": poisson,
+            "max_displacement": summary["max_displacement"]["value"], "seconds": summary["time_per_phase_s"]["total"],
+            "warned": bool(summary["warnings"])}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--binary", default="build/tensormass")
+    parser.add_argument("--json", help="write the rows here")
+    parser.add_argument("--quick", action="store_true", help="tet4 and hex8 at 0.3 and 0.499, hex20 reference on 20 x 2 x 2")
+    parser.add_argument("--work", help="a directory for meshes and runs (default: a temporary one)")
+    args = parser.parse_args()
+    binary = os.path.abspath(args.binary)
+    elements = ["tet4", "hex8"] if args.quick else list(ELEMENTS)
+    ratios = [0.3, 0.499] if args.quick else RATIOS
+    fine = COARSE if args.quick else FINE
+    with tempfile.TemporaryDirectory() as scratch:
+        work = os.path.abspath(args.work or scratch)
+        os.makedirs(work, exist_ok=True)
+        references = {nu: sag(binary, work, "hex20", fine, nu) for nu in ratios}
+        rows = []
+        for label in elements:
+            for nu in ratios:
+                row = sag(binary, work, label, COARSE, nu)
+                row["ratio"] = row["max_displacement"] / references[nu]["max_displacement"]
+                rows.append(row)
+                print(f"{label:9} nu {nu:<6} sag {row['max_displacement']:.4f} m  "
+                      f"{row['ratio']:.3f} of hex20 {'x'.join(map(str, fine))}", flush=True)
+    result = {
+        "metadata": metadata(binary),
+        "settings": {"coarse_cubes": list(COARSE), "reference_cubes": list(fine), "size_m": [10, 1, 1],
+                     "law": "hooke", "young": 1.0e6, "density": 10, "gravity": 9.81, "quick": args.quick},
+        "references": [references[nu] for nu in ratios],
+        "rows": rows,
+    }
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as handle:
+            json.dump(result, handle, indent=1)
+            handle.write("\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
