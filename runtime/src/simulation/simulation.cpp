@@ -18,12 +18,11 @@
 #include "simulation/report_figures.hpp"
 #include "simulation/resume_checkpoint.hpp"
 #include "simulation/run_refinement.hpp"
+#include "simulation/run_streams.hpp"
 #include "simulation/state_frames.hpp"
 #include "simulation/summary_json.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/io/output_directory.hpp"
-#include "tensormass/io/streamed_file.hpp"
-#include "tensormass/io/track_csv.hpp"
 #include "tensormass/io/vtk_writer.hpp"
 #include "tensormass/model/locking_warning.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
@@ -39,17 +38,6 @@ using detail::CellLaws;
 using detail::Discretisation;
 using detail::StartMesh;
 using detail::write_state;
-
-/// Finishes every track's file and lists it in the report.
-void finish_tracks(const std::vector<GroupTrack>& tracks, std::vector<io::StreamedFile>& files, RunReport& report) {
-  detail::PhaseTimer timer(report.output_seconds);
-  for (std::size_t t = 0; t < files.size(); ++t) {
-    files[t].finish();
-    const std::string name = track_file_name(tracks[t].name());
-    report.files.push_back(name);
-    report.tracks.push_back({tracks[t].name(), name});
-  }
-}
 
 RefinementRecord refinement_record(int step, const detail::RunRefinement& refinement) {
   return {step, refinement.leaf_mesh().cell_count(), refinement.leaves_per_level()};
@@ -67,8 +55,6 @@ struct Simulation::Impl {
   SavedRefinement save_refinement() const;
   void restore(const Checkpoint& checkpoint);
   void write_checkpoint_now(const State& state);
-  void open_streams(const Checkpoint* checkpoint);
-  void remove_stale_streams() const;
   void stream_adaptivity_record();
   std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
   bool step();
@@ -128,7 +114,7 @@ struct Simulation::Impl {
     const std::vector<double>& displacement = divides_state() ? tracked_displacement(now) : now.displacement;
     for (std::size_t t = 0; t < tracks.size(); ++t) {
       const TrackRow row = tracks[t].record(now.time, displacement);
-      if (writes_files()) track_files[t].append(track_csv_row(row));
+      if (streams) streams->append_track_row(t, row);
     }
   }
   /// The report's nodes, cells and dofs: the whole mesh's.
@@ -154,10 +140,8 @@ struct Simulation::Impl {
   bool dynamic;
   std::unique_ptr<Adaptivity> adaptivity;
   std::vector<GroupTrack> tracks;
-  /// Rank 0's streamed files: one per track, and the adaptive model's records.
-  std::vector<io::StreamedFile> track_files;
-  std::optional<io::StreamedFile> record_file;
-  long streamed_evaluations = 0;  // adaptive evaluations written to record_file
+  std::optional<detail::RunStreams> streams;  // rank 0's track and record files
+  long streamed_evaluations = 0;              // adaptive evaluations written to the record file
   std::string checkpoint_path;
   std::unique_ptr<io::OutputDirectoryLock> output_lock;  // rank 0's, from before the checkpoint is read to the end
   Checkpoint fingerprints;                               // this run's; a checkpoint written starts from them
@@ -239,7 +223,9 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   last_good = state;
   warn_of_locking(options);
   if (checkpoint) restore(*checkpoint);
-  open_streams(checkpoint ? &*checkpoint : nullptr);  // after every check of the checkpoint
+  if (writes_files())  // after every check of the checkpoint
+    streams.emplace(scene.output.directory, tracks, adaptivity != nullptr, checkpoint ? &*checkpoint : nullptr,
+                    checkpoint_path);
   if (checkpoint) {
     if (writes_files())
       std::fprintf(stderr, "tensormass: resuming from %s at step %d (t = %g)\n", checkpoint_path.c_str(), state.step,
@@ -255,48 +241,11 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   if (refinement) report.refinement.push_back(refinement_record(0, *refinement));
 }
 
-/// Rank 0's track and record files: new ones, or a resumed run's cut back
-/// to the checkpoint's marks.
-void Simulation::Impl::open_streams(const Checkpoint* checkpoint) {
-  if (!writes_files()) return;
-  if (checkpoint && checkpoint->tracks.size() != tracks.size())
-    throw InputError("checkpoint " + checkpoint_path + " holds " + std::to_string(checkpoint->tracks.size()) +
-                     " tracks, the scene asks for " + std::to_string(tracks.size()));
-  if (checkpoint) {  // every file checked before any is cut back
-    for (std::size_t t = 0; t < tracks.size(); ++t)
-      io::StreamedFile::check_resumable(output_path(track_file_name(tracks[t].name())), checkpoint->tracks[t].file);
-    if (adaptivity)
-      io::StreamedFile::check_resumable(output_path(detail::kAdaptivityRecordsFile), checkpoint->adaptivity_records);
-  }
-  if (!checkpoint) remove_stale_streams();
-  for (std::size_t t = 0; t < tracks.size(); ++t) {
-    const std::string path = output_path(track_file_name(tracks[t].name()));
-    track_files.push_back(checkpoint ? io::StreamedFile::resume(path, checkpoint->tracks[t].file)
-                                     : io::StreamedFile(path, track_csv_header()));
-  }
-  if (!adaptivity) return;
-  const std::string path = output_path(detail::kAdaptivityRecordsFile);
-  record_file.emplace(checkpoint ? io::StreamedFile::resume(path, checkpoint->adaptivity_records)
-                                 : io::StreamedFile(path, ""));
-}
-
-/// A new run replaces the directory's results: the unfinished track and
-/// record files an earlier killed run left go, those of groups this run
-/// does not track too.
-void Simulation::Impl::remove_stale_streams() const {
-  std::error_code error;
-  for (const auto& entry : fs::directory_iterator(scene.output.directory, error)) {
-    const std::string name = entry.path().filename().string();
-    const bool track = name.rfind("track_", 0) == 0 && name.size() > 14 && name.ends_with(".csv.partial");
-    if (track || name == std::string(detail::kAdaptivityRecordsFile) + ".partial") fs::remove(entry.path(), error);
-  }
-}
-
 /// Appends the adaptive model's latest evaluation to its record file, once.
 void Simulation::Impl::stream_adaptivity_record() {
   const long evaluations = adaptivity->records().evaluations;
   if (evaluations == streamed_evaluations) return;
-  if (record_file) record_file->append(detail::adaptivity_record_line(adaptivity->last_record()));
+  if (streams) streams->append_record(adaptivity->last_record());
   streamed_evaluations = evaluations;
 }
 
@@ -385,11 +334,11 @@ void Simulation::Impl::write_checkpoint_now(const State& state_now) {
   saved.step_criteria_ms = report.step_criteria_ms;
   saved.series = series;
   saved.statistics.warnings.clear();
-  for (std::size_t t = 0; t < tracks.size(); ++t)
-    saved.tracks.push_back({track_files[t].mark(), tracks[t].first_shift()});
+  const std::vector<io::StreamMark> marks = streams->track_marks();
+  for (std::size_t t = 0; t < tracks.size(); ++t) saved.tracks.push_back({marks[t], tracks[t].first_shift()});
   if (adaptivity) {
     saved.adaptive = true, saved.laws = save_laws(disc->model, disc->assembler, *adaptivity);
-    saved.adaptivity_records = record_file->mark();
+    saved.adaptivity_records = streams->record_mark();
   }
   if (refinement) saved.refining = true, saved.refinement = save_refinement();
   write_checkpoint(checkpoint_path, saved);
@@ -630,10 +579,9 @@ void Simulation::Impl::finish_run() {
 /// The tracks, the report of a run that ended at `end` (failed when
 /// `failure` is not empty) and summary.json.
 void Simulation::Impl::close_report(const State& end, const std::string& failure) {
-  if (writes_files()) finish_tracks(tracks, track_files, report);
-  if (record_file) {
-    record_file->finish();
-    report.files.push_back(detail::kAdaptivityRecordsFile);
+  if (streams) {
+    detail::PhaseTimer timer(report.output_seconds);
+    streams->finish(tracks, report);
   }
   if (failure.empty()) report.files.push_back("summary.json");
   report.state = divides_state() ? whole_state(end) : end;
