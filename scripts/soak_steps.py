@@ -12,14 +12,19 @@ run's peak must stay within 1 % of the short one's. With --baseline BINARY the s
 are measured side by side.
 
 usage: /usr/bin/python3 scripts/soak_steps.py [--binary build/tensormass]
-           [--steps 1000000] [--baseline OTHER_BINARY] [--work DIR]
+           [--steps 1000000] [--baseline OTHER_BINARY --baseline-label TEXT]
+           [--json FILE] [--work DIR]
 """
 import argparse
+import json
 import os
 import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "bench"))
+from bench_metadata import metadata  # noqa: E402
 
 SCENE = """mesh: beam.msh
 materials:
@@ -47,12 +52,13 @@ def peak_mib(binary, work, steps):
     return usage.ru_maxrss / 1024.0, time.monotonic() - started
 
 
-def measure(binary, work, steps):
+def measure(binary, label, work, steps):
+    """The row of one binary: peak MiB at 1,000 and at `steps` steps, growth in %, the long run's seconds."""
     short, _ = peak_mib(binary, work, 1000)
     long, seconds = peak_mib(binary, work, steps)
     growth = 100.0 * (long - short) / short
-    print(f"| {binary} | {short:.1f} | {long:.1f} | {growth:+.2f} % | {seconds:.1f} s |")
-    return growth
+    print(f"| {label} | {short:.1f} | {long:.1f} | {growth:+.2f} % | {seconds:.1f} s |")
+    return {"label": label, "short_mib": short, "long_mib": long, "growth_percent": growth, "long_seconds": seconds}
 
 
 def main():
@@ -60,6 +66,8 @@ def main():
     parser.add_argument("--binary", default="build/tensormass")
     parser.add_argument("--steps", type=int, default=1000000)
     parser.add_argument("--baseline", help="another tensormass binary measured the same way")
+    parser.add_argument("--baseline-label", default="baseline", help="what the baseline binary is (for the page)")
+    parser.add_argument("--json", help="write the rows and the run's metadata here")
     parser.add_argument("--work", help="a directory for the mesh, scenes and outputs (default: a temporary one)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as scratch:
@@ -70,10 +78,17 @@ def main():
         print(f"peak resident memory, 1000 steps against {args.steps} explicit steps (2D beam, 16 quads)\n")
         print(f"| binary | 1000 steps (MiB) | {args.steps} steps (MiB) | growth | long run's wall time |")
         print("|---|--:|--:|--:|--:|")
-        growth = measure(os.path.abspath(args.binary), work, args.steps)
+        rows = [measure(os.path.abspath(args.binary), "this build", work, args.steps)]
         if args.baseline:
-            measure(os.path.abspath(args.baseline), work, args.steps)
+            rows.append(measure(os.path.abspath(args.baseline), args.baseline_label, work, args.steps))
+    growth = rows[0]["growth_percent"]
     print(f"\ntarget: growth within 1 %: {'PASS' if abs(growth) <= 1.0 else 'MISS'} ({growth:+.2f} %)")
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as handle:
+            json.dump({"metadata": metadata(os.path.abspath(args.binary)),
+                       "settings": {"short_steps": 1000, "long_steps": args.steps, "dt": 1.0e-5, "cells": 16},
+                       "rows": rows}, handle, indent=1)
+            handle.write("\n")
     return 0 if abs(growth) <= 1.0 else 1
 
 

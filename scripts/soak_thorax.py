@@ -10,7 +10,7 @@ resident memory (VmRSS) twice a second, and reports:
     diaphragm is back at rest) and at every inspiration (t = 4 k + 2 s):
     without drift, both repeat from cycle to cycle.
 
-usage: /usr/bin/python3 scripts/soak_thorax.py [--cycles 50] [--binary build/tensormass] [--work DIR]
+usage: /usr/bin/python3 scripts/soak_thorax.py [--cycles 50] [--binary build/tensormass] [--json FILE] [--work DIR]
 """
 import argparse
 import csv
@@ -22,6 +22,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from bench_metadata import metadata  # noqa: E402
 
 
 def build_mesh(binary, work):
@@ -66,6 +68,7 @@ def main():
     parser.add_argument("--cycles", type=int, default=50)
     parser.add_argument("--binary", default=f"{ROOT}/build/tensormass")
     parser.add_argument("--work", default="/tmp/tensormass-soak")
+    parser.add_argument("--json", help="write the figures and the run's metadata here")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     subprocess.run(["cp", f"{ROOT}/examples/thorax/thorax.yaml", args.work], check=True)
@@ -90,6 +93,15 @@ def main():
     print(f"tumour at end-exhale (t = 4k s): largest {1e3 * max(rest):.4f} mm over {args.cycles} cycles")
     print(f"tumour at inspiration (t = 4k + 2 s): cycle 1 {1e3 * peak_motion[0]:.4f} mm, cycle {args.cycles} "
           f"{1e3 * peak_motion[-1]:.4f} mm (difference {1e3 * abs(peak_motion[-1] - peak_motion[0]):.2e} mm)")
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as handle:
+            json.dump({"metadata": metadata(os.path.abspath(args.binary)),
+                       "settings": {"cycles": args.cycles, "cycle_seconds": 4.0, "dt": 0.05},
+                       "samples": len(samples), "seconds": seconds, "first_cycle_mib": base / 1024,
+                       "largest_after_mib": peak / 1024, "last_mib": samples[-1][1] / 1024,
+                       "end_exhale_mm": [1e3 * x for x in rest], "inspiration_mm": [1e3 * x for x in peak_motion]},
+                      handle, indent=1)
+            handle.write("\n")
 
 
 if __name__ == "__main__":
