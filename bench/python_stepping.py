@@ -10,7 +10,8 @@ alternation, `--repeats` times each:
 and prints the medians, the ratio python / cli, and both runs' own loop
 time (summary.json time_loop_seconds: the steps alone).
 
-    PYTHONPATH=build/python /usr/bin/python3 bench/python_stepping.py [--binary build/tensormass]
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_stepping.py [--binary build/tensormass] [--json FILE]
+    /usr/bin/python3 scripts/results/render_python.py FILE > docs/results/python.md
 """
 import argparse
 import json
@@ -22,6 +23,9 @@ import tempfile
 import time
 
 import tensormass as tm
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_metadata import metadata  # noqa: E402
 
 SCENE = """mesh: beam.msh
 materials: [{{law: stvk, young: 1.0e6, poisson: 0.3, density: 1000}}]
@@ -42,6 +46,7 @@ def main():
     parser.add_argument("--binary", default="build/tensormass")
     parser.add_argument("--steps", type=int, default=40)
     parser.add_argument("--repeats", type=int, default=9)
+    parser.add_argument("--json", help="write the runs, their medians and the run's metadata here")
     args = parser.parse_args()
     work = tempfile.mkdtemp(prefix="tm-python-bench-")
     subprocess.run([args.binary, "beam", "--dim", "3", "--cells", "20,6,14", "--size", "2,0.6,1.4", "--type", "tet6",
@@ -75,6 +80,13 @@ def main():
           f"{median_loop['python'] / median_loop['cli']:.3f}")
     print("  all wall times: cli " + " ".join(f"{t:.3f}" for t in wall["cli"]) + "; python " +
           " ".join(f"{t:.3f}" for t in wall["python"]))
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as handle:
+            json.dump({"metadata": metadata(os.path.abspath(args.binary)),
+                       "settings": {"steps": args.steps, "repeats": args.repeats, "tets": 10080, "nodes": 2835},
+                       "wall_s": wall, "loop_s": loop, "median_wall_s": median, "median_loop_s": median_loop},
+                      handle, indent=1)
+            handle.write("\n")
     return 0
 
 
