@@ -41,6 +41,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RenderedPage{"render_kernels.py", "kernels.json kernels_avx2.json", "kernels.md"},
                       RenderedPage{"render_locking.py", "locking.json", "locking.md"},
                       RenderedPage{"render_soak.py", "soak_steps.json soak_thorax.json", "soak.md"},
+                      RenderedPage{"render_python.py", "python_stepping.json", "python.md"},
                       RenderedPage{"render_adaptive.py", "adaptive_bench.json adaptive_needle_fine.json",
                                    "adaptive.md"}),
     [](const auto& info) {
