@@ -150,8 +150,14 @@ def main():
                 print(describe(row), flush=True)
         os.remove(mesh)
     if args.json:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        from bench_metadata import metadata
+        settings = {"sizes": {size: {"cubes": list(SIZES[size][0]), "box_m": list(SIZES[size][1])} for size in SIZES},
+                    "load_steps": args.load_steps, "steps": args.steps, "explicit_steps": args.explicit_steps}
         with open(args.json + ".tmp", "w") as f:
-            json.dump(rows, f, indent=1)
+            json.dump({"metadata": metadata(os.path.abspath(args.binary)), "settings": settings, "rows": rows}, f,
+                      indent=1)
+            f.write("\n")
         os.replace(args.json + ".tmp", args.json)
     shutil.rmtree(work, ignore_errors=True)
     failed = [r for r in rows if "error" in r]

@@ -12,8 +12,10 @@ serial run's; the same run twice gives the same bytes; a bad scene, a truncated 
 its part) and a numerical failure exit non-zero on every rank with one
 message and no hang.
 
-usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc]
-(--without-petsc: the build has no PETSc; the test says so and is skipped)
+usage: check_mpi_runs.py TENSORMASS WORKDIR [--without-petsc] [--json FILE]
+(--without-petsc: the build has no PETSc; the test says so and is skipped;
+--json: the differences, scene by scene and rank count by rank count, with
+the run's metadata, for docs/results/mpi.md)
 """
 import json
 import os
@@ -27,6 +29,7 @@ import numpy as np
 
 TOLERANCE = 1e-8  # largest nodal difference over the largest displacement
 RANKS = (1, 2, 3)
+DIFFERENCES = []  # (scene, ranks, difference, laws equal), for --json
 
 def clamped_beam(rest, law="stvk", mesh="beam.msh"):
     """A clamped beam under gravity; `rest`: the solver and what else the scene has."""
@@ -154,6 +157,8 @@ def check_scene(binary, work, name):
         displacement, laws = read_result(os.path.join(work, out))
         difference = np.abs(displacement - reference).max() / scale
         summary = json.load(open(os.path.join(work, out, "summary.json")))
+        DIFFERENCES.append({"scene": name, "ranks": ranks, "difference": float(difference),
+                            "laws_equal": bool(np.array_equal(laws, reference_laws))})
         print(f"{name:20s} {ranks} ranks: difference {difference:.2e} of the largest displacement "
               f"{scale:.4g}; laws {'equal' if np.array_equal(laws, reference_laws) else 'DIFFER'}")
         if not difference <= TOLERANCE:
@@ -282,6 +287,7 @@ def check_resume(binary, work):
               for d in ("out-straight", "out-serial")]
     track_difference = (np.abs(tracks[0] - tracks[1]).max() / np.abs(tracks[1][:, 4:]).max()
                         if tracks[0].shape == tracks[1].shape else np.inf)
+    DIFFERENCES.append({"scene": "resumed_track", "ranks": 2, "difference": float(track_difference), "laws_equal": True})
     print(f"resumed on 2 ranks: difference {difference:.2e} of the largest displacement; track rows {rows}; "
           f"2-rank track against the serial one: {track_difference:.2e} of its largest displacement")
     if not difference <= TOLERANCE or rows[0] != rows[1] or not track_difference <= TOLERANCE:
@@ -360,7 +366,17 @@ def main():
     failures += check_numerical_failure(binary, work)
     for failure in failures:
         print("FAIL:", failure)
+    if "--json" in sys.argv:
+        write_json(sys.argv[sys.argv.index("--json") + 1], binary)
     return 1 if failures else 0
+
+
+def write_json(path, binary):
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "bench"))
+    from bench_metadata import metadata
+    with open(path, "w", encoding="utf-8") as handle:
+        json.dump({"metadata": metadata(binary), "tolerance": TOLERANCE, "rows": DIFFERENCES}, handle, indent=1)
+        handle.write("\n")
 
 
 if __name__ == "__main__":
