@@ -43,6 +43,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RenderedPage{"render_soak.py", "soak_steps.json soak_thorax.json", "soak.md"},
                       RenderedPage{"render_python.py", "python_stepping.json", "python.md"},
                       RenderedPage{"render_runtime.py", "runtime.json", "runtime.md"},
+                      RenderedPage{"render_linear_solvers.py", "linear_solvers.json", "linear_solvers.md"},
                       RenderedPage{"render_scaling.py", "scaling.json", "scaling.md"},
                       RenderedPage{"render_mpi.py", "mpi_agreement.json mpi_scaling.json", "mpi.md"},
                       RenderedPage{"render_adaptive.py", "adaptive_bench.json adaptive_needle_fine.json",
