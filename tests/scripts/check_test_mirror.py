@@ -22,11 +22,9 @@ TEST_FOLDERS = {"kernels": "tests/kernels"}
 ALLOWED = {
     "integrators/integrator.cpp": "tests/runtime/simulation/test_simulation.cpp (every integrator run by step and whole)",
     "io/track_csv.cpp": "tests/runtime/simulation/test_track.cpp, test_track_run.cpp (the CSV a run writes)",
-    "linear_solvers/petsc_missing.cpp": "built without PETSc only: tests/runtime/scene/test_scene_load.cpp "
-    "(PetscLinearSolverAndItsOptions)",
-    "parallel/mpi_missing.cpp": "built without PETSc only: tests/runtime/parallel/test_rank_errors.cpp, "
-    "test_mesh_broadcast.cpp (one rank)",
-    "parallel/mpi_world.cpp": "tests/runtime/parallel/check_mpi_runs.py (ctest parallel.mpirun), test_rank_errors.cpp",
+    "linear_solvers/petsc_missing.cpp": "built without PETSc only: tests/runtime/linear_solvers/test_linear_solver.cpp, "
+    "scene/test_scene_load.cpp",
+    "parallel/mpi_missing.cpp": "built without PETSc only: tests/runtime/parallel/test_mpi_world.cpp (one rank)",
     "simulation/carry_laws.cpp": "tests/runtime/simulation/test_refinement_run.cpp (laws carried to the children)",
     "simulation/discretisation.cpp": "tests/runtime/simulation/test_simulation.cpp, parallel/check_mpi_runs.py",
     "simulation/report_figures.cpp": "tests/runtime/cli/test_run_command.cpp, simulation/test_track_run.cpp",

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,13 @@ TEST(LinearSolver, TheFactoryMakesTheSolverOfTheSettings) {
   if (petsc_available()) {
     const std::string name = make_linear_solver(settings_of(LinearSolverType::petsc))->name();
     EXPECT_NE(name.find("petsc"), std::string::npos) << name;
+  } else {  // reached only by code that skips the scene, which refuses petsc itself
+    try {
+      make_linear_solver(settings_of(LinearSolverType::petsc));
+      ADD_FAILURE() << "a PETSc solver from a build without PETSc";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_STREQ(error.what(), "this build has no PETSc (configure with libpetsc-real-dev installed)");
+    }
   }
 }
 
