@@ -1,8 +1,8 @@
 // Cutting a mesh's cells among MPI ranks (partition_cells in
 // tensormass/parallel/cell_partition.hpp): one part without cutting, every
 // part non-empty and within Scotch's 1 % imbalance, a short border, the same
-// cut on every call, and too many parts refused. (Balance on a larger beam
-// and the build without PETSc: test_distribution.cpp.)
+// cut on every call, and too many parts refused; a build without PETSc
+// refuses to cut. (Balance on a larger beam: test_distribution.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,20 +29,15 @@ int border_edges(const Mesh& mesh, const std::vector<int>& owner) {
   return cut;
 }
 
-class PartitionCells : public ::testing::Test {
+/// The cuts Scotch makes (builds with PETSc).
+class ScotchCut : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!petsc_available()) GTEST_SKIP() << "this build has no PETSc and Scotch";
   }
 };
 
-TEST_F(PartitionCells, OnePartPutsEveryCellInPartZero) {
-  const Mesh mesh = test::beam(3, "tet6", {3, 2, 2});
-  EXPECT_EQ(parallel::partition_cells(mesh, 1), std::vector<int>(mesh.cell_count(), 0));
-  EXPECT_EQ(parallel::partition_cells(mesh, 0), std::vector<int>(mesh.cell_count(), 0));
-}
-
-TEST_F(PartitionCells, PartsAreNonEmptyAndBalanced) {
+TEST_F(ScotchCut, PartsAreNonEmptyAndBalanced) {
   const Mesh mesh = test::beam(3, "hex8", {20, 4, 4});  // 320 hexes
   for (int parts : {2, 4, 5, 8}) {
     const std::vector<int> owner = parallel::partition_cells(mesh, parts);
@@ -58,7 +53,7 @@ TEST_F(PartitionCells, PartsAreNonEmptyAndBalanced) {
   }
 }
 
-TEST_F(PartitionCells, TwoPartsOfABeamMeetAcrossOneCrossSection) {
+TEST_F(ScotchCut, TwoPartsOfABeamMeetAcrossOneCrossSection) {
   // 20 x 4 x 4 hexes: a cut across the beam crosses 16 faces; a cut along
   // it would cross at least 80.
   const Mesh mesh = test::beam(3, "hex8", {20, 4, 4});
@@ -66,13 +61,13 @@ TEST_F(PartitionCells, TwoPartsOfABeamMeetAcrossOneCrossSection) {
   EXPECT_LE(border_edges(mesh, owner), 2 * 16);
 }
 
-TEST_F(PartitionCells, TheSameMeshIsCutTheSameWayEveryTime) {
+TEST_F(ScotchCut, TheSameMeshIsCutTheSameWayEveryTime) {
   const Mesh mesh = test::beam(3, "tet5", {8, 3, 3});
   const std::vector<int> first = parallel::partition_cells(mesh, 3);
   for (int again = 0; again < 3; ++again) EXPECT_EQ(parallel::partition_cells(mesh, 3), first);
 }
 
-TEST_F(PartitionCells, AsManyPartsAsCellsGivesEachCellItsOwn) {
+TEST_F(ScotchCut, AsManyPartsAsCellsGivesEachCellItsOwn) {
   const Mesh mesh = test::beam(2, "quad4", {3, 2, 1});
   std::vector<int> owner = parallel::partition_cells(mesh, 6);
   std::sort(owner.begin(), owner.end());
@@ -81,13 +76,31 @@ TEST_F(PartitionCells, AsManyPartsAsCellsGivesEachCellItsOwn) {
   EXPECT_EQ(owner, each);
 }
 
-TEST_F(PartitionCells, MorePartsThanCellsAreRefusedNamingBoth) {
+TEST_F(ScotchCut, MorePartsThanCellsAreRefusedNamingBoth) {
   const Mesh mesh = test::beam(2, "quad4", {3, 2, 1});
   try {
     parallel::partition_cells(mesh, 7);
     ADD_FAILURE() << "7 parts of 6 cells were accepted";
   } catch (const InputError& error) {
     EXPECT_STREQ(error.what(), "cannot share 6 cells among 7 MPI ranks (run on fewer ranks)");
+  }
+}
+
+// In builds with PETSc or without.
+TEST(PartitionCells, OnePartPutsEveryCellInPartZero) {
+  const Mesh mesh = test::beam(3, "tet6", {3, 2, 2});
+  EXPECT_EQ(parallel::partition_cells(mesh, 1), std::vector<int>(mesh.cell_count(), 0));
+  EXPECT_EQ(parallel::partition_cells(mesh, 0), std::vector<int>(mesh.cell_count(), 0));
+}
+
+TEST(PartitionCells, ABuildWithoutPetscRefusesToCut) {
+  if (petsc_available()) GTEST_SKIP() << "this build has PETSc and Scotch: ScotchCut.*";
+  const Mesh mesh = test::beam(2, "quad4", {3, 2, 1});
+  try {
+    parallel::partition_cells(mesh, 2);
+    ADD_FAILURE() << "a build without PETSc cut the mesh";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(), "cutting the mesh for MPI ranks needs PETSc, which this build lacks");
   }
 }
 
