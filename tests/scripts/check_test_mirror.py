@@ -20,7 +20,6 @@ TEST_FOLDERS = {"kernels": "tests/kernels"}
 
 # Sources tested under another name: source -> where its tests live.
 ALLOWED = {
-    "io/track_csv.cpp": "tests/runtime/simulation/test_track.cpp, test_track_run.cpp (the CSV a run writes)",
     "linear_solvers/petsc_missing.cpp": "built without PETSc only: tests/runtime/linear_solvers/test_linear_solver.cpp, "
     "scene/test_scene_load.cpp",
     "parallel/mpi_missing.cpp": "built without PETSc only: tests/runtime/parallel/test_mpi_world.cpp (one rank)",

@@ -39,8 +39,9 @@ int region_priority(std::string_view name);
 Mesh build_mesh(const InputCursor& in, const Grid& grid);
 
 /// Takes a grid and the location its cells were read at; checks its offsets
-/// (leading 0, non-decreasing, ending at the connectivity size) from cell
-/// `first_cell` on (the cells before it were checked already). Returns
+/// (non-decreasing, within and ending at the connectivity size; each
+/// reader checks the leading 0 itself) from cell `first_cell` on (the cells
+/// before it were checked already). Returns
 /// nothing; throws InputError at `where` on the first offset out of order.
 void check_offsets(const InputCursor& in, const Grid& grid, Location where, std::size_t first_cell = 0);
 

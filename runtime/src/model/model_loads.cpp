@@ -257,8 +257,9 @@ void Model::hold(const std::string& group, const std::array<double, 3>& displace
       auto p = std::lower_bound(prescribed_.begin(), prescribed_.end(), dof,
                                 [](const PrescribedDof& q, int d) { return q.dof < d; });
       if (p == prescribed_.end() || p->dof != dof)
-        throw InputError("hold: node " + std::to_string(mesh_->node_source_ids[node]) + " of group '" + group +
-                         "' has a free component " + std::to_string(a) +
+        throw InputError("hold: node " +
+                         std::to_string(mesh_->node_source_ids.empty() ? node : mesh_->node_source_ids[node]) +
+                         " of group '" + group + "' has a free component " + std::to_string(a) +
                          " in the scene; only dofs that are fixed or prescribed there can be moved");
       held.push_back(&*p);
     }

@@ -210,7 +210,7 @@ namespace {
 enum class Parsed { ok, not_a_number, out_of_range };
 
 Parsed parse_double(std::string_view s, double& value) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.size() > 1 && s.front() == '+' && s[1] != '-') s.remove_prefix(1);  // "+-5" is no number
   if (s.empty()) return Parsed::not_a_number;
   const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
   if (end != s.data() + s.size()) return Parsed::not_a_number;

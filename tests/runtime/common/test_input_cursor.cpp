@@ -218,7 +218,7 @@ TEST(ParseNumber, TakesWholeTokensOnly) {
   long integer = 0;
   EXPECT_TRUE(parse_integer("+12", integer));
   EXPECT_EQ(integer, 12);
-  for (const char* bad : {"", "+", "-", "1 ", " 1", "1e3", "0x10", "9223372036854775808"})
+  for (const char* bad : {"", "+", "-", "+-5", "++5", "1 ", " 1", "1e3", "0x10", "9223372036854775808"})
     EXPECT_FALSE(parse_integer(bad, integer)) << "'" << bad << "'";
   EXPECT_TRUE(parse_integer("-9223372036854775808", integer));
   EXPECT_EQ(integer, LONG_MIN);
@@ -227,7 +227,7 @@ TEST(ParseNumber, TakesWholeTokensOnly) {
   EXPECT_EQ(real, 0.5);
   EXPECT_TRUE(parse_real("-1e-300", real));
   EXPECT_EQ(real, -1e-300);
-  for (const char* bad : {"", "+", ".", "1.0x", "1e", "e3", "1e999"})
+  for (const char* bad : {"", "+", ".", "+-5", "+-.5", "1.0x", "1e", "e3", "1e999"})
     EXPECT_FALSE(parse_real(bad, real)) << "'" << bad << "'";
 }
 

@@ -200,6 +200,7 @@ TEST_F(YamlReader, NumbersAreFiniteDecimalValues) {
   EXPECT_EQ(value("+2.5").number(), 2.5);
   EXPECT_EQ(value("-3").number(), -3.0);
   EXPECT_EQ(input_error([&] { value("abc").number(); }), "scene.yaml:1: v: expected a number, got 'abc'");
+  EXPECT_EQ(input_error([&] { value("+-5").number(); }), "scene.yaml:1: v: expected a number, got '+-5'");
   EXPECT_EQ(input_error([&] { value("[1]").number(); }), "scene.yaml:1: v: expected a number, got a list");
   EXPECT_EQ(input_error([&] { value("").number(); }), "scene.yaml:1: v: expected a number, got nothing");
   for (const char* non_finite : {".inf", "-.Inf", ".NaN", "1e999"})
