@@ -13,7 +13,7 @@ namespace tensormass::parallel {
 
 namespace {
 
-enum Kind : char { kNone, kInputError, kNumericalError, kOtherError };
+enum Kind : char { kNone, kInputError, kNumericalError, kOutputError, kOtherError };
 
 /// Runs work; the kind and message of what it threw (kNone: nothing) as bytes.
 std::vector<char> run_catching(const std::function<void()>& work) {
@@ -27,6 +27,8 @@ std::vector<char> run_catching(const std::function<void()>& work) {
     return bytes(kInputError, e.what());
   } catch (const NumericalError& e) {
     return bytes(kNumericalError, e.what());
+  } catch (const OutputError& e) {  // exit 4 on any number of ranks
+    return bytes(kOutputError, e.what());
   } catch (const std::exception& e) {
     return bytes(kOtherError, e.what());
   }
@@ -37,6 +39,7 @@ void throw_again(const std::vector<char>& error) {
   const std::string message(error.begin() + 1, error.end());
   if (error.front() == kInputError) throw InputError(message);
   if (error.front() == kNumericalError) throw NumericalError(message);
+  if (error.front() == kOutputError) throw OutputError(message);
   throw std::runtime_error(message);
 }
 

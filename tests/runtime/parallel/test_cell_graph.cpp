@@ -1,7 +1,8 @@
 // The cell graph the mesh partitioner reads (make_cell_graph in
 // tensormass/parallel/cell_partition.hpp): cells sharing a face (3D) or an
 // edge (2D) are neighbours, cells meeting at a corner or an edge (3D) are
-// not, rows are sorted and numbered mesh-wide across blocks.
+// not, on first- and second-order meshes alike (corners count, mid-edge
+// nodes do not), rows are sorted and numbered mesh-wide across blocks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -125,6 +126,20 @@ TEST(CellGraph, EqualsThePairsOfCellsSharingAnEdgeInTriangles) {
   for (const auto& row : rows) edges += static_cast<int>(row.size());
   // 4 x 3 squares of 2 triangles: 12 diagonals, 3 x 3 vertical and 4 x 2 horizontal inner edges.
   EXPECT_EQ(edges, 2 * (12 + 9 + 8));
+}
+
+// A second-order cell shares an edge's mid-edge node with its edge
+// neighbours: only corners count, so the graph is the first-order mesh's.
+TEST(CellGraph, SecondOrderCellsHaveTheGraphOfTheirCorners) {
+  for (const char* cut : {"tet6", "hex8", "prism6"}) {
+    const Mesh linear = test::beam(3, cut, {2, 2, 2});
+    const Mesh quadratic = test::beam(3, cut, {2, 2, 2}, 2);
+    ASSERT_GT(quadratic.blocks[0].nodes_per_cell(), linear.blocks[0].nodes_per_cell()) << cut;
+    EXPECT_EQ(rows_of(parallel::make_cell_graph(quadratic)), rows_of(parallel::make_cell_graph(linear))) << cut;
+  }
+  const Mesh tri6 = test::beam(2, "tri3", {3, 2, 1}, 2);
+  EXPECT_EQ(rows_of(parallel::make_cell_graph(tri6)),
+            rows_of(parallel::make_cell_graph(test::beam(2, "tri3", {3, 2, 1}))));
 }
 
 }  // namespace

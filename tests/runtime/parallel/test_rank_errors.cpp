@@ -124,7 +124,7 @@ TEST(RankErrors, OnThreeRanksEveryRankThrowsTheSameError) {
   const std::string shared =
       "root input: InputError: bad mesh\n"
       "root numerical: NumericalError: NaN\n"
-      "root output: runtime_error: disk full\n"  // kinds other than input and numerical become runtime_error
+      "root output: OutputError: disk full\n"  // input, numerical and output errors keep their kind
       "root fine: none\n";
   const std::string after =
       "every, ranks 1 and 2 fail: InputError: rank 1\n"

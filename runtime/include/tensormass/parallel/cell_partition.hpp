@@ -12,7 +12,8 @@
 namespace tensormass::parallel {
 
 /// The cell graph the partitioner reads: two cells are neighbours when they
-/// share at least `dim` nodes (a face in 3D, an edge in 2D), in compressed rows.
+/// share at least `dim` corners (a face in 3D, an edge in 2D; mid-edge nodes
+/// are not counted), in compressed rows.
 struct CellGraph {
   std::vector<int> row_start;  ///< cell_count+1
   std::vector<int> columns;    ///< neighbour cells, sorted within each row

@@ -10,8 +10,10 @@
 namespace tensormass::parallel {
 
 /// Runs `work` on rank 0 alone; an exception it throws is thrown on every
-/// rank with the same message (InputError and NumericalError keep their
-/// type, others become std::runtime_error), so that no rank waits for what
+/// rank with the same message (InputError, NumericalError and OutputError
+/// keep their type, so the exit code is the same on any number of ranks;
+/// others, NotPositiveDefiniteError's subtype too, become their base or
+/// std::runtime_error), so that no rank waits for what
 /// rank 0 will not send. On one rank, work().
 void on_root(const std::function<void()>& work);
 
