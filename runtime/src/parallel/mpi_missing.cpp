@@ -9,10 +9,13 @@
 
 namespace tensormass::parallel {
 
-/// Only a launch on several ranks matters here: one rank runs as usual.
+/// Only a launch on several ranks matters here (one rank runs as usual): a
+/// world size above 1, or a rank above 0 where a launcher (PMIx) gives no size.
 bool launched_by_mpirun() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
     if (const char* value = std::getenv(name); value && std::atoi(value) > 1) return true;
+  for (const char* name : {"PMIX_RANK", "PMI_RANK"})
+    if (const char* value = std::getenv(name); value && std::atoi(value) > 0) return true;
   return false;
 }
 

@@ -12,7 +12,8 @@
 
 namespace tensormass::parallel {
 
-/// True when a launcher's environment is present (Open MPI, PMIx or PMI).
+/// True when a launcher's environment is present (Open MPI, PMIx or PMI);
+/// in a build without MPI, only one of several ranks (mpirun -n 1 runs as usual).
 bool launched_by_mpirun();
 /// Starts MPI when launched_by_mpirun(); call once at program start. Unless
 /// OMP_NUM_THREADS is set, each rank then runs the machine's cores divided
