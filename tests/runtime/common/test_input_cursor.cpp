@@ -8,21 +8,13 @@
 #include <string>
 
 #include "common/input_cursor.hpp"
+#include "support/input_error.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail {
 namespace {
 
-/// The message of the InputError `action` throws ("" when it throws none).
-template <class Action>
-std::string input_error(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::input_error;
 
 TEST(InputCursor, TokensCarryTheLineTheyStartOn) {
   InputCursor in("mesh.msh", "alpha beta\n\n  gamma\t\r\ndelta");

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/regular_file.hpp"
+#include "support/input_error.hpp"
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 
@@ -21,16 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using test_support::TempDir;
 
-/// The message of the InputError `action` throws ("" when it throws none).
-template <class Action>
-std::string input_error(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::input_error;
 
 TEST(RegularFile, ReadsEveryByteOfTheFile) {
   const TempDir dir;

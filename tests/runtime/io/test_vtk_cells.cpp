@@ -11,22 +11,14 @@
 #include <vector>
 
 #include "io/vtk_cells.hpp"
+#include "support/input_error.hpp"
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::detail::vtk {
 namespace {
 
-/// The message of the InputError `action` throws ("" when it throws none).
-template <class Action>
-std::string input_error(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::input_error;
 
 /// Appends a cell of VTK type `type` on `nodes`, read at line `line`.
 void add_cell(Grid& grid, long type, const std::vector<long>& nodes, long line) {

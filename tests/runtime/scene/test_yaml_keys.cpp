@@ -9,21 +9,13 @@
 #include <string>
 
 #include "scene/yaml_reader.hpp"
+#include "support/input_error.hpp"
 #include "tensormass/common/errors.hpp"
 
 namespace tensormass::scene_yaml {
 namespace {
 
-/// The message of the InputError `action` throws ("" when it throws none).
-template <class Action>
-std::string input_error(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::input_error;
 
 const KeyTable kTable = {
     {"", {"mesh", "parts", "solver", "output"}},

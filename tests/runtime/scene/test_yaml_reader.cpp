@@ -10,6 +10,7 @@
 
 #include "scene/yaml_limits.hpp"
 #include "scene/yaml_reader.hpp"
+#include "support/input_error.hpp"
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 
@@ -18,16 +19,7 @@ namespace {
 
 using test_support::TempDir;
 
-/// The message of the InputError `action` throws ("" when it throws none).
-template <class Action>
-std::string input_error(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::input_error;
 
 const char* kScene =
     "mesh: beam.msh\n"                 // 1
