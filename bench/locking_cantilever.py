@@ -6,7 +6,8 @@ Hooke (E = 1 MPa, density 10 kg/m^3), static, gravity -9.81 m/s^2 along y,
 on a coarse mesh of 20 x 2 x 2 cubes cut into each element type, for each
 Poisson's ratio; the largest displacement (summary.json's
 max_displacement) against the reference: hex20 on 80 x 8 x 8 cubes at the
-same ratio. Each run uses the default settings.
+same ratio. Each run uses the default settings; the `fbar` rows set
+`split: fbar` on the material (the mean-dilatation formulation).
 
     /usr/bin/python3 bench/locking_cantilever.py --json docs/results/locking.json
     /usr/bin/python3 scripts/results/render_locking.py docs/results/locking.json > docs/results/locking.md
@@ -22,7 +23,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_metadata import metadata  # noqa: E402
 
-# label -> `tensormass beam` options making it
+# element -> `tensormass beam` options making it
 ELEMENTS = {
     "tet4": ["--type", "tet6"],
     "hex8": ["--type", "hex8"],
@@ -31,12 +32,17 @@ ELEMENTS = {
     "tet10": ["--type", "tet6", "--order", "2"],
     "hex20": ["--type", "hex20"],
 }
+# the rows: (label, element, split; "" is the default)
+VARIANTS = [("tet4", "tet4", ""), ("hex8", "hex8", ""), ("prism6", "prism6", ""), ("pyramid5", "pyramid5", ""),
+            ("hex8 fbar", "hex8", "fbar"), ("prism6 fbar", "prism6", "fbar"), ("pyramid5 fbar", "pyramid5", "fbar"),
+            ("tet10", "tet10", ""), ("hex20", "hex20", "")]
+QUICK_VARIANTS = [("tet4", "tet4", ""), ("hex8", "hex8", ""), ("hex8 fbar", "hex8", "fbar")]
 RATIOS = [0.3, 0.45, 0.49, 0.499]
 COARSE = (20, 2, 2)
 FINE = (80, 8, 8)
 
 SCENE = """mesh: {mesh}
-materials: [{{region: all, law: hooke, young: 1.0e6, poisson: {poisson}, density: 10}}]
+materials: [{{region: all, law: hooke, young: 1.0e6, poisson: {poisson}, density: 10{split}}}]
 fixed: [clamp]
 loads: {{gravity: [0, -9.81, 0]}}
 solver: {{type: static}}
@@ -52,20 +58,21 @@ def beam(binary, work, label, cells):
     return path
 
 
-def sag(binary, work, label, cells, poisson):
+def sag(binary, work, label, cells, poisson, split=""):
     """The run's summary.json figures: largest displacement, cells, dofs, wall seconds, warnings."""
     mesh = beam(binary, work, label, cells)
-    name = f"{label}_{'x'.join(map(str, cells))}_{poisson}"
+    name = f"{label}_{split or 'default'}_{'x'.join(map(str, cells))}_{poisson}"
     scene = os.path.join(work, name + ".yaml")
     out = os.path.join(work, "out_" + name)
     with open(scene, "w", encoding="utf-8") as handle:
-        handle.write(SCENE.format(mesh=mesh, poisson=poisson, out=out))
+        handle.write(SCENE.format(mesh=mesh, poisson=poisson, out=out, split=f", split: {split}" if split else ""))
     run = subprocess.run([binary, "run", "--quiet", scene], capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"locking_cantilever: {binary} run {scene} exited {run.returncode}: {run.stderr}")
     with open(os.path.join(out, "summary.json"), encoding="utf-8") as handle:
         summary = json.load(handle)
-    return {"element": label, "cells": summary["elements"], "dofs": summary["dofs"], "poisson": poisson,
+    return {"element": label, "split": split or "whole", "cells": summary["elements"], "dofs": summary["dofs"],
+            "poisson": poisson,
             "max_displacement": summary["max_displacement"]["value"], "seconds": summary["time_per_phase_s"]["total"],
             "warned": bool(summary["warnings"])}
 
@@ -74,11 +81,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--binary", default="build/tensormass")
     parser.add_argument("--json", help="write the rows here")
-    parser.add_argument("--quick", action="store_true", help="tet4 and hex8 at 0.3 and 0.499, hex20 reference on 20 x 2 x 2")
+    parser.add_argument("--quick", action="store_true",
+                        help="tet4, hex8 and hex8 fbar at 0.3 and 0.499, hex20 reference on 20 x 2 x 2")
     parser.add_argument("--work", help="a directory for meshes and runs (default: a temporary one)")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
-    elements = ["tet4", "hex8"] if args.quick else list(ELEMENTS)
+    variants = QUICK_VARIANTS if args.quick else VARIANTS
     ratios = [0.3, 0.499] if args.quick else RATIOS
     fine = COARSE if args.quick else FINE
     with tempfile.TemporaryDirectory() as scratch:
@@ -86,9 +94,10 @@ def main():
         os.makedirs(work, exist_ok=True)
         references = {nu: sag(binary, work, "hex20", fine, nu) for nu in ratios}
         rows = []
-        for label in elements:
+        for label, element, split in variants:
             for nu in ratios:
-                row = sag(binary, work, label, COARSE, nu)
+                row = sag(binary, work, element, COARSE, nu, split)
+                row["label"] = label
                 row["ratio"] = row["max_displacement"] / references[nu]["max_displacement"]
                 rows.append(row)
                 print(f"{label:9} nu {nu:<6} sag {row['max_displacement']:.4f} m  "

@@ -22,6 +22,12 @@ void tm_arruda_boyce_hex8_whole_gradient(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_hessian(const double*, const double*, double*);
 void tm_arruda_boyce_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_arruda_boyce_hex8_whole_stress(const double*, const double*, double*);
+int tm_arruda_boyce_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_hex8_fbar_energy(const double*, const double*);
+void tm_arruda_boyce_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_hex8_fbar_stress(const double*, const double*, double*);
 int tm_arruda_boyce_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_prism15_whole_energy(const double*, const double*);
 void tm_arruda_boyce_prism15_whole_gradient(const double*, const double*, double*);
@@ -37,6 +43,12 @@ void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism6_fbar_energy(const double*, const double*);
+void tm_arruda_boyce_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism6_fbar_stress(const double*, const double*, double*);
 int tm_arruda_boyce_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid13_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -52,6 +64,12 @@ void tm_arruda_boyce_pyramid5_whole_stress(const double*, const double*, double*
 void tm_arruda_boyce_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_pyramid5_fbar_energy(const double*, const double*);
+void tm_arruda_boyce_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_arruda_boyce_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad4_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad4_whole_gradient(const double*, const double*, double*);
@@ -61,6 +79,12 @@ void tm_arruda_boyce_quad4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_quad4_fbar_energy(const double*, const double*);
+void tm_arruda_boyce_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_quad4_fbar_stress(const double*, const double*, double*);
 int tm_arruda_boyce_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_quad8_whole_energy(const double*, const double*);
 void tm_arruda_boyce_quad8_whole_gradient(const double*, const double*, double*);
@@ -130,6 +154,12 @@ void tm_corotational_hex8_whole_gradient(const double*, const double*, double*);
 void tm_corotational_hex8_whole_hessian(const double*, const double*, double*);
 void tm_corotational_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_corotational_hex8_whole_stress(const double*, const double*, double*);
+int tm_corotational_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_corotational_hex8_fbar_energy(const double*, const double*);
+void tm_corotational_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_corotational_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_corotational_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_hex8_fbar_stress(const double*, const double*, double*);
 int tm_corotational_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_prism15_whole_energy(const double*, const double*);
 void tm_corotational_prism15_whole_gradient(const double*, const double*, double*);
@@ -145,6 +175,12 @@ void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_corotational_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_corotational_prism6_fbar_energy(const double*, const double*);
+void tm_corotational_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_corotational_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_corotational_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_prism6_fbar_stress(const double*, const double*, double*);
 int tm_corotational_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid13_whole_energy(const double*, const double*);
 void tm_corotational_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -160,6 +196,12 @@ void tm_corotational_pyramid5_whole_stress(const double*, const double*, double*
 void tm_corotational_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_corotational_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_corotational_pyramid5_fbar_energy(const double*, const double*);
+void tm_corotational_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_corotational_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_corotational_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_corotational_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad4_whole_energy(const double*, const double*);
 void tm_corotational_quad4_whole_gradient(const double*, const double*, double*);
@@ -169,6 +211,12 @@ void tm_corotational_quad4_whole_stress(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_corotational_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_corotational_quad4_fbar_energy(const double*, const double*);
+void tm_corotational_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_corotational_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_corotational_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_corotational_quad4_fbar_stress(const double*, const double*, double*);
 int tm_corotational_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_quad8_whole_energy(const double*, const double*);
 void tm_corotational_quad8_whole_gradient(const double*, const double*, double*);
@@ -238,6 +286,12 @@ void tm_gent_hex8_whole_gradient(const double*, const double*, double*);
 void tm_gent_hex8_whole_hessian(const double*, const double*, double*);
 void tm_gent_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_gent_hex8_whole_stress(const double*, const double*, double*);
+int tm_gent_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_gent_hex8_fbar_energy(const double*, const double*);
+void tm_gent_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_gent_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_gent_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_hex8_fbar_stress(const double*, const double*, double*);
 int tm_gent_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_prism15_whole_energy(const double*, const double*);
 void tm_gent_prism15_whole_gradient(const double*, const double*, double*);
@@ -253,6 +307,12 @@ void tm_gent_prism6_whole_stress(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_gent_prism6_fbar_energy(const double*, const double*);
+void tm_gent_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_gent_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_gent_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism6_fbar_stress(const double*, const double*, double*);
 int tm_gent_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid13_whole_energy(const double*, const double*);
 void tm_gent_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -268,6 +328,12 @@ void tm_gent_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_gent_pyramid5_fbar_energy(const double*, const double*);
+void tm_gent_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_gent_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_gent_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_gent_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad4_whole_energy(const double*, const double*);
 void tm_gent_quad4_whole_gradient(const double*, const double*, double*);
@@ -277,6 +343,12 @@ void tm_gent_quad4_whole_stress(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_gent_quad4_fbar_energy(const double*, const double*);
+void tm_gent_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_gent_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_gent_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_quad4_fbar_stress(const double*, const double*, double*);
 int tm_gent_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_quad8_whole_energy(const double*, const double*);
 void tm_gent_quad8_whole_gradient(const double*, const double*, double*);
@@ -352,6 +424,12 @@ void tm_hooke_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_hex8_tensor_stress(const double*, const double*, double*);
+int tm_hooke_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_hooke_hex8_fbar_energy(const double*, const double*);
+void tm_hooke_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_hooke_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_hooke_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_hex8_fbar_stress(const double*, const double*, double*);
 int tm_hooke_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_prism15_whole_energy(const double*, const double*);
 void tm_hooke_prism15_whole_gradient(const double*, const double*, double*);
@@ -373,6 +451,12 @@ void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_tensor_stress(const double*, const double*, double*);
+int tm_hooke_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_hooke_prism6_fbar_energy(const double*, const double*);
+void tm_hooke_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_hooke_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_hooke_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_prism6_fbar_stress(const double*, const double*, double*);
 int tm_hooke_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid13_whole_energy(const double*, const double*);
 void tm_hooke_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -394,6 +478,12 @@ void tm_hooke_pyramid5_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_pyramid5_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_pyramid5_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_pyramid5_tensor_stress(const double*, const double*, double*);
+int tm_hooke_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_hooke_pyramid5_fbar_energy(const double*, const double*);
+void tm_hooke_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_hooke_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_hooke_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_hooke_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad4_whole_energy(const double*, const double*);
 void tm_hooke_quad4_whole_gradient(const double*, const double*, double*);
@@ -409,6 +499,12 @@ void tm_hooke_quad4_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_quad4_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_quad4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_quad4_tensor_stress(const double*, const double*, double*);
+int tm_hooke_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_hooke_quad4_fbar_energy(const double*, const double*);
+void tm_hooke_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_hooke_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_hooke_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_quad4_fbar_stress(const double*, const double*, double*);
 int tm_hooke_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_quad8_whole_energy(const double*, const double*);
 void tm_hooke_quad8_whole_gradient(const double*, const double*, double*);
@@ -490,6 +586,12 @@ void tm_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*)
 void tm_mooney_rivlin_hex8_whole_hessian(const double*, const double*, double*);
 void tm_mooney_rivlin_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_hex8_whole_stress(const double*, const double*, double*);
+int tm_mooney_rivlin_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_hex8_fbar_energy(const double*, const double*);
+void tm_mooney_rivlin_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_hex8_fbar_stress(const double*, const double*, double*);
 int tm_mooney_rivlin_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_prism15_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_prism15_whole_gradient(const double*, const double*, double*);
@@ -505,6 +607,12 @@ void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*)
 void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism6_fbar_energy(const double*, const double*);
+void tm_mooney_rivlin_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism6_fbar_stress(const double*, const double*, double*);
 int tm_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -520,6 +628,12 @@ void tm_mooney_rivlin_pyramid5_whole_stress(const double*, const double*, double
 void tm_mooney_rivlin_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_pyramid5_fbar_energy(const double*, const double*);
+void tm_mooney_rivlin_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_mooney_rivlin_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad4_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad4_whole_gradient(const double*, const double*, double*);
@@ -529,6 +643,12 @@ void tm_mooney_rivlin_quad4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_quad4_fbar_energy(const double*, const double*);
+void tm_mooney_rivlin_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_quad4_fbar_stress(const double*, const double*, double*);
 int tm_mooney_rivlin_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_quad8_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_quad8_whole_gradient(const double*, const double*, double*);
@@ -598,6 +718,12 @@ void tm_neohookean_hex8_whole_gradient(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_neohookean_hex8_whole_stress(const double*, const double*, double*);
+int tm_neohookean_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_neohookean_hex8_fbar_energy(const double*, const double*);
+void tm_neohookean_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_neohookean_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_neohookean_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_hex8_fbar_stress(const double*, const double*, double*);
 int tm_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_prism15_whole_energy(const double*, const double*);
 void tm_neohookean_prism15_whole_gradient(const double*, const double*, double*);
@@ -613,6 +739,12 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_neohookean_prism6_fbar_energy(const double*, const double*);
+void tm_neohookean_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_neohookean_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_neohookean_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_prism6_fbar_stress(const double*, const double*, double*);
 int tm_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -628,6 +760,12 @@ void tm_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_neohookean_pyramid5_fbar_energy(const double*, const double*);
+void tm_neohookean_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_neohookean_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_neohookean_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -637,6 +775,12 @@ void tm_neohookean_quad4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_neohookean_quad4_fbar_energy(const double*, const double*);
+void tm_neohookean_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_neohookean_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_neohookean_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_quad4_fbar_stress(const double*, const double*, double*);
 int tm_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -706,6 +850,12 @@ void tm_stable_neohookean_hex8_whole_gradient(const double*, const double*, doub
 void tm_stable_neohookean_hex8_whole_hessian(const double*, const double*, double*);
 void tm_stable_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stable_neohookean_hex8_whole_stress(const double*, const double*, double*);
+int tm_stable_neohookean_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_hex8_fbar_energy(const double*, const double*);
+void tm_stable_neohookean_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_hex8_fbar_stress(const double*, const double*, double*);
 int tm_stable_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_prism15_whole_energy(const double*, const double*);
 void tm_stable_neohookean_prism15_whole_gradient(const double*, const double*, double*);
@@ -721,6 +871,12 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_prism6_fbar_energy(const double*, const double*);
+void tm_stable_neohookean_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_prism6_fbar_stress(const double*, const double*, double*);
 int tm_stable_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -736,6 +892,12 @@ void tm_stable_neohookean_pyramid5_whole_stress(const double*, const double*, do
 void tm_stable_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_pyramid5_fbar_energy(const double*, const double*);
+void tm_stable_neohookean_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_stable_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad4_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad4_whole_gradient(const double*, const double*, double*);
@@ -745,6 +907,12 @@ void tm_stable_neohookean_quad4_whole_stress(const double*, const double*, doubl
 void tm_stable_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_quad4_fbar_energy(const double*, const double*);
+void tm_stable_neohookean_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_quad4_fbar_stress(const double*, const double*, double*);
 int tm_stable_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_quad8_whole_energy(const double*, const double*);
 void tm_stable_neohookean_quad8_whole_gradient(const double*, const double*, double*);
@@ -820,6 +988,12 @@ void tm_stvk_hex8_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_hex8_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_hex8_tensor_stress(const double*, const double*, double*);
+int tm_stvk_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_stvk_hex8_fbar_energy(const double*, const double*);
+void tm_stvk_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_stvk_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_stvk_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_hex8_fbar_stress(const double*, const double*, double*);
 int tm_stvk_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_prism15_whole_energy(const double*, const double*);
 void tm_stvk_prism15_whole_gradient(const double*, const double*, double*);
@@ -841,6 +1015,12 @@ void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_tensor_stress(const double*, const double*, double*);
+int tm_stvk_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_stvk_prism6_fbar_energy(const double*, const double*);
+void tm_stvk_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_stvk_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_stvk_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_prism6_fbar_stress(const double*, const double*, double*);
 int tm_stvk_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid13_whole_energy(const double*, const double*);
 void tm_stvk_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -862,6 +1042,12 @@ void tm_stvk_pyramid5_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_pyramid5_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_pyramid5_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_pyramid5_tensor_stress(const double*, const double*, double*);
+int tm_stvk_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_stvk_pyramid5_fbar_energy(const double*, const double*);
+void tm_stvk_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_stvk_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_stvk_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_stvk_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad4_whole_energy(const double*, const double*);
 void tm_stvk_quad4_whole_gradient(const double*, const double*, double*);
@@ -877,6 +1063,12 @@ void tm_stvk_quad4_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_quad4_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_quad4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_quad4_tensor_stress(const double*, const double*, double*);
+int tm_stvk_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_stvk_quad4_fbar_energy(const double*, const double*);
+void tm_stvk_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_stvk_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_stvk_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stvk_quad4_fbar_stress(const double*, const double*, double*);
 int tm_stvk_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_quad8_whole_energy(const double*, const double*);
 void tm_stvk_quad8_whole_gradient(const double*, const double*, double*);
@@ -958,6 +1150,12 @@ void tm_veronda_westmann_hex8_whole_gradient(const double*, const double*, doubl
 void tm_veronda_westmann_hex8_whole_hessian(const double*, const double*, double*);
 void tm_veronda_westmann_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_veronda_westmann_hex8_whole_stress(const double*, const double*, double*);
+int tm_veronda_westmann_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_hex8_fbar_energy(const double*, const double*);
+void tm_veronda_westmann_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_hex8_fbar_stress(const double*, const double*, double*);
 int tm_veronda_westmann_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_prism15_whole_energy(const double*, const double*);
 void tm_veronda_westmann_prism15_whole_gradient(const double*, const double*, double*);
@@ -973,6 +1171,12 @@ void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, doubl
 void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism6_fbar_energy(const double*, const double*);
+void tm_veronda_westmann_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism6_fbar_stress(const double*, const double*, double*);
 int tm_veronda_westmann_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid13_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -988,6 +1192,12 @@ void tm_veronda_westmann_pyramid5_whole_stress(const double*, const double*, dou
 void tm_veronda_westmann_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_pyramid5_fbar_energy(const double*, const double*);
+void tm_veronda_westmann_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_veronda_westmann_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad4_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad4_whole_gradient(const double*, const double*, double*);
@@ -997,6 +1207,12 @@ void tm_veronda_westmann_quad4_whole_stress(const double*, const double*, double
 void tm_veronda_westmann_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_quad4_fbar_energy(const double*, const double*);
+void tm_veronda_westmann_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_quad4_fbar_stress(const double*, const double*, double*);
 int tm_veronda_westmann_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_quad8_whole_energy(const double*, const double*);
 void tm_veronda_westmann_quad8_whole_gradient(const double*, const double*, double*);
@@ -1066,6 +1282,12 @@ void tm_yeoh_hex8_whole_gradient(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_hessian(const double*, const double*, double*);
 void tm_yeoh_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
 void tm_yeoh_hex8_whole_stress(const double*, const double*, double*);
+int tm_yeoh_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_yeoh_hex8_fbar_energy(const double*, const double*);
+void tm_yeoh_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_yeoh_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_yeoh_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_hex8_fbar_stress(const double*, const double*, double*);
 int tm_yeoh_prism15_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_prism15_whole_energy(const double*, const double*);
 void tm_yeoh_prism15_whole_gradient(const double*, const double*, double*);
@@ -1081,6 +1303,12 @@ void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_prism6_fbar_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism6_fbar_energy(const double*, const double*);
+void tm_yeoh_prism6_fbar_gradient(const double*, const double*, double*);
+void tm_yeoh_prism6_fbar_hessian(const double*, const double*, double*);
+void tm_yeoh_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism6_fbar_stress(const double*, const double*, double*);
 int tm_yeoh_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid13_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1096,6 +1324,12 @@ void tm_yeoh_pyramid5_whole_stress(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_yeoh_pyramid5_fbar_energy(const double*, const double*);
+void tm_yeoh_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_yeoh_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_yeoh_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_pyramid5_fbar_stress(const double*, const double*, double*);
 int tm_yeoh_quad4_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad4_whole_energy(const double*, const double*);
 void tm_yeoh_quad4_whole_gradient(const double*, const double*, double*);
@@ -1105,6 +1339,12 @@ void tm_yeoh_quad4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_yeoh_quad4_fbar_energy(const double*, const double*);
+void tm_yeoh_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_yeoh_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_yeoh_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_quad4_fbar_stress(const double*, const double*, double*);
 int tm_yeoh_quad8_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_quad8_whole_energy(const double*, const double*);
 void tm_yeoh_quad8_whole_gradient(const double*, const double*, double*);
@@ -1199,6 +1439,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"arruda_boyce", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_fbar_precompute, tm_arruda_boyce_hex8_fbar_energy, tm_arruda_boyce_hex8_fbar_gradient,
+   tm_arruda_boyce_hex8_fbar_hessian, tm_arruda_boyce_hex8_fbar_gradient_hessian, tm_arruda_boyce_hex8_fbar_stress, 2496, 6120, 48712,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
    tm_arruda_boyce_prism15_whole_hessian, tm_arruda_boyce_prism15_whole_gradient_hessian, tm_arruda_boyce_prism15_whole_stress, 6912, 16686, 200970,
@@ -1211,6 +1457,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch},
+
+  {"arruda_boyce", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_fbar_precompute, tm_arruda_boyce_prism6_fbar_energy, tm_arruda_boyce_prism6_fbar_gradient,
+   tm_arruda_boyce_prism6_fbar_hessian, tm_arruda_boyce_prism6_fbar_gradient_hessian, tm_arruda_boyce_prism6_fbar_stress, 1656, 4158, 28326,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
@@ -1225,12 +1477,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
    tm_arruda_boyce_pyramid5_whole_stress_batch},
 
+  {"arruda_boyce", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_fbar_precompute, tm_arruda_boyce_pyramid5_fbar_energy, tm_arruda_boyce_pyramid5_fbar_gradient,
+   tm_arruda_boyce_pyramid5_fbar_hessian, tm_arruda_boyce_pyramid5_fbar_gradient_hessian, tm_arruda_boyce_pyramid5_fbar_stress, 2064, 5256, 32620,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
    tm_arruda_boyce_quad4_whole_hessian, tm_arruda_boyce_quad4_whole_gradient_hessian, tm_arruda_boyce_quad4_whole_stress, 460, 1000, 3228,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad4_whole_stress_batch},
+
+  {"arruda_boyce", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_fbar_precompute, tm_arruda_boyce_quad4_fbar_energy, tm_arruda_boyce_quad4_fbar_gradient,
+   tm_arruda_boyce_quad4_fbar_hessian, tm_arruda_boyce_quad4_fbar_gradient_hessian, tm_arruda_boyce_quad4_fbar_stress, 556, 1160, 4540,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
@@ -1291,6 +1555,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"corotational", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_fbar_precompute, tm_corotational_hex8_fbar_energy, tm_corotational_hex8_fbar_gradient,
+   tm_corotational_hex8_fbar_hessian, tm_corotational_hex8_fbar_gradient_hessian, tm_corotational_hex8_fbar_stress, 5928, 7568, 53464,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
    tm_corotational_prism15_whole_hessian, tm_corotational_prism15_whole_gradient_hessian, tm_corotational_prism15_whole_stress, 14634, 19944, 211662,
@@ -1303,6 +1573,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch},
+
+  {"corotational", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_fbar_precompute, tm_corotational_prism6_fbar_energy, tm_corotational_prism6_fbar_gradient,
+   tm_corotational_prism6_fbar_hessian, tm_corotational_prism6_fbar_gradient_hessian, tm_corotational_prism6_fbar_stress, 4230, 5244, 31890,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
@@ -1317,12 +1593,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch},
 
+  {"corotational", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_fbar_precompute, tm_corotational_pyramid5_fbar_energy, tm_corotational_pyramid5_fbar_gradient,
+   tm_corotational_pyramid5_fbar_hessian, tm_corotational_pyramid5_fbar_gradient_hessian, tm_corotational_pyramid5_fbar_stress, 5496, 6704, 37372,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
    tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch},
+
+  {"corotational", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
+   kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_fbar_precompute, tm_corotational_quad4_fbar_energy, tm_corotational_quad4_fbar_gradient,
+   tm_corotational_quad4_fbar_hessian, tm_corotational_quad4_fbar_gradient_hessian, tm_corotational_quad4_fbar_stress, 384, 612, 3340,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
@@ -1383,6 +1671,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"gent", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
+   kGentParameters, kGentLimits, tm_gent_hex8_fbar_precompute, tm_gent_hex8_fbar_energy, tm_gent_hex8_fbar_gradient,
+   tm_gent_hex8_fbar_hessian, tm_gent_hex8_fbar_gradient_hessian, tm_gent_hex8_fbar_stress, 2080, 4704, 46440,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
    tm_gent_prism15_whole_hessian, tm_gent_prism15_whole_gradient_hessian, tm_gent_prism15_whole_stress, 5976, 13500, 195858,
@@ -1395,6 +1689,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch},
+
+  {"gent", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
+   kGentParameters, kGentLimits, tm_gent_prism6_fbar_precompute, tm_gent_prism6_fbar_energy, tm_gent_prism6_fbar_gradient,
+   tm_gent_prism6_fbar_hessian, tm_gent_prism6_fbar_gradient_hessian, tm_gent_prism6_fbar_stress, 1344, 3096, 26622,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
@@ -1409,12 +1709,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
    tm_gent_pyramid5_whole_stress_batch},
 
+  {"gent", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
+   kGentParameters, kGentLimits, tm_gent_pyramid5_fbar_precompute, tm_gent_pyramid5_fbar_energy, tm_gent_pyramid5_fbar_gradient,
+   tm_gent_pyramid5_fbar_hessian, tm_gent_pyramid5_fbar_gradient_hessian, tm_gent_pyramid5_fbar_stress, 1648, 3840, 30348,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
    tm_gent_quad4_whole_hessian, tm_gent_quad4_whole_gradient_hessian, tm_gent_quad4_whole_stress, 252, 504, 2292,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
    tm_gent_quad4_whole_stress_batch},
+
+  {"gent", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
+   kGentParameters, kGentLimits, tm_gent_quad4_fbar_precompute, tm_gent_quad4_fbar_energy, tm_gent_quad4_fbar_gradient,
+   tm_gent_quad4_fbar_hessian, tm_gent_quad4_fbar_gradient_hessian, tm_gent_quad4_fbar_stress, 348, 664, 3604,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
@@ -1481,6 +1793,12 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"hooke", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
+   kHookeParameters, kHookeLimits, tm_hooke_hex8_fbar_precompute, tm_hooke_hex8_fbar_energy, tm_hooke_hex8_fbar_gradient,
+   tm_hooke_hex8_fbar_hessian, tm_hooke_hex8_fbar_gradient_hessian, tm_hooke_hex8_fbar_stress, 1768, 3136, 37296,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kHookeParameters, kHookeLimits, tm_hooke_prism15_whole_precompute, tm_hooke_prism15_whole_energy, tm_hooke_prism15_whole_gradient,
    tm_hooke_prism15_whole_hessian, tm_hooke_prism15_whole_gradient_hessian, tm_hooke_prism15_whole_stress, 5274, 9972, 175284,
@@ -1498,6 +1816,12 @@ const tm_kernel kKernels[] = {
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"hooke", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
+   kHookeParameters, kHookeLimits, tm_hooke_prism6_fbar_precompute, tm_hooke_prism6_fbar_energy, tm_hooke_prism6_fbar_gradient,
+   tm_hooke_prism6_fbar_hessian, tm_hooke_prism6_fbar_gradient_hessian, tm_hooke_prism6_fbar_stress, 1110, 1920, 19764,
+   0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
@@ -1519,6 +1843,12 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"hooke", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
+   kHookeParameters, kHookeLimits, tm_hooke_pyramid5_fbar_precompute, tm_hooke_pyramid5_fbar_energy, tm_hooke_pyramid5_fbar_gradient,
+   tm_hooke_pyramid5_fbar_hessian, tm_hooke_pyramid5_fbar_gradient_hessian, tm_hooke_pyramid5_fbar_stress, 1336, 2272, 21204,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
    tm_hooke_quad4_whole_hessian, tm_hooke_quad4_whole_gradient_hessian, tm_hooke_quad4_whole_stress, 180, 296, 1240,
@@ -1530,6 +1860,12 @@ const tm_kernel kKernels[] = {
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
    tm_hooke_quad4_tensor_hessian, tm_hooke_quad4_tensor_gradient_hessian, tm_hooke_quad4_tensor_stress, 144, 128, 0,
    1, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"hooke", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
+   kHookeParameters, kHookeLimits, tm_hooke_quad4_fbar_precompute, tm_hooke_quad4_fbar_energy, tm_hooke_quad4_fbar_gradient,
+   tm_hooke_quad4_fbar_hessian, tm_hooke_quad4_fbar_gradient_hessian, tm_hooke_quad4_fbar_stress, 276, 456, 2552,
+   0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
@@ -1603,6 +1939,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_fbar_precompute, tm_mooney_rivlin_hex8_fbar_energy, tm_mooney_rivlin_hex8_fbar_gradient,
+   tm_mooney_rivlin_hex8_fbar_hessian, tm_mooney_rivlin_hex8_fbar_gradient_hessian, tm_mooney_rivlin_hex8_fbar_stress, 2368, 5816, 45744,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
    tm_mooney_rivlin_prism15_whole_hessian, tm_mooney_rivlin_prism15_whole_gradient_hessian, tm_mooney_rivlin_prism15_whole_stress, 6624, 16002, 194292,
@@ -1615,6 +1957,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch},
+
+  {"mooney_rivlin", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_fbar_precompute, tm_mooney_rivlin_prism6_fbar_energy, tm_mooney_rivlin_prism6_fbar_gradient,
+   tm_mooney_rivlin_prism6_fbar_hessian, tm_mooney_rivlin_prism6_fbar_gradient_hessian, tm_mooney_rivlin_prism6_fbar_stress, 1560, 3930, 26100,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
@@ -1629,12 +1977,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch},
 
+  {"mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_fbar_precompute, tm_mooney_rivlin_pyramid5_fbar_energy, tm_mooney_rivlin_pyramid5_fbar_gradient,
+   tm_mooney_rivlin_pyramid5_fbar_hessian, tm_mooney_rivlin_pyramid5_fbar_gradient_hessian, tm_mooney_rivlin_pyramid5_fbar_stress, 1936, 4952, 29652,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
    tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 720, 2384,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch},
+
+  {"mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_fbar_precompute, tm_mooney_rivlin_quad4_fbar_energy, tm_mooney_rivlin_quad4_fbar_gradient,
+   tm_mooney_rivlin_quad4_fbar_hessian, tm_mooney_rivlin_quad4_fbar_gradient_hessian, tm_mooney_rivlin_quad4_fbar_stress, 412, 880, 3696,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
@@ -1695,6 +2055,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_fbar_precompute, tm_neohookean_hex8_fbar_energy, tm_neohookean_hex8_fbar_gradient,
+   tm_neohookean_hex8_fbar_hessian, tm_neohookean_hex8_fbar_gradient_hessian, tm_neohookean_hex8_fbar_stress, 2016, 4008, 41320,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
    tm_neohookean_prism15_whole_hessian, tm_neohookean_prism15_whole_gradient_hessian, tm_neohookean_prism15_whole_stress, 5832, 11934, 184338,
@@ -1707,6 +2073,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch},
+
+  {"neohookean", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_fbar_precompute, tm_neohookean_prism6_fbar_energy, tm_neohookean_prism6_fbar_gradient,
+   tm_neohookean_prism6_fbar_hessian, tm_neohookean_prism6_fbar_gradient_hessian, tm_neohookean_prism6_fbar_stress, 1296, 2574, 22782,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
@@ -1721,12 +2093,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch},
 
+  {"neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_fbar_precompute, tm_neohookean_pyramid5_fbar_energy, tm_neohookean_pyramid5_fbar_gradient,
+   tm_neohookean_pyramid5_fbar_hessian, tm_neohookean_pyramid5_fbar_gradient_hessian, tm_neohookean_pyramid5_fbar_stress, 1584, 3144, 25228,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
    tm_neohookean_quad4_whole_hessian, tm_neohookean_quad4_whole_gradient_hessian, tm_neohookean_quad4_whole_stress, 216, 404, 1728,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch},
+
+  {"neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_fbar_precompute, tm_neohookean_quad4_fbar_energy, tm_neohookean_quad4_fbar_gradient,
+   tm_neohookean_quad4_fbar_hessian, tm_neohookean_quad4_fbar_gradient_hessian, tm_neohookean_quad4_fbar_stress, 312, 564, 3040,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
@@ -1787,6 +2171,12 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr},
 
+  {"stable_neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_fbar_precompute, tm_stable_neohookean_hex8_fbar_energy, tm_stable_neohookean_hex8_fbar_gradient,
+   tm_stable_neohookean_hex8_fbar_hessian, tm_stable_neohookean_hex8_fbar_gradient_hessian, tm_stable_neohookean_hex8_fbar_stress, 2280, 4496, 41160,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
    tm_stable_neohookean_prism15_whole_hessian, tm_stable_neohookean_prism15_whole_gradient_hessian, tm_stable_neohookean_prism15_whole_stress, 6426, 13032, 183978,
@@ -1799,6 +2189,12 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch},
+
+  {"stable_neohookean", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_fbar_precompute, tm_stable_neohookean_prism6_fbar_energy, tm_stable_neohookean_prism6_fbar_gradient,
+   tm_stable_neohookean_prism6_fbar_hessian, tm_stable_neohookean_prism6_fbar_gradient_hessian, tm_stable_neohookean_prism6_fbar_stress, 1494, 2940, 22662,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
@@ -1813,12 +2209,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch},
 
+  {"stable_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_fbar_precompute, tm_stable_neohookean_pyramid5_fbar_energy, tm_stable_neohookean_pyramid5_fbar_gradient,
+   tm_stable_neohookean_pyramid5_fbar_hessian, tm_stable_neohookean_pyramid5_fbar_gradient_hessian, tm_stable_neohookean_pyramid5_fbar_stress, 1848, 3632, 25068,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
    tm_stable_neohookean_quad4_whole_hessian, tm_stable_neohookean_quad4_whole_gradient_hessian, tm_stable_neohookean_quad4_whole_stress, 308, 512, 1736,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch},
+
+  {"stable_neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_fbar_precompute, tm_stable_neohookean_quad4_fbar_energy, tm_stable_neohookean_quad4_fbar_gradient,
+   tm_stable_neohookean_quad4_fbar_hessian, tm_stable_neohookean_quad4_fbar_gradient_hessian, tm_stable_neohookean_quad4_fbar_stress, 404, 672, 3048,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
@@ -1885,6 +2293,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"stvk", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
+   kStvkParameters, kStvkLimits, tm_stvk_hex8_fbar_precompute, tm_stvk_hex8_fbar_energy, tm_stvk_hex8_fbar_gradient,
+   tm_stvk_hex8_fbar_hessian, tm_stvk_hex8_fbar_gradient_hessian, tm_stvk_hex8_fbar_stress, 2112, 4168, 40928,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"stvk", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStvkParameters, kStvkLimits, tm_stvk_prism15_whole_precompute, tm_stvk_prism15_whole_energy, tm_stvk_prism15_whole_gradient,
    tm_stvk_prism15_whole_hessian, tm_stvk_prism15_whole_gradient_hessian, tm_stvk_prism15_whole_stress, 6048, 12294, 183456,
@@ -1901,6 +2315,12 @@ const tm_kernel kKernels[] = {
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"stvk", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
+   kStvkParameters, kStvkLimits, tm_stvk_prism6_fbar_precompute, tm_stvk_prism6_fbar_energy, tm_stvk_prism6_fbar_gradient,
+   tm_stvk_prism6_fbar_hessian, tm_stvk_prism6_fbar_gradient_hessian, tm_stvk_prism6_fbar_stress, 1368, 2694, 22488,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -1923,6 +2343,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"stvk", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
+   kStvkParameters, kStvkLimits, tm_stvk_pyramid5_fbar_precompute, tm_stvk_pyramid5_fbar_energy, tm_stvk_pyramid5_fbar_gradient,
+   tm_stvk_pyramid5_fbar_hessian, tm_stvk_pyramid5_fbar_gradient_hessian, tm_stvk_pyramid5_fbar_stress, 1680, 3304, 24836,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"stvk", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
    tm_stvk_quad4_whole_hessian, tm_stvk_quad4_whole_gradient_hessian, tm_stvk_quad4_whole_stress, 248, 472, 1736,
@@ -1933,6 +2359,12 @@ const tm_kernel kKernels[] = {
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
    tm_stvk_quad4_tensor_hessian, tm_stvk_quad4_tensor_gradient_hessian, tm_stvk_quad4_tensor_stress, 574, 886, 3078,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
+  {"stvk", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
+   kStvkParameters, kStvkLimits, tm_stvk_quad4_fbar_precompute, tm_stvk_quad4_fbar_energy, tm_stvk_quad4_fbar_gradient,
+   tm_stvk_quad4_fbar_hessian, tm_stvk_quad4_fbar_gradient_hessian, tm_stvk_quad4_fbar_stress, 344, 632, 3048,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2007,6 +2439,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"veronda_westmann", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_fbar_precompute, tm_veronda_westmann_hex8_fbar_energy, tm_veronda_westmann_hex8_fbar_gradient,
+   tm_veronda_westmann_hex8_fbar_hessian, tm_veronda_westmann_hex8_fbar_gradient_hessian, tm_veronda_westmann_hex8_fbar_stress, 2408, 5888, 49960,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
    tm_veronda_westmann_prism15_whole_hessian, tm_veronda_westmann_prism15_whole_gradient_hessian, tm_veronda_westmann_prism15_whole_stress, 6714, 16164, 203778,
@@ -2019,6 +2457,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch},
+
+  {"veronda_westmann", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_fbar_precompute, tm_veronda_westmann_prism6_fbar_energy, tm_veronda_westmann_prism6_fbar_gradient,
+   tm_veronda_westmann_prism6_fbar_hessian, tm_veronda_westmann_prism6_fbar_gradient_hessian, tm_veronda_westmann_prism6_fbar_stress, 1590, 3984, 29262,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
@@ -2033,12 +2477,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
    tm_veronda_westmann_pyramid5_whole_stress_batch},
 
+  {"veronda_westmann", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_fbar_precompute, tm_veronda_westmann_pyramid5_fbar_energy, tm_veronda_westmann_pyramid5_fbar_gradient,
+   tm_veronda_westmann_pyramid5_fbar_hessian, tm_veronda_westmann_pyramid5_fbar_gradient_hessian, tm_veronda_westmann_pyramid5_fbar_stress, 1976, 5024, 33868,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
    tm_veronda_westmann_quad4_whole_hessian, tm_veronda_westmann_quad4_whole_gradient_hessian, tm_veronda_westmann_quad4_whole_stress, 336, 772, 2776,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad4_whole_stress_batch},
+
+  {"veronda_westmann", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_fbar_precompute, tm_veronda_westmann_quad4_fbar_energy, tm_veronda_westmann_quad4_fbar_gradient,
+   tm_veronda_westmann_quad4_fbar_hessian, tm_veronda_westmann_quad4_fbar_gradient_hessian, tm_veronda_westmann_quad4_fbar_stress, 432, 932, 4088,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
@@ -2099,6 +2555,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr},
 
+  {"yeoh", "hex8", "fbar", 3, 8, 24, 8, 4, 4, 204,
+   kYeohParameters, kYeohLimits, tm_yeoh_hex8_fbar_precompute, tm_yeoh_hex8_fbar_energy, tm_yeoh_hex8_fbar_gradient,
+   tm_yeoh_hex8_fbar_hessian, tm_yeoh_hex8_fbar_gradient_hessian, tm_yeoh_hex8_fbar_stress, 2088, 5160, 45288,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
    kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
    tm_yeoh_prism15_whole_hessian, tm_yeoh_prism15_whole_gradient_hessian, tm_yeoh_prism15_whole_stress, 5994, 14526, 193266,
@@ -2111,6 +2573,12 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch},
+
+  {"yeoh", "prism6", "fbar", 3, 6, 18, 6, 4, 4, 118,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism6_fbar_precompute, tm_yeoh_prism6_fbar_energy, tm_yeoh_prism6_fbar_gradient,
+   tm_yeoh_prism6_fbar_hessian, tm_yeoh_prism6_fbar_gradient_hessian, tm_yeoh_prism6_fbar_stress, 1350, 3438, 25758,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
@@ -2125,12 +2593,24 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
    tm_yeoh_pyramid5_whole_stress_batch},
 
+  {"yeoh", "pyramid5", "fbar", 3, 5, 15, 8, 4, 4, 132,
+   kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_fbar_precompute, tm_yeoh_pyramid5_fbar_energy, tm_yeoh_pyramid5_fbar_gradient,
+   tm_yeoh_pyramid5_fbar_hessian, tm_yeoh_pyramid5_fbar_gradient_hessian, tm_yeoh_pyramid5_fbar_stress, 1656, 4296, 29196,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
+
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
    tm_yeoh_quad4_whole_hessian, tm_yeoh_quad4_whole_gradient_hessian, tm_yeoh_quad4_whole_stress, 256, 612, 2452,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
    tm_yeoh_quad4_whole_stress_batch},
+
+  {"yeoh", "quad4", "fbar", 2, 4, 8, 4, 4, 4, 40,
+   kYeohParameters, kYeohLimits, tm_yeoh_quad4_fbar_precompute, tm_yeoh_quad4_fbar_energy, tm_yeoh_quad4_fbar_gradient,
+   tm_yeoh_quad4_fbar_hessian, tm_yeoh_quad4_fbar_gradient_hessian, tm_yeoh_quad4_fbar_stress, 352, 772, 3764,
+   0, 0,
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,

@@ -4,11 +4,15 @@ set(TENSORMASS_GENERATED_SOURCES
   elements.cpp
   kernels/arruda_boyce_hex20_whole.cpp
   kernels/arruda_boyce_hex27_whole.cpp
+  kernels/arruda_boyce_hex8_fbar.cpp
   kernels/arruda_boyce_hex8_whole.cpp
   kernels/arruda_boyce_prism15_whole.cpp
+  kernels/arruda_boyce_prism6_fbar.cpp
   kernels/arruda_boyce_prism6_whole.cpp
   kernels/arruda_boyce_pyramid13_whole.cpp
+  kernels/arruda_boyce_pyramid5_fbar.cpp
   kernels/arruda_boyce_pyramid5_whole.cpp
+  kernels/arruda_boyce_quad4_fbar.cpp
   kernels/arruda_boyce_quad4_whole.cpp
   kernels/arruda_boyce_quad8_whole.cpp
   kernels/arruda_boyce_quad9_whole.cpp
@@ -18,11 +22,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/arruda_boyce_tri6_whole.cpp
   kernels/corotational_hex20_whole.cpp
   kernels/corotational_hex27_whole.cpp
+  kernels/corotational_hex8_fbar.cpp
   kernels/corotational_hex8_whole.cpp
   kernels/corotational_prism15_whole.cpp
+  kernels/corotational_prism6_fbar.cpp
   kernels/corotational_prism6_whole.cpp
   kernels/corotational_pyramid13_whole.cpp
+  kernels/corotational_pyramid5_fbar.cpp
   kernels/corotational_pyramid5_whole.cpp
+  kernels/corotational_quad4_fbar.cpp
   kernels/corotational_quad4_whole.cpp
   kernels/corotational_quad8_whole.cpp
   kernels/corotational_quad9_whole.cpp
@@ -32,11 +40,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/corotational_tri6_whole.cpp
   kernels/gent_hex20_whole.cpp
   kernels/gent_hex27_whole.cpp
+  kernels/gent_hex8_fbar.cpp
   kernels/gent_hex8_whole.cpp
   kernels/gent_prism15_whole.cpp
+  kernels/gent_prism6_fbar.cpp
   kernels/gent_prism6_whole.cpp
   kernels/gent_pyramid13_whole.cpp
+  kernels/gent_pyramid5_fbar.cpp
   kernels/gent_pyramid5_whole.cpp
+  kernels/gent_quad4_fbar.cpp
   kernels/gent_quad4_whole.cpp
   kernels/gent_quad8_whole.cpp
   kernels/gent_quad9_whole.cpp
@@ -46,14 +58,18 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/gent_tri6_whole.cpp
   kernels/hooke_hex20_whole.cpp
   kernels/hooke_hex27_whole.cpp
+  kernels/hooke_hex8_fbar.cpp
   kernels/hooke_hex8_tensor.cpp
   kernels/hooke_hex8_whole.cpp
   kernels/hooke_prism15_whole.cpp
+  kernels/hooke_prism6_fbar.cpp
   kernels/hooke_prism6_tensor.cpp
   kernels/hooke_prism6_whole.cpp
   kernels/hooke_pyramid13_whole.cpp
+  kernels/hooke_pyramid5_fbar.cpp
   kernels/hooke_pyramid5_tensor.cpp
   kernels/hooke_pyramid5_whole.cpp
+  kernels/hooke_quad4_fbar.cpp
   kernels/hooke_quad4_tensor.cpp
   kernels/hooke_quad4_whole.cpp
   kernels/hooke_quad8_whole.cpp
@@ -66,11 +82,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_tri6_whole.cpp
   kernels/mooney_rivlin_hex20_whole.cpp
   kernels/mooney_rivlin_hex27_whole.cpp
+  kernels/mooney_rivlin_hex8_fbar.cpp
   kernels/mooney_rivlin_hex8_whole.cpp
   kernels/mooney_rivlin_prism15_whole.cpp
+  kernels/mooney_rivlin_prism6_fbar.cpp
   kernels/mooney_rivlin_prism6_whole.cpp
   kernels/mooney_rivlin_pyramid13_whole.cpp
+  kernels/mooney_rivlin_pyramid5_fbar.cpp
   kernels/mooney_rivlin_pyramid5_whole.cpp
+  kernels/mooney_rivlin_quad4_fbar.cpp
   kernels/mooney_rivlin_quad4_whole.cpp
   kernels/mooney_rivlin_quad8_whole.cpp
   kernels/mooney_rivlin_quad9_whole.cpp
@@ -80,11 +100,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/mooney_rivlin_tri6_whole.cpp
   kernels/neohookean_hex20_whole.cpp
   kernels/neohookean_hex27_whole.cpp
+  kernels/neohookean_hex8_fbar.cpp
   kernels/neohookean_hex8_whole.cpp
   kernels/neohookean_prism15_whole.cpp
+  kernels/neohookean_prism6_fbar.cpp
   kernels/neohookean_prism6_whole.cpp
   kernels/neohookean_pyramid13_whole.cpp
+  kernels/neohookean_pyramid5_fbar.cpp
   kernels/neohookean_pyramid5_whole.cpp
+  kernels/neohookean_quad4_fbar.cpp
   kernels/neohookean_quad4_whole.cpp
   kernels/neohookean_quad8_whole.cpp
   kernels/neohookean_quad9_whole.cpp
@@ -94,11 +118,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/neohookean_tri6_whole.cpp
   kernels/stable_neohookean_hex20_whole.cpp
   kernels/stable_neohookean_hex27_whole.cpp
+  kernels/stable_neohookean_hex8_fbar.cpp
   kernels/stable_neohookean_hex8_whole.cpp
   kernels/stable_neohookean_prism15_whole.cpp
+  kernels/stable_neohookean_prism6_fbar.cpp
   kernels/stable_neohookean_prism6_whole.cpp
   kernels/stable_neohookean_pyramid13_whole.cpp
+  kernels/stable_neohookean_pyramid5_fbar.cpp
   kernels/stable_neohookean_pyramid5_whole.cpp
+  kernels/stable_neohookean_quad4_fbar.cpp
   kernels/stable_neohookean_quad4_whole.cpp
   kernels/stable_neohookean_quad8_whole.cpp
   kernels/stable_neohookean_quad9_whole.cpp
@@ -108,14 +136,18 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stable_neohookean_tri6_whole.cpp
   kernels/stvk_hex20_whole.cpp
   kernels/stvk_hex27_whole.cpp
+  kernels/stvk_hex8_fbar.cpp
   kernels/stvk_hex8_tensor.cpp
   kernels/stvk_hex8_whole.cpp
   kernels/stvk_prism15_whole.cpp
+  kernels/stvk_prism6_fbar.cpp
   kernels/stvk_prism6_tensor.cpp
   kernels/stvk_prism6_whole.cpp
   kernels/stvk_pyramid13_whole.cpp
+  kernels/stvk_pyramid5_fbar.cpp
   kernels/stvk_pyramid5_tensor.cpp
   kernels/stvk_pyramid5_whole.cpp
+  kernels/stvk_quad4_fbar.cpp
   kernels/stvk_quad4_tensor.cpp
   kernels/stvk_quad4_whole.cpp
   kernels/stvk_quad8_whole.cpp
@@ -128,11 +160,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stvk_tri6_whole.cpp
   kernels/veronda_westmann_hex20_whole.cpp
   kernels/veronda_westmann_hex27_whole.cpp
+  kernels/veronda_westmann_hex8_fbar.cpp
   kernels/veronda_westmann_hex8_whole.cpp
   kernels/veronda_westmann_prism15_whole.cpp
+  kernels/veronda_westmann_prism6_fbar.cpp
   kernels/veronda_westmann_prism6_whole.cpp
   kernels/veronda_westmann_pyramid13_whole.cpp
+  kernels/veronda_westmann_pyramid5_fbar.cpp
   kernels/veronda_westmann_pyramid5_whole.cpp
+  kernels/veronda_westmann_quad4_fbar.cpp
   kernels/veronda_westmann_quad4_whole.cpp
   kernels/veronda_westmann_quad8_whole.cpp
   kernels/veronda_westmann_quad9_whole.cpp
@@ -142,11 +178,15 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/veronda_westmann_tri6_whole.cpp
   kernels/yeoh_hex20_whole.cpp
   kernels/yeoh_hex27_whole.cpp
+  kernels/yeoh_hex8_fbar.cpp
   kernels/yeoh_hex8_whole.cpp
   kernels/yeoh_prism15_whole.cpp
+  kernels/yeoh_prism6_fbar.cpp
   kernels/yeoh_prism6_whole.cpp
   kernels/yeoh_pyramid13_whole.cpp
+  kernels/yeoh_pyramid5_fbar.cpp
   kernels/yeoh_pyramid5_whole.cpp
+  kernels/yeoh_quad4_fbar.cpp
   kernels/yeoh_quad4_whole.cpp
   kernels/yeoh_quad8_whole.cpp
   kernels/yeoh_quad9_whole.cpp

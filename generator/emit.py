@@ -206,7 +206,7 @@ def element_context(e: ElementIR) -> dict:
     }
 
 
-SPLIT_ORDER = ("whole", "terms", "tensor")  # lower.SPLITS, the registry's order within a (law, element)
+SPLIT_ORDER = ("whole", "terms", "tensor", "fbar")  # lower.SPLITS, the registry's order within a (law, element)
 
 
 def kernel_row(k: KernelIR, sources: list[str]) -> dict:

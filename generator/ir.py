@@ -102,7 +102,14 @@ class TensorIR:
         return self.strain == "E"
 
 
-SplitIR = Union[WholeIR, TermsIR, TensorIR]
+@dataclass(frozen=True)
+class MeanDilatationIR:
+    """The fbar split (the mean-dilatation formulation, mean_dilatation.hpp):
+    the law block at F̄ = (J̄/J)^(1/d) F and the element tables; nothing of its
+    own beyond the formulation's runtime loops."""
+
+
+SplitIR = Union[WholeIR, TermsIR, TensorIR, MeanDilatationIR]
 
 
 # --- Kernels and elements ----------------------------------------------------
@@ -115,7 +122,7 @@ class KernelIR:
     expressions that hold them (H[0], u[3], GT[...], ...)."""
     law: LawSpec
     element: ElementSpec
-    split: str  # whole | terms | tensor
+    split: str  # whole | terms | tensor | fbar
     tables: ElementTables
     law_ir: LawKernelIR
     consts_size: int

@@ -17,17 +17,21 @@ Splits (one module each in `splits/`):
           strain) or 3 (Green strain) in nodal displacements with coefficient
           tensors precomputed per element; first-order elements, laws quadratic
           in one strain measure, coefficient count under a limit
+  fbar    the mean-dilatation (F-bar) formulation: the law at F̄ = (J̄/J)^(1/d) F
+          with J̄ the element's volume ratio (a different energy from the three
+          above, free of volumetric locking); first-order elements with more
+          than one quadrature point
 """
 from __future__ import annotations
 
 from .ir import KernelIR, LoweredIR, Refusal
 from .lower_element import lower_element
 from .model import ElementSpec, LawSpec, OptimisedIR
-from .splits import tensor, terms, whole
+from .splits import fbar, tensor, terms, whole
 from .splits.common import SplitRefused, Triple, point_stride
 
 from .stale import SPLITS
-_LOWERINGS = {"whole": whole.lower, "terms": terms.lower, "tensor": tensor.lower}
+_LOWERINGS = {"whole": whole.lower, "terms": terms.lower, "tensor": tensor.lower, "fbar": fbar.lower}
 DEFAULT_TENSOR_LIMIT = tensor.DEFAULT_LIMIT
 
 __all__ = ["SPLITS", "DEFAULT_TENSOR_LIMIT", "SplitRefused", "build_kernel_ir", "lower"]
@@ -61,7 +65,7 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     consts = len(law.constants) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
-                    linear=derivatives.linear, invertible=law.invertible)
+                    linear=derivatives.linear and split != "fbar", invertible=law.invertible and split != "fbar")
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

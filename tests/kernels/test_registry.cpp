@@ -17,7 +17,7 @@
 namespace tmtest {
 namespace {
 
-const std::vector<std::string> kSplits = {"tensor", "terms", "whole"};
+const std::vector<std::string> kSplits = {"fbar", "tensor", "terms", "whole"};
 
 struct ExpectedElement {
   int dim, order, nodes, vtk_type;
@@ -64,7 +64,8 @@ TEST(Registry, HoldsEveryElementAndLawFile) {
 
 /// whole for every (law, element) pair, terms for every pair or for none
 /// (the build's TENSORMASS_TERMS_SPLIT); tensor on first-order elements
-/// only, for hooke and stvk at least; nothing else.
+/// only, for hooke and stvk at least; fbar for every law on exactly the
+/// first-order elements with more than one quadrature point; nothing else.
 TEST(Registry, OffersTheExpectedTriples) {
   const bool with_terms = registry().find("hooke", "tet4", "terms") != nullptr;
   int count = 0;
@@ -78,6 +79,9 @@ TEST(Registry, OffersTheExpectedTriples) {
         if (split == "tensor" && element->order != 1) EXPECT_EQ(kernel, nullptr) << law << "/" << element->name;
         if (split == "tensor" && element->order == 1 && (law == "hooke" || law == "stvk"))
           EXPECT_NE(kernel, nullptr) << law << "/" << element->name << "/tensor";
+        if (split == "fbar")
+          EXPECT_EQ(kernel != nullptr, element->order == 1 && element->quadrature_points > 1)
+              << law << "/" << element->name << "/fbar";
         if (kernel == nullptr) continue;
         ++count;
         EXPECT_EQ(kernel->law, law);
@@ -130,22 +134,26 @@ TEST(Registry, KernelsAreUniqueAndComplete) {
 }
 
 /// The generator flags a kernel linear when its law's energy is quadratic
-/// in u (Hooke; not St Venant-Kirchhoff), the same on every kernel of a law.
+/// in u (Hooke; not St Venant-Kirchhoff), the same on every kernel of a law
+/// but the fbar ones, whose F̄ makes every energy non-quadratic.
 TEST(Registry, LinearFlagMarksQuadraticEnergies) {
   for (const tm_kernel* kernel : registry().kernels()) {
     SCOPED_TRACE(kernel_name(*kernel));
-    EXPECT_EQ(kernel->linear, registry().law_kernel(kernel->law)->linear);
-    if (std::string(kernel->law) == "hooke") EXPECT_EQ(kernel->linear, 1);
+    const bool fbar = std::string(kernel->split) == "fbar";
+    EXPECT_EQ(kernel->linear, fbar ? 0 : registry().law_kernel(kernel->law)->linear);
+    if (std::string(kernel->law) == "hooke") EXPECT_EQ(kernel->linear, fbar ? 0 : 1);
     if (std::string(kernel->law) == "stvk") EXPECT_EQ(kernel->linear, 0);
   }
 }
 
-/// The flag follows the law file's `invertible` (stable neo-Hookean sets it).
+/// The flag follows the law file's `invertible` (stable neo-Hookean sets it),
+/// except on fbar kernels: F̄ takes a root of J̄/J, which inversion makes negative.
 TEST(Registry, InvertibleFlagFollowsTheLaw) {
   for (const tm_kernel* kernel : registry().kernels()) {
     SCOPED_TRACE(kernel_name(*kernel));
-    EXPECT_EQ(kernel->invertible, registry().law_kernel(kernel->law)->invertible);
-    if (std::string(kernel->law) == "stable_neohookean") EXPECT_EQ(kernel->invertible, 1);
+    const bool fbar = std::string(kernel->split) == "fbar";
+    EXPECT_EQ(kernel->invertible, fbar ? 0 : registry().law_kernel(kernel->law)->invertible);
+    if (std::string(kernel->law) == "stable_neohookean") EXPECT_EQ(kernel->invertible, fbar ? 0 : 1);
     if (std::string(kernel->law) == "hooke") EXPECT_EQ(kernel->invertible, 0);
   }
 }

@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "tensormass/kernels/registry.hpp"
+
 namespace tensormass {
 
 namespace {
@@ -15,15 +17,22 @@ double poisson_of(const MaterialSpec& material) {
   return found == material.constants.end() ? -1.0 : found->second;
 }
 
+/// The remedy the registry offers for `element`: its fbar kernels (mean
+/// dilatation) where the material's law has one, else a quadratic mesh.
+std::string remedy(const MaterialSpec& material, const std::string& element) {
+  if (Registry::instance().find(material.law, element, "fbar"))
+    return "set `split: fbar` on the material (mean dilatation, docs/formulations.md)";
+  return "quadratic elements lock far less (tensormass raise-order, tensormass beam --order 2)";
+}
+
 std::string warning_text(const MaterialSpec& material, int index, const std::string& element) {
-  char text[512];
+  char text[640];
   std::snprintf(text, sizeof text,
                 "material %d (region %s%s%s): its %s cells at poisson = %g are first-order elements, which lock "
-                "(answer too stiff) above poisson = %g; quadratic elements lock far less (tensormass raise-order, "
-                "tensormass beam --order 2)",
+                "(answer too stiff) above poisson = %g; %s",
                 index, material.region.c_str(), material.line > 0 ? ", scene line " : "",
                 material.line > 0 ? std::to_string(material.line).c_str() : "", element.c_str(), poisson_of(material),
-                kLockingPoisson);
+                kLockingPoisson, remedy(material, element).c_str());
   return text;
 }
 
@@ -36,6 +45,7 @@ std::vector<std::string> locking_warnings(const Model& model, const ModelSpec& s
     if (block.element->order != 1) continue;
     for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
       const int material = model.material(cell);
+      if (std::string(model.kernel(cell).split) == "fbar") continue;  // locking-free
       if (material >= 0 && material < static_cast<int>(spec.materials.size()) &&
           poisson_of(spec.materials[material]) > kLockingPoisson)
         locking.insert({material, block.element->name});

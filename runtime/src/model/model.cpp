@@ -32,7 +32,12 @@ int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell) {
 }
 
 std::string material_split(const MaterialSpec& material, const tm_element_info& element) {
-  return material.split.empty() ? default_split(material.law, element) : material.split;
+  if (material.split.empty()) return default_split(material.law, element);
+  // fbar on a mixed mesh: the elements without fbar kernels keep `whole`
+  // (one quadrature point, where the mean dilatation is the point's own, and
+  // the quadratic elements); the locking warning still names the first-order ones.
+  if (material.split == "fbar" && !Registry::instance().find(material.law, element.name, "fbar")) return "whole";
+  return material.split;
 }
 
 const tm_kernel* material_kernel(const MaterialSpec& material, const tm_element_info& element) {
@@ -114,8 +119,10 @@ const tm_kernel* Model::law_kernel(int cell, const std::string& law) const {
   const Registry& registry = Registry::instance();
   // The tensor split's constants extend the quadrature layout that `whole`
   // reads, so a tensor cell can switch to `whole` of another law in place.
+  // An fbar cell stays fbar: `whole` would bring its volumetric locking back.
   const tm_kernel* next = registry.find(law, current.element, current.split);
-  if (!next || next->consts > current.consts) next = registry.find(law, current.element, "whole");
+  if ((!next || next->consts > current.consts) && std::string(current.split) != "fbar")
+    next = registry.find(law, current.element, "whole");
   const std::size_t slot = consts_offsets_[cell + 1] - consts_offsets_[cell];
   return next && static_cast<std::size_t>(next->consts) <= slot ? next : nullptr;
 }

@@ -1,7 +1,8 @@
 // Locking warnings (model/locking_warning.hpp): first-order cells under a
 // material whose Poisson's ratio passes 0.45 are named, per material and
-// element type; quadratic cells, laws without a Poisson's ratio and ratios
-// up to 0.45 give none.
+// element type, with the fbar split as the remedy where the element has it;
+// quadratic cells, fbar cells, laws without a Poisson's ratio and ratios up
+// to 0.45 give none.
 #include <gtest/gtest.h>
 
 #include <utility>
@@ -15,9 +16,11 @@ namespace {
 
 using test_support::expect_contains;
 
-std::vector<std::string> warnings_of(const Mesh& mesh, double poisson, const std::string& law = "stvk") {
+std::vector<std::string> warnings_of(const Mesh& mesh, double poisson, const std::string& law = "stvk",
+                                     const std::string& split = "") {
   Scene scene = test::cantilever(law);
   if (law == "stvk") scene.model.materials[0].constants = elastic_constants(1e6, poisson);
+  scene.model.materials[0].split = split;
   scene.model.materials[0].line = 7;
   const Model model(mesh, scene.model);
   return locking_warnings(model, scene.model);
@@ -28,8 +31,9 @@ TEST(LockingWarning, FirstOrderCellsNearIncompressibilityAreNamed) {
        {std::pair{"tet6", "tet4"}, {"hex8", "hex8"}, {"prism6", "prism6"}, {"pyramid5", "pyramid5"}}) {
     const std::vector<std::string> warnings = warnings_of(test::beam(3, cut, {4, 2, 2}), 0.49);
     ASSERT_EQ(warnings.size(), 1u) << element;
+    const bool fbar = std::string(element) != "tet4";
     expect_contains(warnings[0], {"material 0 (region all, scene line 7)", std::string("its ") + element + " cells",
-                                  "poisson = 0.49", "first-order", "raise-order"});
+                                  "poisson = 0.49", "first-order", fbar ? "split: fbar" : "raise-order"});
   }
   const std::vector<std::string> plane = warnings_of(test::beam(2, "quad4", {4, 2, 1}), 0.499);
   ASSERT_EQ(plane.size(), 1u);
@@ -39,6 +43,12 @@ TEST(LockingWarning, FirstOrderCellsNearIncompressibilityAreNamed) {
 TEST(LockingWarning, NoneAtOrBelowTheThreshold) {
   EXPECT_TRUE(warnings_of(test::beam(3, "tet6", {4, 2, 2}), 0.45).empty());
   EXPECT_TRUE(warnings_of(test::beam(3, "tet6", {4, 2, 2}), 0.3).empty());
+}
+
+TEST(LockingWarning, NoneForFbarCells) {
+  for (const char* cut : {"hex8", "prism6", "pyramid5"})
+    EXPECT_TRUE(warnings_of(test::beam(3, cut, {4, 2, 2}), 0.499, "stvk", "fbar").empty()) << cut;
+  EXPECT_TRUE(warnings_of(test::beam(2, "quad4", {4, 2, 1}), 0.499, "stvk", "fbar").empty());
 }
 
 TEST(LockingWarning, NoneForQuadraticElements) {

@@ -151,6 +151,21 @@ TEST(Model, SwitchingFromTensorHookeToStvkMatchesAFreshStvkModel) {
   EXPECT_EQ(switched.law_id(0), reference.law_id(0));
 }
 
+/// `split: fbar` binds the mean-dilatation kernels where the element has
+/// them and `whole` elsewhere (a mixed mesh); a switch of law stays fbar.
+TEST(Model, FbarCellsSwitchLawWithinFbarAndOtherElementsKeepWhole) {
+  const Mesh mesh = test::beam(3, "hex8", {2, 1, 1});
+  Scene scene = test::cantilever("hooke");
+  scene.model.materials[0].split = "fbar";
+  Model model(mesh, scene.model);
+  EXPECT_STREQ(model.kernel(0).split, "fbar");
+  model.set_law(0, "neohookean");
+  EXPECT_STREQ(model.kernel(0).law, "neohookean");
+  EXPECT_STREQ(model.kernel(0).split, "fbar");
+  const Mesh tets = test::beam(3, "tet6", {2, 1, 1});
+  EXPECT_STREQ(Model(tets, scene.model).kernel(0).split, "whole");
+}
+
 /// Flipping every cell along x (u_x = -2 x, so F_xx = -1) inverts them all:
 /// the check names one under neo-Hookean and none under the invertible
 /// stable neo-Hookean, whose energy stays finite there.

@@ -32,7 +32,8 @@ std::string default_split(const std::string& law, const tm_element_info& element
 /// cell `cell` ("all" or a group holding it), or -1.
 int material_of_cell(const ModelSpec& spec, const Mesh& mesh, int cell);
 
-/// The split a cell of `element` gets under `material`: its own, else default_split.
+/// The split a cell of `element` gets under `material`: its own, else
+/// default_split; `fbar` on an element without fbar kernels is `whole`.
 std::string material_split(const MaterialSpec& material, const tm_element_info& element);
 
 /// The kernel a cell of `element` gets under `material` (at material_split),
