@@ -43,12 +43,6 @@ void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_arruda_boyce_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_arruda_boyce_prism6_fbar_energy(const double*, const double*);
-void tm_arruda_boyce_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_arruda_boyce_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_arruda_boyce_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_arruda_boyce_prism6_fbar_stress(const double*, const double*, double*);
 int tm_arruda_boyce_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid13_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -175,12 +169,6 @@ void tm_corotational_prism6_whole_stress(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_corotational_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_corotational_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_corotational_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_corotational_prism6_fbar_energy(const double*, const double*);
-void tm_corotational_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_corotational_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_corotational_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_corotational_prism6_fbar_stress(const double*, const double*, double*);
 int tm_corotational_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_corotational_pyramid13_whole_energy(const double*, const double*);
 void tm_corotational_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -307,12 +295,6 @@ void tm_gent_prism6_whole_stress(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_gent_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_gent_prism6_fbar_energy(const double*, const double*);
-void tm_gent_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_gent_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_gent_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_gent_prism6_fbar_stress(const double*, const double*, double*);
 int tm_gent_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid13_whole_energy(const double*, const double*);
 void tm_gent_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -451,12 +433,6 @@ void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_tensor_stress(const double*, const double*, double*);
-int tm_hooke_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_hooke_prism6_fbar_energy(const double*, const double*);
-void tm_hooke_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_hooke_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_hooke_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_hooke_prism6_fbar_stress(const double*, const double*, double*);
 int tm_hooke_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid13_whole_energy(const double*, const double*);
 void tm_hooke_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -607,12 +583,6 @@ void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*)
 void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_mooney_rivlin_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_mooney_rivlin_prism6_fbar_energy(const double*, const double*);
-void tm_mooney_rivlin_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_mooney_rivlin_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_mooney_rivlin_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_mooney_rivlin_prism6_fbar_stress(const double*, const double*, double*);
 int tm_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -739,12 +709,6 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_neohookean_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_neohookean_prism6_fbar_energy(const double*, const double*);
-void tm_neohookean_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_neohookean_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_neohookean_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_neohookean_prism6_fbar_stress(const double*, const double*, double*);
 int tm_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -871,12 +835,6 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_stable_neohookean_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_stable_neohookean_prism6_fbar_energy(const double*, const double*);
-void tm_stable_neohookean_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_stable_neohookean_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_stable_neohookean_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stable_neohookean_prism6_fbar_stress(const double*, const double*, double*);
 int tm_stable_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1015,12 +973,6 @@ void tm_stvk_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_stvk_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_stvk_prism6_tensor_stress(const double*, const double*, double*);
-int tm_stvk_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_stvk_prism6_fbar_energy(const double*, const double*);
-void tm_stvk_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_stvk_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_stvk_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_stvk_prism6_fbar_stress(const double*, const double*, double*);
 int tm_stvk_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stvk_pyramid13_whole_energy(const double*, const double*);
 void tm_stvk_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1171,12 +1123,6 @@ void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, doubl
 void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_veronda_westmann_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_veronda_westmann_prism6_fbar_energy(const double*, const double*);
-void tm_veronda_westmann_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_veronda_westmann_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_veronda_westmann_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_veronda_westmann_prism6_fbar_stress(const double*, const double*, double*);
 int tm_veronda_westmann_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid13_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1303,12 +1249,6 @@ void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
-int tm_yeoh_prism6_fbar_precompute(const double*, const double*, int, double*);
-double tm_yeoh_prism6_fbar_energy(const double*, const double*);
-void tm_yeoh_prism6_fbar_gradient(const double*, const double*, double*);
-void tm_yeoh_prism6_fbar_hessian(const double*, const double*, double*);
-void tm_yeoh_prism6_fbar_gradient_hessian(const double*, const double*, double*, double*);
-void tm_yeoh_prism6_fbar_stress(const double*, const double*, double*);
 int tm_yeoh_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid13_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1458,12 +1398,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch},
 
-  {"arruda_boyce", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
-   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_fbar_precompute, tm_arruda_boyce_prism6_fbar_energy, tm_arruda_boyce_prism6_fbar_gradient,
-   tm_arruda_boyce_prism6_fbar_hessian, tm_arruda_boyce_prism6_fbar_gradient_hessian, tm_arruda_boyce_prism6_fbar_stress, 1656, 4158, 28326,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
    tm_arruda_boyce_pyramid13_whole_hessian, tm_arruda_boyce_pyramid13_whole_gradient_hessian, tm_arruda_boyce_pyramid13_whole_stress, 9396, 23085, 241191,
@@ -1573,12 +1507,6 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch},
-
-  {"corotational", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
-   kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_fbar_precompute, tm_corotational_prism6_fbar_energy, tm_corotational_prism6_fbar_gradient,
-   tm_corotational_prism6_fbar_hessian, tm_corotational_prism6_fbar_gradient_hessian, tm_corotational_prism6_fbar_stress, 4230, 5244, 31890,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
@@ -1690,12 +1618,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch},
 
-  {"gent", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
-   kGentParameters, kGentLimits, tm_gent_prism6_fbar_precompute, tm_gent_prism6_fbar_energy, tm_gent_prism6_fbar_gradient,
-   tm_gent_prism6_fbar_hessian, tm_gent_prism6_fbar_gradient_hessian, tm_gent_prism6_fbar_stress, 1344, 3096, 26622,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
    tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
@@ -1796,7 +1718,7 @@ const tm_kernel kKernels[] = {
   {"hooke", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_fbar_precompute, tm_hooke_hex8_fbar_energy, tm_hooke_hex8_fbar_gradient,
    tm_hooke_hex8_fbar_hessian, tm_hooke_hex8_fbar_gradient_hessian, tm_hooke_hex8_fbar_stress, 1768, 3136, 37296,
-   0, 0,
+   1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
@@ -1816,12 +1738,6 @@ const tm_kernel kKernels[] = {
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
-
-  {"hooke", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
-   kHookeParameters, kHookeLimits, tm_hooke_prism6_fbar_precompute, tm_hooke_prism6_fbar_energy, tm_hooke_prism6_fbar_gradient,
-   tm_hooke_prism6_fbar_hessian, tm_hooke_prism6_fbar_gradient_hessian, tm_hooke_prism6_fbar_stress, 1110, 1920, 19764,
-   0, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
@@ -1846,7 +1762,7 @@ const tm_kernel kKernels[] = {
   {"hooke", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_fbar_precompute, tm_hooke_pyramid5_fbar_energy, tm_hooke_pyramid5_fbar_gradient,
    tm_hooke_pyramid5_fbar_hessian, tm_hooke_pyramid5_fbar_gradient_hessian, tm_hooke_pyramid5_fbar_stress, 1336, 2272, 21204,
-   0, 0,
+   1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
@@ -1865,7 +1781,7 @@ const tm_kernel kKernels[] = {
   {"hooke", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_fbar_precompute, tm_hooke_quad4_fbar_energy, tm_hooke_quad4_fbar_gradient,
    tm_hooke_quad4_fbar_hessian, tm_hooke_quad4_fbar_gradient_hessian, tm_hooke_quad4_fbar_stress, 276, 456, 2552,
-   0, 0,
+   1, 0,
    0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
@@ -1957,12 +1873,6 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch},
-
-  {"mooney_rivlin", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
-   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_fbar_precompute, tm_mooney_rivlin_prism6_fbar_energy, tm_mooney_rivlin_prism6_fbar_gradient,
-   tm_mooney_rivlin_prism6_fbar_hessian, tm_mooney_rivlin_prism6_fbar_gradient_hessian, tm_mooney_rivlin_prism6_fbar_stress, 1560, 3930, 26100,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
@@ -2074,12 +1984,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch},
 
-  {"neohookean", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
-   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_fbar_precompute, tm_neohookean_prism6_fbar_energy, tm_neohookean_prism6_fbar_gradient,
-   tm_neohookean_prism6_fbar_hessian, tm_neohookean_prism6_fbar_gradient_hessian, tm_neohookean_prism6_fbar_stress, 1296, 2574, 22782,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
    tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
@@ -2189,12 +2093,6 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch},
-
-  {"stable_neohookean", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
-   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_fbar_precompute, tm_stable_neohookean_prism6_fbar_energy, tm_stable_neohookean_prism6_fbar_gradient,
-   tm_stable_neohookean_prism6_fbar_hessian, tm_stable_neohookean_prism6_fbar_gradient_hessian, tm_stable_neohookean_prism6_fbar_stress, 1494, 2940, 22662,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
@@ -2315,12 +2213,6 @@ const tm_kernel kKernels[] = {
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-
-  {"stvk", "prism6", "fbar", 3, 6, 18, 6, 2, 2, 116,
-   kStvkParameters, kStvkLimits, tm_stvk_prism6_fbar_precompute, tm_stvk_prism6_fbar_energy, tm_stvk_prism6_fbar_gradient,
-   tm_stvk_prism6_fbar_hessian, tm_stvk_prism6_fbar_gradient_hessian, tm_stvk_prism6_fbar_stress, 1368, 2694, 22488,
    0, 0,
    0, nullptr, nullptr, nullptr},
 
@@ -2458,12 +2350,6 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch},
 
-  {"veronda_westmann", "prism6", "fbar", 3, 6, 18, 6, 3, 3, 117,
-   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_fbar_precompute, tm_veronda_westmann_prism6_fbar_energy, tm_veronda_westmann_prism6_fbar_gradient,
-   tm_veronda_westmann_prism6_fbar_hessian, tm_veronda_westmann_prism6_fbar_gradient_hessian, tm_veronda_westmann_prism6_fbar_stress, 1590, 3984, 29262,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
-
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
    tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
@@ -2573,12 +2459,6 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch},
-
-  {"yeoh", "prism6", "fbar", 3, 6, 18, 6, 4, 4, 118,
-   kYeohParameters, kYeohLimits, tm_yeoh_prism6_fbar_precompute, tm_yeoh_prism6_fbar_energy, tm_yeoh_prism6_fbar_gradient,
-   tm_yeoh_prism6_fbar_hessian, tm_yeoh_prism6_fbar_gradient_hessian, tm_yeoh_prism6_fbar_stress, 1350, 3438, 25758,
-   0, 0,
-   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,

@@ -7,7 +7,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/arruda_boyce_hex8_fbar.cpp
   kernels/arruda_boyce_hex8_whole.cpp
   kernels/arruda_boyce_prism15_whole.cpp
-  kernels/arruda_boyce_prism6_fbar.cpp
   kernels/arruda_boyce_prism6_whole.cpp
   kernels/arruda_boyce_pyramid13_whole.cpp
   kernels/arruda_boyce_pyramid5_fbar.cpp
@@ -25,7 +24,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/corotational_hex8_fbar.cpp
   kernels/corotational_hex8_whole.cpp
   kernels/corotational_prism15_whole.cpp
-  kernels/corotational_prism6_fbar.cpp
   kernels/corotational_prism6_whole.cpp
   kernels/corotational_pyramid13_whole.cpp
   kernels/corotational_pyramid5_fbar.cpp
@@ -43,7 +41,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/gent_hex8_fbar.cpp
   kernels/gent_hex8_whole.cpp
   kernels/gent_prism15_whole.cpp
-  kernels/gent_prism6_fbar.cpp
   kernels/gent_prism6_whole.cpp
   kernels/gent_pyramid13_whole.cpp
   kernels/gent_pyramid5_fbar.cpp
@@ -62,7 +59,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_hex8_tensor.cpp
   kernels/hooke_hex8_whole.cpp
   kernels/hooke_prism15_whole.cpp
-  kernels/hooke_prism6_fbar.cpp
   kernels/hooke_prism6_tensor.cpp
   kernels/hooke_prism6_whole.cpp
   kernels/hooke_pyramid13_whole.cpp
@@ -85,7 +81,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/mooney_rivlin_hex8_fbar.cpp
   kernels/mooney_rivlin_hex8_whole.cpp
   kernels/mooney_rivlin_prism15_whole.cpp
-  kernels/mooney_rivlin_prism6_fbar.cpp
   kernels/mooney_rivlin_prism6_whole.cpp
   kernels/mooney_rivlin_pyramid13_whole.cpp
   kernels/mooney_rivlin_pyramid5_fbar.cpp
@@ -103,7 +98,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/neohookean_hex8_fbar.cpp
   kernels/neohookean_hex8_whole.cpp
   kernels/neohookean_prism15_whole.cpp
-  kernels/neohookean_prism6_fbar.cpp
   kernels/neohookean_prism6_whole.cpp
   kernels/neohookean_pyramid13_whole.cpp
   kernels/neohookean_pyramid5_fbar.cpp
@@ -121,7 +115,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stable_neohookean_hex8_fbar.cpp
   kernels/stable_neohookean_hex8_whole.cpp
   kernels/stable_neohookean_prism15_whole.cpp
-  kernels/stable_neohookean_prism6_fbar.cpp
   kernels/stable_neohookean_prism6_whole.cpp
   kernels/stable_neohookean_pyramid13_whole.cpp
   kernels/stable_neohookean_pyramid5_fbar.cpp
@@ -140,7 +133,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stvk_hex8_tensor.cpp
   kernels/stvk_hex8_whole.cpp
   kernels/stvk_prism15_whole.cpp
-  kernels/stvk_prism6_fbar.cpp
   kernels/stvk_prism6_tensor.cpp
   kernels/stvk_prism6_whole.cpp
   kernels/stvk_pyramid13_whole.cpp
@@ -163,7 +155,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/veronda_westmann_hex8_fbar.cpp
   kernels/veronda_westmann_hex8_whole.cpp
   kernels/veronda_westmann_prism15_whole.cpp
-  kernels/veronda_westmann_prism6_fbar.cpp
   kernels/veronda_westmann_prism6_whole.cpp
   kernels/veronda_westmann_pyramid13_whole.cpp
   kernels/veronda_westmann_pyramid5_fbar.cpp
@@ -181,7 +172,6 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/yeoh_hex8_fbar.cpp
   kernels/yeoh_hex8_whole.cpp
   kernels/yeoh_prism15_whole.cpp
-  kernels/yeoh_prism6_fbar.cpp
   kernels/yeoh_prism6_whole.cpp
   kernels/yeoh_pyramid13_whole.cpp
   kernels/yeoh_pyramid5_fbar.cpp

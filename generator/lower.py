@@ -20,7 +20,7 @@ Splits (one module each in `splits/`):
   fbar    the mean-dilatation (F-bar) formulation: the law at F̄ = (J̄/J)^(1/d) F
           with J̄ the element's volume ratio (a different energy from the three
           above, free of volumetric locking); first-order elements with more
-          than one quadrature point
+          than one quadrature point but prism6
 """
 from __future__ import annotations
 
@@ -65,7 +65,7 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     consts = len(law.constants) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
-                    linear=derivatives.linear and split != "fbar", invertible=law.invertible and split != "fbar")
+                    linear=derivatives.linear, invertible=law.invertible and split != "fbar")
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

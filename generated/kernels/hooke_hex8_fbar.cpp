@@ -2,7 +2,7 @@
 // Regenerate with `cmake --build build --target generate`.
 // Law: hooke   Element: hex8   Split: fbar
 // Mean dilatation: the law block (CSE'd, 27 flops for P and A) at
-// F̄ = (J̄/J)^(1/d) F per point. Flops per element: energy 1768,
+// F̄ = (J̄/J)^(1/d) F per point (H̄ = H + (θ̄ - θ)/d I for a small-strain law). Flops per element: energy 1768,
 // gradient 3136, hessian 37296.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
@@ -199,8 +199,8 @@ struct Law {
     law_tangent(H, 1.0, consts, P, A);
   }
 };
-
-namespace formulation = tensormass::kernel::mean_dilatation;
+// A small-strain law: the B-bar method (H̄ = H + (θ̄ - θ)/d I), quadratic in u as the law is.
+namespace formulation = tensormass::kernel::mean_dilatation::small_strain;
 }  // namespace
 
 extern "C" int tm_hooke_hex8_fbar_precompute(const double* rest_positions, const double* params, int param_count,

@@ -2,7 +2,7 @@
 // Regenerate with `cmake --build build --target generate`.
 // Law: stvk   Element: pyramid5   Split: fbar
 // Mean dilatation: the law block (CSE'd, 481 flops for P and A) at
-// F̄ = (J̄/J)^(1/d) F per point. Flops per element: energy 1680,
+// F̄ = (J̄/J)^(1/d) F per point (H̄ = H + (θ̄ - θ)/d I for a small-strain law). Flops per element: energy 1680,
 // gradient 3304, hessian 24836.
 #include "tensormass/kernels/kernel_abi.h"
 #include "tensormass/kernels/kernel_support.hpp"
@@ -329,8 +329,7 @@ struct Law {
     law_tangent(H, 1.0, consts, P, A);
   }
 };
-
-namespace formulation = tensormass::kernel::mean_dilatation;
+namespace formulation = tensormass::kernel::mean_dilatation::finite_strain;
 }  // namespace
 
 extern "C" int tm_stvk_pyramid5_fbar_precompute(const double* rest_positions, const double* params, int param_count,

@@ -595,8 +595,7 @@ TEST_P(HookeLaw, HookeIsQuadratic) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Hooke, HookeLaw, testing::ValuesIn(kernels_where([](const tm_kernel& k) {
-                           // fbar: F̄ = (J̄/J)^(1/d) F is not linear in u, so neither is its Hooke.
-                           return std::string(k.law) == "hooke" && std::string(k.split) != "fbar";
+                           return std::string(k.law) == "hooke";
                          })),
                          KernelParamName());
 // Empty for a registry without such kernels (a scratch project).

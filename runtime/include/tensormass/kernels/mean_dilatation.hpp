@@ -33,6 +33,9 @@
 
 namespace tensormass::kernel::mean_dilatation {
 
+/// Finite strain: F̄ = (J̄/J)^(1/d) F, the formulas above.
+namespace finite_strain {
+
 /// C = cof(F) = det(F) F^-T (D by D, row-major); returns det(F).
 template <int D>
 inline double cofactor(const double* F, double* C) {
@@ -235,6 +238,144 @@ inline void gradient_hessian(const double* u, const double* points, const double
   for (int r = 0; r < dofs; ++r)
     for (int s = 0; s < dofs; ++s) hessian[r * dofs + s] += cv[r] * bv[s] + bv[r] * cv[s] + S2 * bv[r] * bv[s];
 }
+
+}  // namespace finite_strain
+
+/// Small strain: the laws whose energy is quadratic in H (Hooke, the
+/// `linear` flag) get the B-bar method itself, H̄ = H + (θ̄ - θ)/d I with
+/// θ = tr H and θ̄ = Σ w θ / Σ w, so that Π stays quadratic in u: F̄'s root
+/// of J̄/J would add the finite-strain terms a small-strain law has no use
+/// for (it sees a rotation's tr H = 2 (cos a - 1) as a volume change, and
+/// near incompressibility λ makes that stiff). With 𝒫 = I - (1/d) I⊗I the
+/// deviatoric projector, S = Σ w tr P̄, v = A I, a0 = I:A:I:
+///   g = Σ_q B_qᵀ (w 𝒫P̄ + S/d w̃ I)
+///   K = Σ_q B_qᵀ w 𝒫A𝒫 B_q + (c bᵀ + b cᵀ)/d + Σ_q w a0/d² b bᵀ,
+///   b = Σ_q B_qᵀ w̃ I,  c = Σ_q B_qᵀ w (v - a0/d I)
+namespace small_strain {
+
+/// Per point H̄ and w; the reference volume Σ w.
+template <int D, int Q>
+struct Kinematics {
+  double Hbar[Q][D * D];
+  double w[Q];
+  double reference_volume;
+};
+
+template <int D, int N, int Q>
+inline void kinematics(const double* u, const double* points, Kinematics<D, Q>& k) {
+  double volume = 0.0, dilatation = 0.0, theta[Q];
+  for (int q = 0; q < Q; ++q) {
+    const double* point = points + q * (1 + D * N);
+    displacement_gradient<D, N>(u, point + 1, k.Hbar[q]);
+    theta[q] = 0.0;
+    for (int a = 0; a < D; ++a) theta[q] += k.Hbar[q][a * D + a];
+    k.w[q] = point[0];
+    volume += k.w[q];
+    dilatation += k.w[q] * theta[q];
+  }
+  k.reference_volume = volume;
+  for (int q = 0; q < Q; ++q)
+    for (int a = 0; a < D; ++a) k.Hbar[q][a * D + a] += (dilatation / volume - theta[q]) / D;
+}
+
+template <class Law, int D, int N, int Q>
+inline double energy(const double* u, const double* points, const double* consts) {
+  Kinematics<D, Q> k;
+  kinematics<D, N, Q>(u, points, k);
+  double W = 0.0;
+  for (int q = 0; q < Q; ++q) W += Law::energy(k.Hbar[q], k.w[q], consts);
+  return W;
+}
+
+template <class Law, int D, int N, int Q>
+inline void stress(const double* u, const double* points, const double* consts, double* stress) {
+  Kinematics<D, Q> k;
+  kinematics<D, N, Q>(u, points, k);
+  for (int q = 0; q < Q; ++q) Law::stress(k.Hbar[q], consts, stress + q * D * D);
+}
+
+template <int D>
+inline double trace(const double* M) {
+  double sum = 0.0;
+  for (int a = 0; a < D; ++a) sum += M[a * D + a];
+  return sum;
+}
+
+/// w 𝒫P̄ + S/d w̃ I at point q.
+template <int D, int Q>
+inline void point_force(const Kinematics<D, Q>& k, int q, const double* P, double S, double* out) {
+  const double mean = trace<D>(P) / D;
+  for (int i = 0; i < D * D; ++i) out[i] = k.w[q] * P[i];
+  for (int a = 0; a < D; ++a) out[a * D + a] += k.w[q] * -mean + S / D * k.w[q] / k.reference_volume;
+}
+
+template <class Law, int D, int N, int Q>
+inline void gradient(const double* u, const double* points, const double* consts, double* gradient) {
+  Kinematics<D, Q> k;
+  kinematics<D, N, Q>(u, points, k);
+  double P[Q][D * D], S = 0.0;
+  for (int q = 0; q < Q; ++q) {
+    Law::stress(k.Hbar[q], consts, P[q]);
+    S += k.w[q] * trace<D>(P[q]);
+  }
+  double g[D][N] = {};
+  for (int q = 0; q < Q; ++q) {
+    double force[D * D];
+    point_force(k, q, P[q], S, force);
+    accumulate_gradient<D, N>(force, points + q * (1 + D * N) + 1, g);
+  }
+  scatter_gradient<D, N>(g, gradient);
+}
+
+template <class Law, int D, int N, int Q>
+inline void gradient_hessian(const double* u, const double* points, const double* consts, double* gradient,
+                             double* hessian) {
+  constexpr int D2 = D * D, dofs = D * N;
+  Kinematics<D, Q> k;
+  kinematics<D, N, Q>(u, points, k);
+  double P[Q][D2], A[Q][D2 * D2], S = 0.0, S2 = 0.0;
+  for (int q = 0; q < Q; ++q) {
+    Law::tangent(k.Hbar[q], consts, P[q], A[q]);
+    S += k.w[q] * trace<D>(P[q]);
+  }
+  double g[D][N] = {}, b[D][N] = {}, c[D][N] = {};
+  double K[component_pairs<D>][N * N] = {};
+  for (int q = 0; q < Q; ++q) {
+    const double* GT = points + q * (1 + D * N) + 1;
+    if (gradient) {
+      double force[D2];
+      point_force(k, q, P[q], S, force);
+      accumulate_gradient<D, N>(force, GT, g);
+    }
+    double v[D2] = {}, a0 = 0.0;  // v = A I, a0 = I:A:I
+    for (int r = 0; r < D2; ++r)
+      for (int a = 0; a < D; ++a) v[r] += A[q][r * D2 + a * D + a];
+    for (int a = 0; a < D; ++a) a0 += v[a * D + a];
+    double unit[D2] = {}, mixed[D2];
+    for (int a = 0; a < D; ++a) unit[a * D + a] = k.w[q] / k.reference_volume;
+    for (int r = 0; r < D2; ++r) mixed[r] = k.w[q] * v[r];
+    for (int a = 0; a < D; ++a) mixed[a * D + a] -= k.w[q] * a0 / D;
+    accumulate_gradient<D, N>(unit, GT, b);
+    accumulate_gradient<D, N>(mixed, GT, c);
+    S2 += k.w[q] * a0 / (D * D);
+    for (int r = 0; r < D2; ++r)  // w 𝒫A𝒫
+      for (int s = 0; s < D2; ++s) {
+        const double Ir = r % (D + 1) == 0 ? 1.0 : 0.0, Is = s % (D + 1) == 0 ? 1.0 : 0.0;
+        double& entry = A[q][r * D2 + s];
+        entry = k.w[q] * (entry - (Ir * v[s] + v[r] * Is) / D + Ir * Is * a0 / (D * D));
+      }
+    accumulate_hessian<D, N>(A[q], GT, K);
+  }
+  if (gradient) scatter_gradient<D, N>(g, gradient);
+  scatter_hessian<D, N>(K, hessian);
+  double bv[dofs], cv[dofs];
+  scatter_gradient<D, N>(b, bv);
+  scatter_gradient<D, N>(c, cv);
+  for (int r = 0; r < dofs; ++r)
+    for (int s = 0; s < dofs; ++s) hessian[r * dofs + s] += (cv[r] * bv[s] + bv[r] * cv[s]) / D + S2 * bv[r] * bv[s];
+}
+
+}  // namespace small_strain
 
 }  // namespace tensormass::kernel::mean_dilatation
 
