@@ -35,7 +35,8 @@ std::string material_split(const MaterialSpec& material, const tm_element_info& 
   if (material.split.empty()) return default_split(material.law, element);
   // fbar on a mixed mesh: the elements without fbar kernels keep `whole`
   // (one quadrature point, where the mean dilatation is the point's own, and
-  // the quadratic elements); the locking warning still names the first-order ones.
+  // the quadratic elements and prism6, which it does not free); the locking
+  // warning still names the first-order ones.
   if (material.split == "fbar" && !Registry::instance().find(material.law, element.name, "fbar")) return "whole";
   return material.split;
 }
