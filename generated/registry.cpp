@@ -112,6 +112,16 @@ void tm_arruda_boyce_tet4_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tet4_anp_energy(const double*, const double*);
+void tm_arruda_boyce_tet4_anp_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_anp_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet4_anp_stress(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tet4_anp_bulk(double, const double*, double*);
 int tm_arruda_boyce_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri3_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri3_whole_gradient(const double*, const double*, double*);
@@ -121,6 +131,16 @@ void tm_arruda_boyce_tri3_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_tri3_anp_energy(const double*, const double*);
+void tm_arruda_boyce_tri3_anp_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_anp_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri3_anp_stress(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_arruda_boyce_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_arruda_boyce_tri3_anp_bulk(double, const double*, double*);
 int tm_arruda_boyce_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_tri6_whole_energy(const double*, const double*);
 void tm_arruda_boyce_tri6_whole_gradient(const double*, const double*, double*);
@@ -364,6 +384,16 @@ void tm_gent_tet4_whole_stress(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_gent_tet4_anp_energy(const double*, const double*);
+void tm_gent_tet4_anp_gradient(const double*, const double*, double*);
+void tm_gent_tet4_anp_hessian(const double*, const double*, double*);
+void tm_gent_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tet4_anp_stress(const double*, const double*, double*);
+void tm_gent_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_gent_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_gent_tet4_anp_bulk(double, const double*, double*);
 int tm_gent_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri3_whole_energy(const double*, const double*);
 void tm_gent_tri3_whole_gradient(const double*, const double*, double*);
@@ -373,6 +403,16 @@ void tm_gent_tri3_whole_stress(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_gent_tri3_anp_energy(const double*, const double*);
+void tm_gent_tri3_anp_gradient(const double*, const double*, double*);
+void tm_gent_tri3_anp_hessian(const double*, const double*, double*);
+void tm_gent_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_tri3_anp_stress(const double*, const double*, double*);
+void tm_gent_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_gent_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_gent_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_gent_tri3_anp_bulk(double, const double*, double*);
 int tm_gent_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_tri6_whole_energy(const double*, const double*);
 void tm_gent_tri6_whole_gradient(const double*, const double*, double*);
@@ -520,6 +560,16 @@ void tm_hooke_tet4_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_tet4_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_tet4_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tet4_tensor_stress(const double*, const double*, double*);
+int tm_hooke_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_hooke_tet4_anp_energy(const double*, const double*);
+void tm_hooke_tet4_anp_gradient(const double*, const double*, double*);
+void tm_hooke_tet4_anp_hessian(const double*, const double*, double*);
+void tm_hooke_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_tet4_anp_stress(const double*, const double*, double*);
+void tm_hooke_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_hooke_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_hooke_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_hooke_tet4_anp_bulk(double, const double*, double*);
 int tm_hooke_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri3_whole_energy(const double*, const double*);
 void tm_hooke_tri3_whole_gradient(const double*, const double*, double*);
@@ -535,6 +585,16 @@ void tm_hooke_tri3_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_tri3_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_tri3_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_tri3_tensor_stress(const double*, const double*, double*);
+int tm_hooke_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_hooke_tri3_anp_energy(const double*, const double*);
+void tm_hooke_tri3_anp_gradient(const double*, const double*, double*);
+void tm_hooke_tri3_anp_hessian(const double*, const double*, double*);
+void tm_hooke_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_tri3_anp_stress(const double*, const double*, double*);
+void tm_hooke_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_hooke_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_hooke_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_hooke_tri3_anp_bulk(double, const double*, double*);
 int tm_hooke_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_tri6_whole_energy(const double*, const double*);
 void tm_hooke_tri6_whole_gradient(const double*, const double*, double*);
@@ -652,6 +712,16 @@ void tm_mooney_rivlin_tet4_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tet4_anp_energy(const double*, const double*);
+void tm_mooney_rivlin_tet4_anp_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_anp_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet4_anp_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tet4_anp_bulk(double, const double*, double*);
 int tm_mooney_rivlin_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri3_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri3_whole_gradient(const double*, const double*, double*);
@@ -661,6 +731,16 @@ void tm_mooney_rivlin_tri3_whole_stress(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_tri3_anp_energy(const double*, const double*);
+void tm_mooney_rivlin_tri3_anp_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_anp_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri3_anp_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_mooney_rivlin_tri3_anp_bulk(double, const double*, double*);
 int tm_mooney_rivlin_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_tri6_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_tri6_whole_gradient(const double*, const double*, double*);
@@ -778,6 +858,16 @@ void tm_neohookean_tet4_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_neohookean_tet4_anp_energy(const double*, const double*);
+void tm_neohookean_tet4_anp_gradient(const double*, const double*, double*);
+void tm_neohookean_tet4_anp_hessian(const double*, const double*, double*);
+void tm_neohookean_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_tet4_anp_stress(const double*, const double*, double*);
+void tm_neohookean_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_neohookean_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_neohookean_tet4_anp_bulk(double, const double*, double*);
 int tm_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -787,6 +877,16 @@ void tm_neohookean_tri3_whole_stress(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_neohookean_tri3_anp_energy(const double*, const double*);
+void tm_neohookean_tri3_anp_gradient(const double*, const double*, double*);
+void tm_neohookean_tri3_anp_hessian(const double*, const double*, double*);
+void tm_neohookean_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_tri3_anp_stress(const double*, const double*, double*);
+void tm_neohookean_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_neohookean_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_neohookean_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_neohookean_tri3_anp_bulk(double, const double*, double*);
 int tm_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -904,6 +1004,16 @@ void tm_stable_neohookean_tet4_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_tet4_anp_energy(const double*, const double*);
+void tm_stable_neohookean_tet4_anp_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_tet4_anp_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_tet4_anp_stress(const double*, const double*, double*);
+void tm_stable_neohookean_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_stable_neohookean_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_stable_neohookean_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_stable_neohookean_tet4_anp_bulk(double, const double*, double*);
 int tm_stable_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri3_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri3_whole_gradient(const double*, const double*, double*);
@@ -913,6 +1023,16 @@ void tm_stable_neohookean_tri3_whole_stress(const double*, const double*, double
 void tm_stable_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_tri3_anp_energy(const double*, const double*);
+void tm_stable_neohookean_tri3_anp_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_tri3_anp_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_tri3_anp_stress(const double*, const double*, double*);
+void tm_stable_neohookean_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_stable_neohookean_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_stable_neohookean_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_stable_neohookean_tri3_anp_bulk(double, const double*, double*);
 int tm_stable_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_tri6_whole_energy(const double*, const double*);
 void tm_stable_neohookean_tri6_whole_gradient(const double*, const double*, double*);
@@ -1192,6 +1312,16 @@ void tm_veronda_westmann_tet4_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tet4_anp_energy(const double*, const double*);
+void tm_veronda_westmann_tet4_anp_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_anp_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet4_anp_stress(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tet4_anp_bulk(double, const double*, double*);
 int tm_veronda_westmann_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri3_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri3_whole_gradient(const double*, const double*, double*);
@@ -1201,6 +1331,16 @@ void tm_veronda_westmann_tri3_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_tri3_anp_energy(const double*, const double*);
+void tm_veronda_westmann_tri3_anp_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_anp_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri3_anp_stress(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_veronda_westmann_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_veronda_westmann_tri3_anp_bulk(double, const double*, double*);
 int tm_veronda_westmann_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_tri6_whole_energy(const double*, const double*);
 void tm_veronda_westmann_tri6_whole_gradient(const double*, const double*, double*);
@@ -1318,6 +1458,16 @@ void tm_yeoh_tet4_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tet4_anp_energy(const double*, const double*);
+void tm_yeoh_tet4_anp_gradient(const double*, const double*, double*);
+void tm_yeoh_tet4_anp_hessian(const double*, const double*, double*);
+void tm_yeoh_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tet4_anp_stress(const double*, const double*, double*);
+void tm_yeoh_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_yeoh_tet4_anp_bulk(double, const double*, double*);
 int tm_yeoh_tri3_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri3_whole_energy(const double*, const double*);
 void tm_yeoh_tri3_whole_gradient(const double*, const double*, double*);
@@ -1327,6 +1477,16 @@ void tm_yeoh_tri3_whole_stress(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_yeoh_tri3_anp_energy(const double*, const double*);
+void tm_yeoh_tri3_anp_gradient(const double*, const double*, double*);
+void tm_yeoh_tri3_anp_hessian(const double*, const double*, double*);
+void tm_yeoh_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_tri3_anp_stress(const double*, const double*, double*);
+void tm_yeoh_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_yeoh_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_yeoh_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_yeoh_tri3_anp_bulk(double, const double*, double*);
 int tm_yeoh_tri6_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_tri6_whole_energy(const double*, const double*);
 void tm_yeoh_tri6_whole_gradient(const double*, const double*, double*);
@@ -1365,1173 +1525,1483 @@ const tm_kernel kKernels[] = {
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex20_whole_precompute, tm_arruda_boyce_hex20_whole_energy, tm_arruda_boyce_hex20_whole_gradient,
    tm_arruda_boyce_hex20_whole_hessian, tm_arruda_boyce_hex20_whole_gradient_hessian, tm_arruda_boyce_hex20_whole_stress, 12798, 29889, 486135,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_whole_precompute, tm_arruda_boyce_hex27_whole_energy, tm_arruda_boyce_hex27_whole_gradient,
    tm_arruda_boyce_hex27_whole_hessian, tm_arruda_boyce_hex27_whole_gradient_hessian, tm_arruda_boyce_hex27_whole_stress, 16200, 36693, 826335,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
    tm_arruda_boyce_hex8_whole_hessian, tm_arruda_boyce_hex8_whole_gradient_hessian, tm_arruda_boyce_hex8_whole_stress, 2064, 5400, 36904,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_fbar_precompute, tm_arruda_boyce_hex8_fbar_energy, tm_arruda_boyce_hex8_fbar_gradient,
    tm_arruda_boyce_hex8_fbar_hessian, tm_arruda_boyce_hex8_fbar_gradient_hessian, tm_arruda_boyce_hex8_fbar_stress, 2496, 6120, 48712,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
    tm_arruda_boyce_prism15_whole_hessian, tm_arruda_boyce_prism15_whole_gradient_hessian, tm_arruda_boyce_prism15_whole_stress, 6912, 16686, 200970,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
    tm_arruda_boyce_prism6_whole_hessian, tm_arruda_boyce_prism6_whole_gradient_hessian, tm_arruda_boyce_prism6_whole_stress, 1332, 3618, 20334,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
-   tm_arruda_boyce_prism6_whole_stress_batch},
+   tm_arruda_boyce_prism6_whole_stress_batch,
+   nullptr},
 
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
    tm_arruda_boyce_pyramid13_whole_hessian, tm_arruda_boyce_pyramid13_whole_gradient_hessian, tm_arruda_boyce_pyramid13_whole_stress, 9396, 23085, 241191,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
    tm_arruda_boyce_pyramid5_whole_hessian, tm_arruda_boyce_pyramid5_whole_gradient_hessian, tm_arruda_boyce_pyramid5_whole_stress, 1632, 4536, 23080,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
-   tm_arruda_boyce_pyramid5_whole_stress_batch},
+   tm_arruda_boyce_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"arruda_boyce", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_fbar_precompute, tm_arruda_boyce_pyramid5_fbar_energy, tm_arruda_boyce_pyramid5_fbar_gradient,
    tm_arruda_boyce_pyramid5_fbar_hessian, tm_arruda_boyce_pyramid5_fbar_gradient_hessian, tm_arruda_boyce_pyramid5_fbar_stress, 2064, 5256, 32620,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
    tm_arruda_boyce_quad4_whole_hessian, tm_arruda_boyce_quad4_whole_gradient_hessian, tm_arruda_boyce_quad4_whole_stress, 460, 1000, 3228,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
-   tm_arruda_boyce_quad4_whole_stress_batch},
+   tm_arruda_boyce_quad4_whole_stress_batch,
+   nullptr},
 
   {"arruda_boyce", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_fbar_precompute, tm_arruda_boyce_quad4_fbar_energy, tm_arruda_boyce_quad4_fbar_gradient,
    tm_arruda_boyce_quad4_fbar_hessian, tm_arruda_boyce_quad4_fbar_gradient_hessian, tm_arruda_boyce_quad4_fbar_stress, 556, 1160, 4540,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
    tm_arruda_boyce_quad8_whole_hessian, tm_arruda_boyce_quad8_whole_gradient_hessian, tm_arruda_boyce_quad8_whole_stress, 1323, 2826, 13383,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
-   tm_arruda_boyce_quad8_whole_stress_batch},
+   tm_arruda_boyce_quad8_whole_stress_batch,
+   nullptr},
 
   {"arruda_boyce", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_whole_precompute, tm_arruda_boyce_quad9_whole_energy, tm_arruda_boyce_quad9_whole_gradient,
    tm_arruda_boyce_quad9_whole_hessian, tm_arruda_boyce_quad9_whole_gradient_hessian, tm_arruda_boyce_quad9_whole_stress, 1395, 2970, 15453,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad9_whole_gradient_batch, tm_arruda_boyce_quad9_whole_gradient_hessian_batch,
-   tm_arruda_boyce_quad9_whole_stress_batch},
+   tm_arruda_boyce_quad9_whole_stress_batch,
+   nullptr},
 
   {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
    tm_arruda_boyce_tet10_whole_hessian, tm_arruda_boyce_tet10_whole_gradient_hessian, tm_arruda_boyce_tet10_whole_stress, 1176, 2988, 24500,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
    tm_arruda_boyce_tet4_whole_hessian, tm_arruda_boyce_tet4_whole_gradient_hessian, tm_arruda_boyce_tet4_whole_stress, 186, 531, 2453,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
-   tm_arruda_boyce_tet4_whole_stress_batch},
+   tm_arruda_boyce_tet4_whole_stress_batch,
+   nullptr},
+
+  {"arruda_boyce", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_anp_precompute, tm_arruda_boyce_tet4_anp_energy, tm_arruda_boyce_tet4_anp_gradient,
+   tm_arruda_boyce_tet4_anp_hessian, tm_arruda_boyce_tet4_anp_gradient_hessian, tm_arruda_boyce_tet4_anp_stress, 186, 531, 2453,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_anp_gradient_batch, tm_arruda_boyce_tet4_anp_gradient_hessian_batch,
+   tm_arruda_boyce_tet4_anp_stress_batch,
+   tm_arruda_boyce_tet4_anp_bulk},
 
   {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
    tm_arruda_boyce_tri3_whole_hessian, tm_arruda_boyce_tri3_whole_gradient_hessian, tm_arruda_boyce_tri3_whole_stress, 107, 234, 697,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
-   tm_arruda_boyce_tri3_whole_stress_batch},
+   tm_arruda_boyce_tri3_whole_stress_batch,
+   nullptr},
+
+  {"arruda_boyce", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_anp_precompute, tm_arruda_boyce_tri3_anp_energy, tm_arruda_boyce_tri3_anp_gradient,
+   tm_arruda_boyce_tri3_anp_hessian, tm_arruda_boyce_tri3_anp_gradient_hessian, tm_arruda_boyce_tri3_anp_stress, 107, 234, 697,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_anp_gradient_batch, tm_arruda_boyce_tri3_anp_gradient_hessian_batch,
+   tm_arruda_boyce_tri3_anp_stress_batch,
+   tm_arruda_boyce_tri3_anp_bulk},
 
   {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
    tm_arruda_boyce_tri6_whole_hessian, tm_arruda_boyce_tri6_whole_gradient_hessian, tm_arruda_boyce_tri6_whole_stress, 393, 846, 3297,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
-   tm_arruda_boyce_tri6_whole_stress_batch},
+   tm_arruda_boyce_tri6_whole_stress_batch,
+   nullptr},
 
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
    tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_whole_precompute, tm_corotational_hex27_whole_energy, tm_corotational_hex27_whole_gradient,
    tm_corotational_hex27_whole_hessian, tm_corotational_hex27_whole_gradient_hessian, tm_corotational_hex27_whole_stress, 27783, 41580, 842373,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
    tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_fbar_precompute, tm_corotational_hex8_fbar_energy, tm_corotational_hex8_fbar_gradient,
    tm_corotational_hex8_fbar_hessian, tm_corotational_hex8_fbar_gradient_hessian, tm_corotational_hex8_fbar_stress, 5928, 7568, 53464,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
    tm_corotational_prism15_whole_hessian, tm_corotational_prism15_whole_gradient_hessian, tm_corotational_prism15_whole_stress, 14634, 19944, 211662,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
    tm_corotational_prism6_whole_hessian, tm_corotational_prism6_whole_gradient_hessian, tm_corotational_prism6_whole_stress, 3906, 4704, 23898,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
-   tm_corotational_prism6_whole_stress_batch},
+   tm_corotational_prism6_whole_stress_batch,
+   nullptr},
 
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
    tm_corotational_pyramid13_whole_hessian, tm_corotational_pyramid13_whole_gradient_hessian, tm_corotational_pyramid13_whole_stress, 20979, 27972, 257229,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
    tm_corotational_pyramid5_whole_hessian, tm_corotational_pyramid5_whole_gradient_hessian, tm_corotational_pyramid5_whole_stress, 5064, 5984, 27832,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
-   tm_corotational_pyramid5_whole_stress_batch},
+   tm_corotational_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"corotational", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_fbar_precompute, tm_corotational_pyramid5_fbar_energy, tm_corotational_pyramid5_fbar_gradient,
    tm_corotational_pyramid5_fbar_hessian, tm_corotational_pyramid5_fbar_gradient_hessian, tm_corotational_pyramid5_fbar_stress, 5496, 6704, 37372,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
    tm_corotational_quad4_whole_hessian, tm_corotational_quad4_whole_gradient_hessian, tm_corotational_quad4_whole_stress, 288, 452, 2028,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
-   tm_corotational_quad4_whole_stress_batch},
+   tm_corotational_quad4_whole_stress_batch,
+   nullptr},
 
   {"corotational", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_fbar_precompute, tm_corotational_quad4_fbar_energy, tm_corotational_quad4_fbar_gradient,
    tm_corotational_quad4_fbar_hessian, tm_corotational_quad4_fbar_gradient_hessian, tm_corotational_quad4_fbar_stress, 384, 612, 3340,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
    tm_corotational_quad8_whole_hessian, tm_corotational_quad8_whole_gradient_hessian, tm_corotational_quad8_whole_stress, 936, 1593, 10683,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
-   tm_corotational_quad8_whole_stress_batch},
+   tm_corotational_quad8_whole_stress_batch,
+   nullptr},
 
   {"corotational", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_whole_precompute, tm_corotational_quad9_whole_energy, tm_corotational_quad9_whole_gradient,
    tm_corotational_quad9_whole_hessian, tm_corotational_quad9_whole_gradient_hessian, tm_corotational_quad9_whole_stress, 1008, 1737, 12753,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad9_whole_gradient_batch, tm_corotational_quad9_whole_gradient_hessian_batch,
-   tm_corotational_quad9_whole_stress_batch},
+   tm_corotational_quad9_whole_stress_batch,
+   nullptr},
 
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
    tm_corotational_tet10_whole_hessian, tm_corotational_tet10_whole_gradient_hessian, tm_corotational_tet10_whole_stress, 2892, 3712, 26876,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
    tm_corotational_tet4_whole_hessian, tm_corotational_tet4_whole_gradient_hessian, tm_corotational_tet4_whole_stress, 615, 712, 3047,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
-   tm_corotational_tet4_whole_stress_batch},
+   tm_corotational_tet4_whole_stress_batch,
+   nullptr},
 
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
    tm_corotational_tri3_whole_hessian, tm_corotational_tri3_whole_gradient_hessian, tm_corotational_tri3_whole_stress, 64, 97, 397,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
-   tm_corotational_tri3_whole_stress_batch},
+   tm_corotational_tri3_whole_stress_batch,
+   nullptr},
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
    tm_corotational_tri6_whole_hessian, tm_corotational_tri6_whole_gradient_hessian, tm_corotational_tri6_whole_stress, 264, 435, 2397,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
-   tm_corotational_tri6_whole_stress_batch},
+   tm_corotational_tri6_whole_stress_batch,
+   nullptr},
 
   {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
    tm_gent_hex20_whole_hessian, tm_gent_hex20_whole_gradient_hessian, tm_gent_hex20_whole_stress, 11394, 25110, 478467,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kGentParameters, kGentLimits, tm_gent_hex27_whole_precompute, tm_gent_hex27_whole_energy, tm_gent_hex27_whole_gradient,
    tm_gent_hex27_whole_hessian, tm_gent_hex27_whole_gradient_hessian, tm_gent_hex27_whole_stress, 14796, 31914, 818667,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
    tm_gent_hex8_whole_hessian, tm_gent_hex8_whole_gradient_hessian, tm_gent_hex8_whole_stress, 1648, 3984, 34632,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_fbar_precompute, tm_gent_hex8_fbar_energy, tm_gent_hex8_fbar_gradient,
    tm_gent_hex8_fbar_hessian, tm_gent_hex8_fbar_gradient_hessian, tm_gent_hex8_fbar_stress, 2080, 4704, 46440,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
    tm_gent_prism15_whole_hessian, tm_gent_prism15_whole_gradient_hessian, tm_gent_prism15_whole_stress, 5976, 13500, 195858,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
    tm_gent_prism6_whole_hessian, tm_gent_prism6_whole_gradient_hessian, tm_gent_prism6_whole_stress, 1020, 2556, 18630,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
-   tm_gent_prism6_whole_stress_batch},
+   tm_gent_prism6_whole_stress_batch,
+   nullptr},
 
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
    tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
    tm_gent_pyramid5_whole_hessian, tm_gent_pyramid5_whole_gradient_hessian, tm_gent_pyramid5_whole_stress, 1216, 3120, 20808,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
-   tm_gent_pyramid5_whole_stress_batch},
+   tm_gent_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"gent", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_fbar_precompute, tm_gent_pyramid5_fbar_energy, tm_gent_pyramid5_fbar_gradient,
    tm_gent_pyramid5_fbar_hessian, tm_gent_pyramid5_fbar_gradient_hessian, tm_gent_pyramid5_fbar_stress, 1648, 3840, 30348,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
    tm_gent_quad4_whole_hessian, tm_gent_quad4_whole_gradient_hessian, tm_gent_quad4_whole_stress, 252, 504, 2292,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
-   tm_gent_quad4_whole_stress_batch},
+   tm_gent_quad4_whole_stress_batch,
+   nullptr},
 
   {"gent", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_fbar_precompute, tm_gent_quad4_fbar_energy, tm_gent_quad4_fbar_gradient,
    tm_gent_quad4_fbar_hessian, tm_gent_quad4_fbar_gradient_hessian, tm_gent_quad4_fbar_stress, 348, 664, 3604,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
    tm_gent_quad8_whole_hessian, tm_gent_quad8_whole_gradient_hessian, tm_gent_quad8_whole_stress, 855, 1710, 11277,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
-   tm_gent_quad8_whole_stress_batch},
+   tm_gent_quad8_whole_stress_batch,
+   nullptr},
 
   {"gent", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kGentParameters, kGentLimits, tm_gent_quad9_whole_precompute, tm_gent_quad9_whole_energy, tm_gent_quad9_whole_gradient,
    tm_gent_quad9_whole_hessian, tm_gent_quad9_whole_gradient_hessian, tm_gent_quad9_whole_stress, 927, 1854, 13347,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad9_whole_gradient_batch, tm_gent_quad9_whole_gradient_hessian_batch,
-   tm_gent_quad9_whole_stress_batch},
+   tm_gent_quad9_whole_stress_batch,
+   nullptr},
 
   {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
    tm_gent_tet10_whole_hessian, tm_gent_tet10_whole_gradient_hessian, tm_gent_tet10_whole_stress, 968, 2280, 23364,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
    tm_gent_tet4_whole_hessian, tm_gent_tet4_whole_gradient_hessian, tm_gent_tet4_whole_stress, 134, 354, 2169,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
-   tm_gent_tet4_whole_stress_batch},
+   tm_gent_tet4_whole_stress_batch,
+   nullptr},
+
+  {"gent", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
+   kGentParameters, kGentLimits, tm_gent_tet4_anp_precompute, tm_gent_tet4_anp_energy, tm_gent_tet4_anp_gradient,
+   tm_gent_tet4_anp_hessian, tm_gent_tet4_anp_gradient_hessian, tm_gent_tet4_anp_stress, 134, 354, 2169,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_tet4_anp_gradient_batch, tm_gent_tet4_anp_gradient_hessian_batch,
+   tm_gent_tet4_anp_stress_batch,
+   tm_gent_tet4_anp_bulk},
 
   {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
    tm_gent_tri3_whole_hessian, tm_gent_tri3_whole_gradient_hessian, tm_gent_tri3_whole_stress, 55, 110, 463,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
-   tm_gent_tri3_whole_stress_batch},
+   tm_gent_tri3_whole_stress_batch,
+   nullptr},
+
+  {"gent", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
+   kGentParameters, kGentLimits, tm_gent_tri3_anp_precompute, tm_gent_tri3_anp_energy, tm_gent_tri3_anp_gradient,
+   tm_gent_tri3_anp_hessian, tm_gent_tri3_anp_gradient_hessian, tm_gent_tri3_anp_stress, 55, 110, 463,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_gent_tri3_anp_gradient_batch, tm_gent_tri3_anp_gradient_hessian_batch,
+   tm_gent_tri3_anp_stress_batch,
+   tm_gent_tri3_anp_bulk},
 
   {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
    tm_gent_tri6_whole_hessian, tm_gent_tri6_whole_gradient_hessian, tm_gent_tri6_whole_stress, 237, 474, 2595,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
-   tm_gent_tri6_whole_stress_batch},
+   tm_gent_tri6_whole_stress_batch,
+   nullptr},
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
    tm_hooke_hex20_whole_hessian, tm_hooke_hex20_whole_gradient_hessian, tm_hooke_hex20_whole_stress, 10341, 19818, 447606,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kHookeParameters, kHookeLimits, tm_hooke_hex27_whole_precompute, tm_hooke_hex27_whole_energy, tm_hooke_hex27_whole_gradient,
    tm_hooke_hex27_whole_hessian, tm_hooke_hex27_whole_gradient_hessian, tm_hooke_hex27_whole_stress, 13743, 26622, 787806,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
    tm_hooke_hex8_whole_hessian, tm_hooke_hex8_whole_gradient_hessian, tm_hooke_hex8_whole_stress, 1336, 2416, 25488,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
    tm_hooke_hex8_tensor_hessian, tm_hooke_hex8_tensor_gradient_hessian, tm_hooke_hex8_tensor_stress, 1200, 1152, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_fbar_precompute, tm_hooke_hex8_fbar_energy, tm_hooke_hex8_fbar_gradient,
    tm_hooke_hex8_fbar_hessian, tm_hooke_hex8_fbar_gradient_hessian, tm_hooke_hex8_fbar_stress, 1768, 3136, 37296,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kHookeParameters, kHookeLimits, tm_hooke_prism15_whole_precompute, tm_hooke_prism15_whole_energy, tm_hooke_prism15_whole_gradient,
    tm_hooke_prism15_whole_hessian, tm_hooke_prism15_whole_gradient_hessian, tm_hooke_prism15_whole_stress, 5274, 9972, 175284,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
    tm_hooke_prism6_whole_hessian, tm_hooke_prism6_whole_gradient_hessian, tm_hooke_prism6_whole_stress, 786, 1380, 11772,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
-   tm_hooke_prism6_whole_stress_batch},
+   tm_hooke_prism6_whole_stress_batch,
+   nullptr},
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid13_whole_precompute, tm_hooke_pyramid13_whole_energy, tm_hooke_pyramid13_whole_gradient,
    tm_hooke_pyramid13_whole_hessian, tm_hooke_pyramid13_whole_gradient_hessian, tm_hooke_pyramid13_whole_stress, 6939, 13014, 202662,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
    tm_hooke_pyramid5_whole_hessian, tm_hooke_pyramid5_whole_gradient_hessian, tm_hooke_pyramid5_whole_stress, 904, 1552, 11664,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
-   tm_hooke_pyramid5_whole_stress_batch},
+   tm_hooke_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
    tm_hooke_pyramid5_tensor_hessian, tm_hooke_pyramid5_tensor_gradient_hessian, tm_hooke_pyramid5_tensor_stress, 480, 450, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_fbar_precompute, tm_hooke_pyramid5_fbar_energy, tm_hooke_pyramid5_fbar_gradient,
    tm_hooke_pyramid5_fbar_hessian, tm_hooke_pyramid5_fbar_gradient_hessian, tm_hooke_pyramid5_fbar_stress, 1336, 2272, 21204,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
    tm_hooke_quad4_whole_hessian, tm_hooke_quad4_whole_gradient_hessian, tm_hooke_quad4_whole_stress, 180, 296, 1240,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
-   tm_hooke_quad4_whole_stress_batch},
+   tm_hooke_quad4_whole_stress_batch,
+   nullptr},
 
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
    tm_hooke_quad4_tensor_hessian, tm_hooke_quad4_tensor_gradient_hessian, tm_hooke_quad4_tensor_stress, 144, 128, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_fbar_precompute, tm_hooke_quad4_fbar_energy, tm_hooke_quad4_fbar_gradient,
    tm_hooke_quad4_fbar_hessian, tm_hooke_quad4_fbar_gradient_hessian, tm_hooke_quad4_fbar_stress, 276, 456, 2552,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_whole_precompute, tm_hooke_quad8_whole_energy, tm_hooke_quad8_whole_gradient,
    tm_hooke_quad8_whole_hessian, tm_hooke_quad8_whole_gradient_hessian, tm_hooke_quad8_whole_stress, 693, 1242, 8910,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
-   tm_hooke_quad8_whole_stress_batch},
+   tm_hooke_quad8_whole_stress_batch,
+   nullptr},
 
   {"hooke", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kHookeParameters, kHookeLimits, tm_hooke_quad9_whole_precompute, tm_hooke_quad9_whole_energy, tm_hooke_quad9_whole_gradient,
    tm_hooke_quad9_whole_hessian, tm_hooke_quad9_whole_gradient_hessian, tm_hooke_quad9_whole_stress, 765, 1386, 10980,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad9_whole_gradient_batch, tm_hooke_quad9_whole_gradient_hessian_batch,
-   tm_hooke_quad9_whole_stress_batch},
+   tm_hooke_quad9_whole_stress_batch,
+   nullptr},
 
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
    tm_hooke_tet10_whole_hessian, tm_hooke_tet10_whole_gradient_hessian, tm_hooke_tet10_whole_stress, 812, 1496, 18792,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
    tm_hooke_tet4_whole_hessian, tm_hooke_tet4_whole_gradient_hessian, tm_hooke_tet4_whole_stress, 95, 158, 1026,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
-   tm_hooke_tet4_whole_stress_batch},
+   tm_hooke_tet4_whole_stress_batch,
+   nullptr},
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
    tm_hooke_tet4_tensor_hessian, tm_hooke_tet4_tensor_gradient_hessian, tm_hooke_tet4_tensor_stress, 312, 288, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"hooke", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
+   kHookeParameters, kHookeLimits, tm_hooke_tet4_anp_precompute, tm_hooke_tet4_anp_energy, tm_hooke_tet4_anp_gradient,
+   tm_hooke_tet4_anp_hessian, tm_hooke_tet4_anp_gradient_hessian, tm_hooke_tet4_anp_stress, 95, 158, 1026,
+   1, 0,
+   tensormass::kernel::kBatchWidth, tm_hooke_tet4_anp_gradient_batch, tm_hooke_tet4_anp_gradient_hessian_batch,
+   tm_hooke_tet4_anp_stress_batch,
+   tm_hooke_tet4_anp_bulk},
 
   {"hooke", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_whole_precompute, tm_hooke_tri3_whole_energy, tm_hooke_tri3_whole_gradient,
    tm_hooke_tri3_whole_hessian, tm_hooke_tri3_whole_gradient_hessian, tm_hooke_tri3_whole_stress, 37, 58, 200,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
-   tm_hooke_tri3_whole_stress_batch},
+   tm_hooke_tri3_whole_stress_batch,
+   nullptr},
 
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
    tm_hooke_tri3_tensor_hessian, tm_hooke_tri3_tensor_gradient_hessian, tm_hooke_tri3_tensor_stress, 84, 72, 0,
    1, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"hooke", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
+   kHookeParameters, kHookeLimits, tm_hooke_tri3_anp_precompute, tm_hooke_tri3_anp_energy, tm_hooke_tri3_anp_gradient,
+   tm_hooke_tri3_anp_hessian, tm_hooke_tri3_anp_gradient_hessian, tm_hooke_tri3_anp_stress, 37, 58, 200,
+   1, 0,
+   tensormass::kernel::kBatchWidth, tm_hooke_tri3_anp_gradient_batch, tm_hooke_tri3_anp_gradient_hessian_batch,
+   tm_hooke_tri3_anp_stress_batch,
+   tm_hooke_tri3_anp_bulk},
 
   {"hooke", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kHookeParameters, kHookeLimits, tm_hooke_tri6_whole_precompute, tm_hooke_tri6_whole_energy, tm_hooke_tri6_whole_gradient,
    tm_hooke_tri6_whole_hessian, tm_hooke_tri6_whole_gradient_hessian, tm_hooke_tri6_whole_stress, 183, 318, 1806,
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
-   tm_hooke_tri6_whole_stress_batch},
+   tm_hooke_tri6_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
    tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 28863, 476118,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_whole_precompute, tm_mooney_rivlin_hex27_whole_energy, tm_mooney_rivlin_hex27_whole_gradient,
    tm_mooney_rivlin_hex27_whole_hessian, tm_mooney_rivlin_hex27_whole_gradient_hessian, tm_mooney_rivlin_hex27_whole_stress, 15768, 35667, 816318,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
    tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 5096, 33936,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_fbar_precompute, tm_mooney_rivlin_hex8_fbar_energy, tm_mooney_rivlin_hex8_fbar_gradient,
    tm_mooney_rivlin_hex8_fbar_hessian, tm_mooney_rivlin_hex8_fbar_gradient_hessian, tm_mooney_rivlin_hex8_fbar_stress, 2368, 5816, 45744,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
    tm_mooney_rivlin_prism15_whole_hessian, tm_mooney_rivlin_prism15_whole_gradient_hessian, tm_mooney_rivlin_prism15_whole_stress, 6624, 16002, 194292,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
    tm_mooney_rivlin_prism6_whole_hessian, tm_mooney_rivlin_prism6_whole_gradient_hessian, tm_mooney_rivlin_prism6_whole_stress, 1236, 3390, 18108,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_prism6_whole_stress_batch},
+   tm_mooney_rivlin_prism6_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
    tm_mooney_rivlin_pyramid13_whole_hessian, tm_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_mooney_rivlin_pyramid13_whole_stress, 8964, 22059, 231174,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
    tm_mooney_rivlin_pyramid5_whole_hessian, tm_mooney_rivlin_pyramid5_whole_gradient_hessian, tm_mooney_rivlin_pyramid5_whole_stress, 1504, 4232, 20112,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_pyramid5_whole_stress_batch},
+   tm_mooney_rivlin_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_fbar_precompute, tm_mooney_rivlin_pyramid5_fbar_energy, tm_mooney_rivlin_pyramid5_fbar_gradient,
    tm_mooney_rivlin_pyramid5_fbar_hessian, tm_mooney_rivlin_pyramid5_fbar_gradient_hessian, tm_mooney_rivlin_pyramid5_fbar_stress, 1936, 4952, 29652,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
    tm_mooney_rivlin_quad4_whole_hessian, tm_mooney_rivlin_quad4_whole_gradient_hessian, tm_mooney_rivlin_quad4_whole_stress, 316, 720, 2384,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_quad4_whole_stress_batch},
+   tm_mooney_rivlin_quad4_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_fbar_precompute, tm_mooney_rivlin_quad4_fbar_energy, tm_mooney_rivlin_quad4_fbar_gradient,
    tm_mooney_rivlin_quad4_fbar_hessian, tm_mooney_rivlin_quad4_fbar_gradient_hessian, tm_mooney_rivlin_quad4_fbar_stress, 412, 880, 3696,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
    tm_mooney_rivlin_quad8_whole_hessian, tm_mooney_rivlin_quad8_whole_gradient_hessian, tm_mooney_rivlin_quad8_whole_stress, 999, 2196, 11484,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_quad8_whole_stress_batch},
+   tm_mooney_rivlin_quad8_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_whole_precompute, tm_mooney_rivlin_quad9_whole_energy, tm_mooney_rivlin_quad9_whole_gradient,
    tm_mooney_rivlin_quad9_whole_hessian, tm_mooney_rivlin_quad9_whole_gradient_hessian, tm_mooney_rivlin_quad9_whole_stress, 1071, 2340, 13554,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad9_whole_gradient_batch, tm_mooney_rivlin_quad9_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_quad9_whole_stress_batch},
+   tm_mooney_rivlin_quad9_whole_stress_batch,
+   nullptr},
 
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
    tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 2836, 23016,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
    tm_mooney_rivlin_tet4_whole_hessian, tm_mooney_rivlin_tet4_whole_gradient_hessian, tm_mooney_rivlin_tet4_whole_stress, 170, 493, 2082,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_tet4_whole_stress_batch},
+   tm_mooney_rivlin_tet4_whole_stress_batch,
+   nullptr},
+
+  {"mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_anp_precompute, tm_mooney_rivlin_tet4_anp_energy, tm_mooney_rivlin_tet4_anp_gradient,
+   tm_mooney_rivlin_tet4_anp_hessian, tm_mooney_rivlin_tet4_anp_gradient_hessian, tm_mooney_rivlin_tet4_anp_stress, 170, 493, 2082,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_anp_gradient_batch, tm_mooney_rivlin_tet4_anp_gradient_hessian_batch,
+   tm_mooney_rivlin_tet4_anp_stress_batch,
+   tm_mooney_rivlin_tet4_anp_bulk},
 
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
    tm_mooney_rivlin_tri3_whole_hessian, tm_mooney_rivlin_tri3_whole_gradient_hessian, tm_mooney_rivlin_tri3_whole_stress, 71, 164, 486,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_tri3_whole_stress_batch},
+   tm_mooney_rivlin_tri3_whole_stress_batch,
+   nullptr},
+
+  {"mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_anp_precompute, tm_mooney_rivlin_tri3_anp_energy, tm_mooney_rivlin_tri3_anp_gradient,
+   tm_mooney_rivlin_tri3_anp_hessian, tm_mooney_rivlin_tri3_anp_gradient_hessian, tm_mooney_rivlin_tri3_anp_stress, 71, 164, 486,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_anp_gradient_batch, tm_mooney_rivlin_tri3_anp_gradient_hessian_batch,
+   tm_mooney_rivlin_tri3_anp_stress_batch,
+   tm_mooney_rivlin_tri3_anp_bulk},
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
    tm_mooney_rivlin_tri6_whole_hessian, tm_mooney_rivlin_tri6_whole_gradient_hessian, tm_mooney_rivlin_tri6_whole_stress, 285, 636, 2664,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
-   tm_mooney_rivlin_tri6_whole_stress_batch},
+   tm_mooney_rivlin_tri6_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
    tm_neohookean_hex20_whole_hessian, tm_neohookean_hex20_whole_gradient_hessian, tm_neohookean_hex20_whole_stress, 11178, 22761, 461187,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_whole_precompute, tm_neohookean_hex27_whole_energy, tm_neohookean_hex27_whole_gradient,
    tm_neohookean_hex27_whole_hessian, tm_neohookean_hex27_whole_gradient_hessian, tm_neohookean_hex27_whole_stress, 14580, 29565, 801387,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
    tm_neohookean_hex8_whole_hessian, tm_neohookean_hex8_whole_gradient_hessian, tm_neohookean_hex8_whole_stress, 1584, 3288, 29512,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_fbar_precompute, tm_neohookean_hex8_fbar_energy, tm_neohookean_hex8_fbar_gradient,
    tm_neohookean_hex8_fbar_hessian, tm_neohookean_hex8_fbar_gradient_hessian, tm_neohookean_hex8_fbar_stress, 2016, 4008, 41320,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
    tm_neohookean_prism15_whole_hessian, tm_neohookean_prism15_whole_gradient_hessian, tm_neohookean_prism15_whole_stress, 5832, 11934, 184338,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
    tm_neohookean_prism6_whole_hessian, tm_neohookean_prism6_whole_gradient_hessian, tm_neohookean_prism6_whole_stress, 972, 2034, 14790,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
-   tm_neohookean_prism6_whole_stress_batch},
+   tm_neohookean_prism6_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
    tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
    tm_neohookean_pyramid5_whole_hessian, tm_neohookean_pyramid5_whole_gradient_hessian, tm_neohookean_pyramid5_whole_stress, 1152, 2424, 15688,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
-   tm_neohookean_pyramid5_whole_stress_batch},
+   tm_neohookean_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_fbar_precompute, tm_neohookean_pyramid5_fbar_energy, tm_neohookean_pyramid5_fbar_gradient,
    tm_neohookean_pyramid5_fbar_hessian, tm_neohookean_pyramid5_fbar_gradient_hessian, tm_neohookean_pyramid5_fbar_stress, 1584, 3144, 25228,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
    tm_neohookean_quad4_whole_hessian, tm_neohookean_quad4_whole_gradient_hessian, tm_neohookean_quad4_whole_stress, 216, 404, 1728,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
-   tm_neohookean_quad4_whole_stress_batch},
+   tm_neohookean_quad4_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_fbar_precompute, tm_neohookean_quad4_fbar_energy, tm_neohookean_quad4_fbar_gradient,
    tm_neohookean_quad4_fbar_hessian, tm_neohookean_quad4_fbar_gradient_hessian, tm_neohookean_quad4_fbar_stress, 312, 564, 3040,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
    tm_neohookean_quad8_whole_hessian, tm_neohookean_quad8_whole_gradient_hessian, tm_neohookean_quad8_whole_stress, 774, 1485, 10008,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
-   tm_neohookean_quad8_whole_stress_batch},
+   tm_neohookean_quad8_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_whole_precompute, tm_neohookean_quad9_whole_energy, tm_neohookean_quad9_whole_gradient,
    tm_neohookean_quad9_whole_hessian, tm_neohookean_quad9_whole_gradient_hessian, tm_neohookean_quad9_whole_stress, 846, 1629, 12078,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad9_whole_gradient_batch, tm_neohookean_quad9_whole_gradient_hessian_batch,
-   tm_neohookean_quad9_whole_stress_batch},
+   tm_neohookean_quad9_whole_stress_batch,
+   nullptr},
 
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
    tm_neohookean_tet10_whole_hessian, tm_neohookean_tet10_whole_gradient_hessian, tm_neohookean_tet10_whole_stress, 936, 1932, 20804,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
    tm_neohookean_tet4_whole_hessian, tm_neohookean_tet4_whole_gradient_hessian, tm_neohookean_tet4_whole_stress, 126, 267, 1529,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
-   tm_neohookean_tet4_whole_stress_batch},
+   tm_neohookean_tet4_whole_stress_batch,
+   nullptr},
+
+  {"neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_anp_precompute, tm_neohookean_tet4_anp_energy, tm_neohookean_tet4_anp_gradient,
+   tm_neohookean_tet4_anp_hessian, tm_neohookean_tet4_anp_gradient_hessian, tm_neohookean_tet4_anp_stress, 126, 267, 1529,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_neohookean_tet4_anp_gradient_batch, tm_neohookean_tet4_anp_gradient_hessian_batch,
+   tm_neohookean_tet4_anp_stress_batch,
+   tm_neohookean_tet4_anp_bulk},
 
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
    tm_neohookean_tri3_whole_hessian, tm_neohookean_tri3_whole_gradient_hessian, tm_neohookean_tri3_whole_stress, 46, 85, 322,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
-   tm_neohookean_tri3_whole_stress_batch},
+   tm_neohookean_tri3_whole_stress_batch,
+   nullptr},
+
+  {"neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_anp_precompute, tm_neohookean_tri3_anp_energy, tm_neohookean_tri3_anp_gradient,
+   tm_neohookean_tri3_anp_hessian, tm_neohookean_tri3_anp_gradient_hessian, tm_neohookean_tri3_anp_stress, 46, 85, 322,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_neohookean_tri3_anp_gradient_batch, tm_neohookean_tri3_anp_gradient_hessian_batch,
+   tm_neohookean_tri3_anp_stress_batch,
+   tm_neohookean_tri3_anp_bulk},
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
    tm_neohookean_tri6_whole_hessian, tm_neohookean_tri6_whole_gradient_hessian, tm_neohookean_tri6_whole_stress, 210, 399, 2172,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
-   tm_neohookean_tri6_whole_stress_batch},
+   tm_neohookean_tri6_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
    tm_stable_neohookean_hex20_whole_hessian, tm_stable_neohookean_hex20_whole_gradient_hessian, tm_stable_neohookean_hex20_whole_stress, 12069, 24408, 460647,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_whole_precompute, tm_stable_neohookean_hex27_whole_energy, tm_stable_neohookean_hex27_whole_gradient,
    tm_stable_neohookean_hex27_whole_hessian, tm_stable_neohookean_hex27_whole_gradient_hessian, tm_stable_neohookean_hex27_whole_stress, 15471, 31212, 800847,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
    tm_stable_neohookean_hex8_whole_hessian, tm_stable_neohookean_hex8_whole_gradient_hessian, tm_stable_neohookean_hex8_whole_stress, 1848, 3776, 29352,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_fbar_precompute, tm_stable_neohookean_hex8_fbar_energy, tm_stable_neohookean_hex8_fbar_gradient,
    tm_stable_neohookean_hex8_fbar_hessian, tm_stable_neohookean_hex8_fbar_gradient_hessian, tm_stable_neohookean_hex8_fbar_stress, 2280, 4496, 41160,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
    tm_stable_neohookean_prism15_whole_hessian, tm_stable_neohookean_prism15_whole_gradient_hessian, tm_stable_neohookean_prism15_whole_stress, 6426, 13032, 183978,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
    tm_stable_neohookean_prism6_whole_hessian, tm_stable_neohookean_prism6_whole_gradient_hessian, tm_stable_neohookean_prism6_whole_stress, 1170, 2400, 14670,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
-   tm_stable_neohookean_prism6_whole_stress_batch},
+   tm_stable_neohookean_prism6_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
    tm_stable_neohookean_pyramid13_whole_hessian, tm_stable_neohookean_pyramid13_whole_gradient_hessian, tm_stable_neohookean_pyramid13_whole_stress, 8667, 17604, 215703,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
    tm_stable_neohookean_pyramid5_whole_hessian, tm_stable_neohookean_pyramid5_whole_gradient_hessian, tm_stable_neohookean_pyramid5_whole_stress, 1416, 2912, 15528,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
-   tm_stable_neohookean_pyramid5_whole_stress_batch},
+   tm_stable_neohookean_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_fbar_precompute, tm_stable_neohookean_pyramid5_fbar_energy, tm_stable_neohookean_pyramid5_fbar_gradient,
    tm_stable_neohookean_pyramid5_fbar_hessian, tm_stable_neohookean_pyramid5_fbar_gradient_hessian, tm_stable_neohookean_pyramid5_fbar_stress, 1848, 3632, 25068,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
    tm_stable_neohookean_quad4_whole_hessian, tm_stable_neohookean_quad4_whole_gradient_hessian, tm_stable_neohookean_quad4_whole_stress, 308, 512, 1736,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
-   tm_stable_neohookean_quad4_whole_stress_batch},
+   tm_stable_neohookean_quad4_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_fbar_precompute, tm_stable_neohookean_quad4_fbar_energy, tm_stable_neohookean_quad4_fbar_gradient,
    tm_stable_neohookean_quad4_fbar_hessian, tm_stable_neohookean_quad4_fbar_gradient_hessian, tm_stable_neohookean_quad4_fbar_stress, 404, 672, 3048,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
    tm_stable_neohookean_quad8_whole_hessian, tm_stable_neohookean_quad8_whole_gradient_hessian, tm_stable_neohookean_quad8_whole_stress, 981, 1728, 10026,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
-   tm_stable_neohookean_quad8_whole_stress_batch},
+   tm_stable_neohookean_quad8_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_whole_precompute, tm_stable_neohookean_quad9_whole_energy, tm_stable_neohookean_quad9_whole_gradient,
    tm_stable_neohookean_quad9_whole_hessian, tm_stable_neohookean_quad9_whole_gradient_hessian, tm_stable_neohookean_quad9_whole_stress, 1053, 1872, 12096,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad9_whole_gradient_batch, tm_stable_neohookean_quad9_whole_gradient_hessian_batch,
-   tm_stable_neohookean_quad9_whole_stress_batch},
+   tm_stable_neohookean_quad9_whole_stress_batch,
+   nullptr},
 
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
    tm_stable_neohookean_tet10_whole_hessian, tm_stable_neohookean_tet10_whole_gradient_hessian, tm_stable_neohookean_tet10_whole_stress, 1068, 2176, 20724,
    0, 1,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
    tm_stable_neohookean_tet4_whole_hessian, tm_stable_neohookean_tet4_whole_gradient_hessian, tm_stable_neohookean_tet4_whole_stress, 159, 328, 1509,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
-   tm_stable_neohookean_tet4_whole_stress_batch},
+   tm_stable_neohookean_tet4_whole_stress_batch,
+   nullptr},
+
+  {"stable_neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_anp_precompute, tm_stable_neohookean_tet4_anp_energy, tm_stable_neohookean_tet4_anp_gradient,
+   tm_stable_neohookean_tet4_anp_hessian, tm_stable_neohookean_tet4_anp_gradient_hessian, tm_stable_neohookean_tet4_anp_stress, 159, 328, 1509,
+   0, 1,
+   tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_anp_gradient_batch, tm_stable_neohookean_tet4_anp_gradient_hessian_batch,
+   tm_stable_neohookean_tet4_anp_stress_batch,
+   tm_stable_neohookean_tet4_anp_bulk},
 
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
    tm_stable_neohookean_tri3_whole_hessian, tm_stable_neohookean_tri3_whole_gradient_hessian, tm_stable_neohookean_tri3_whole_stress, 69, 112, 324,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
-   tm_stable_neohookean_tri3_whole_stress_batch},
+   tm_stable_neohookean_tri3_whole_stress_batch,
+   nullptr},
+
+  {"stable_neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_anp_precompute, tm_stable_neohookean_tri3_anp_energy, tm_stable_neohookean_tri3_anp_gradient,
+   tm_stable_neohookean_tri3_anp_hessian, tm_stable_neohookean_tri3_anp_gradient_hessian, tm_stable_neohookean_tri3_anp_stress, 69, 112, 324,
+   0, 1,
+   tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_anp_gradient_batch, tm_stable_neohookean_tri3_anp_gradient_hessian_batch,
+   tm_stable_neohookean_tri3_anp_stress_batch,
+   tm_stable_neohookean_tri3_anp_bulk},
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
    tm_stable_neohookean_tri6_whole_hessian, tm_stable_neohookean_tri6_whole_gradient_hessian, tm_stable_neohookean_tri6_whole_stress, 279, 480, 2178,
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
-   tm_stable_neohookean_tri6_whole_stress_batch},
+   tm_stable_neohookean_tri6_whole_stress_batch,
+   nullptr},
 
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
    tm_stvk_hex20_whole_hessian, tm_stvk_hex20_whole_gradient_hessian, tm_stvk_hex20_whole_stress, 11502, 23301, 459864,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStvkParameters, kStvkLimits, tm_stvk_hex27_whole_precompute, tm_stvk_hex27_whole_energy, tm_stvk_hex27_whole_gradient,
    tm_stvk_hex27_whole_hessian, tm_stvk_hex27_whole_gradient_hessian, tm_stvk_hex27_whole_stress, 14904, 30105, 800064,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
    tm_stvk_hex8_whole_hessian, tm_stvk_hex8_whole_gradient_hessian, tm_stvk_hex8_whole_stress, 1680, 3448, 29120,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
    tm_stvk_hex8_tensor_hessian, tm_stvk_hex8_tensor_gradient_hessian, tm_stvk_hex8_tensor_stress, 5844, 9012, 57684,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_fbar_precompute, tm_stvk_hex8_fbar_energy, tm_stvk_hex8_fbar_gradient,
    tm_stvk_hex8_fbar_hessian, tm_stvk_hex8_fbar_gradient_hessian, tm_stvk_hex8_fbar_stress, 2112, 4168, 40928,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStvkParameters, kStvkLimits, tm_stvk_prism15_whole_precompute, tm_stvk_prism15_whole_energy, tm_stvk_prism15_whole_gradient,
    tm_stvk_prism15_whole_hessian, tm_stvk_prism15_whole_gradient_hessian, tm_stvk_prism15_whole_stress, 6048, 12294, 183456,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
    tm_stvk_prism6_whole_hessian, tm_stvk_prism6_whole_gradient_hessian, tm_stvk_prism6_whole_stress, 1044, 2154, 14496,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
-   tm_stvk_prism6_whole_stress_batch},
+   tm_stvk_prism6_whole_stress_batch,
+   nullptr},
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid13_whole_precompute, tm_stvk_pyramid13_whole_energy, tm_stvk_pyramid13_whole_gradient,
    tm_stvk_pyramid13_whole_hessian, tm_stvk_pyramid13_whole_gradient_hessian, tm_stvk_pyramid13_whole_stress, 8100, 16497, 214920,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
    tm_stvk_pyramid5_whole_hessian, tm_stvk_pyramid5_whole_gradient_hessian, tm_stvk_pyramid5_whole_stress, 1248, 2584, 15296,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
-   tm_stvk_pyramid5_whole_stress_batch},
+   tm_stvk_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
    tm_stvk_pyramid5_tensor_hessian, tm_stvk_pyramid5_tensor_gradient_hessian, tm_stvk_pyramid5_tensor_stress, 1515, 2400, 11850,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_fbar_precompute, tm_stvk_pyramid5_fbar_energy, tm_stvk_pyramid5_fbar_gradient,
    tm_stvk_pyramid5_fbar_hessian, tm_stvk_pyramid5_fbar_gradient_hessian, tm_stvk_pyramid5_fbar_stress, 1680, 3304, 24836,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
    tm_stvk_quad4_whole_hessian, tm_stvk_quad4_whole_gradient_hessian, tm_stvk_quad4_whole_stress, 248, 472, 1736,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
-   tm_stvk_quad4_whole_stress_batch},
+   tm_stvk_quad4_whole_stress_batch,
+   nullptr},
 
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
    tm_stvk_quad4_tensor_hessian, tm_stvk_quad4_tensor_gradient_hessian, tm_stvk_quad4_tensor_stress, 574, 886, 3078,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_fbar_precompute, tm_stvk_quad4_fbar_energy, tm_stvk_quad4_fbar_gradient,
    tm_stvk_quad4_fbar_hessian, tm_stvk_quad4_fbar_gradient_hessian, tm_stvk_quad4_fbar_stress, 344, 632, 3048,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_whole_precompute, tm_stvk_quad8_whole_energy, tm_stvk_quad8_whole_gradient,
    tm_stvk_quad8_whole_hessian, tm_stvk_quad8_whole_gradient_hessian, tm_stvk_quad8_whole_stress, 846, 1638, 10026,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
-   tm_stvk_quad8_whole_stress_batch},
+   tm_stvk_quad8_whole_stress_batch,
+   nullptr},
 
   {"stvk", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStvkParameters, kStvkLimits, tm_stvk_quad9_whole_precompute, tm_stvk_quad9_whole_energy, tm_stvk_quad9_whole_gradient,
    tm_stvk_quad9_whole_hessian, tm_stvk_quad9_whole_gradient_hessian, tm_stvk_quad9_whole_stress, 918, 1782, 12096,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad9_whole_gradient_batch, tm_stvk_quad9_whole_gradient_hessian_batch,
-   tm_stvk_quad9_whole_stress_batch},
+   tm_stvk_quad9_whole_stress_batch,
+   nullptr},
 
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
    tm_stvk_tet10_whole_hessian, tm_stvk_tet10_whole_gradient_hessian, tm_stvk_tet10_whole_stress, 984, 2012, 20608,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
    tm_stvk_tet4_whole_hessian, tm_stvk_tet4_whole_gradient_hessian, tm_stvk_tet4_whole_stress, 138, 287, 1480,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
-   tm_stvk_tet4_whole_stress_batch},
+   tm_stvk_tet4_whole_stress_batch,
+   nullptr},
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
    tm_stvk_tet4_tensor_hessian, tm_stvk_tet4_tensor_gradient_hessian, tm_stvk_tet4_tensor_stress, 842, 1330, 5722,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_whole_precompute, tm_stvk_tri3_whole_energy, tm_stvk_tri3_whole_gradient,
    tm_stvk_tri3_whole_hessian, tm_stvk_tri3_whole_gradient_hessian, tm_stvk_tri3_whole_stress, 54, 102, 324,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
-   tm_stvk_tri3_whole_stress_batch},
+   tm_stvk_tri3_whole_stress_batch,
+   nullptr},
 
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
    tm_stvk_tri3_tensor_hessian, tm_stvk_tri3_tensor_gradient_hessian, tm_stvk_tri3_tensor_stress, 270, 414, 1206,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"stvk", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStvkParameters, kStvkLimits, tm_stvk_tri6_whole_precompute, tm_stvk_tri6_whole_energy, tm_stvk_tri6_whole_gradient,
    tm_stvk_tri6_whole_hessian, tm_stvk_tri6_whole_gradient_hessian, tm_stvk_tri6_whole_stress, 234, 450, 2178,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
-   tm_stvk_tri6_whole_stress_batch},
+   tm_stvk_tri6_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
    tm_veronda_westmann_hex20_whole_hessian, tm_veronda_westmann_hex20_whole_gradient_hessian, tm_veronda_westmann_hex20_whole_stress, 12501, 29106, 490347,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_whole_precompute, tm_veronda_westmann_hex27_whole_energy, tm_veronda_westmann_hex27_whole_gradient,
    tm_veronda_westmann_hex27_whole_hessian, tm_veronda_westmann_hex27_whole_gradient_hessian, tm_veronda_westmann_hex27_whole_stress, 15903, 35910, 830547,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
    tm_veronda_westmann_hex8_whole_hessian, tm_veronda_westmann_hex8_whole_gradient_hessian, tm_veronda_westmann_hex8_whole_stress, 1976, 5168, 38152,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_fbar_precompute, tm_veronda_westmann_hex8_fbar_energy, tm_veronda_westmann_hex8_fbar_gradient,
    tm_veronda_westmann_hex8_fbar_hessian, tm_veronda_westmann_hex8_fbar_gradient_hessian, tm_veronda_westmann_hex8_fbar_stress, 2408, 5888, 49960,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
    tm_veronda_westmann_prism15_whole_hessian, tm_veronda_westmann_prism15_whole_gradient_hessian, tm_veronda_westmann_prism15_whole_stress, 6714, 16164, 203778,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
    tm_veronda_westmann_prism6_whole_hessian, tm_veronda_westmann_prism6_whole_gradient_hessian, tm_veronda_westmann_prism6_whole_stress, 1266, 3444, 21270,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
-   tm_veronda_westmann_prism6_whole_stress_batch},
+   tm_veronda_westmann_prism6_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
    tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
    tm_veronda_westmann_pyramid5_whole_hessian, tm_veronda_westmann_pyramid5_whole_gradient_hessian, tm_veronda_westmann_pyramid5_whole_stress, 1544, 4304, 24328,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
-   tm_veronda_westmann_pyramid5_whole_stress_batch},
+   tm_veronda_westmann_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_fbar_precompute, tm_veronda_westmann_pyramid5_fbar_energy, tm_veronda_westmann_pyramid5_fbar_gradient,
    tm_veronda_westmann_pyramid5_fbar_hessian, tm_veronda_westmann_pyramid5_fbar_gradient_hessian, tm_veronda_westmann_pyramid5_fbar_stress, 1976, 5024, 33868,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
    tm_veronda_westmann_quad4_whole_hessian, tm_veronda_westmann_quad4_whole_gradient_hessian, tm_veronda_westmann_quad4_whole_stress, 336, 772, 2776,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
-   tm_veronda_westmann_quad4_whole_stress_batch},
+   tm_veronda_westmann_quad4_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_fbar_precompute, tm_veronda_westmann_quad4_fbar_energy, tm_veronda_westmann_quad4_fbar_gradient,
    tm_veronda_westmann_quad4_fbar_hessian, tm_veronda_westmann_quad4_fbar_gradient_hessian, tm_veronda_westmann_quad4_fbar_stress, 432, 932, 4088,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
    tm_veronda_westmann_quad8_whole_hessian, tm_veronda_westmann_quad8_whole_gradient_hessian, tm_veronda_westmann_quad8_whole_stress, 1044, 2313, 12366,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
-   tm_veronda_westmann_quad8_whole_stress_batch},
+   tm_veronda_westmann_quad8_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_whole_precompute, tm_veronda_westmann_quad9_whole_energy, tm_veronda_westmann_quad9_whole_gradient,
    tm_veronda_westmann_quad9_whole_hessian, tm_veronda_westmann_quad9_whole_gradient_hessian, tm_veronda_westmann_quad9_whole_stress, 1116, 2457, 14436,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad9_whole_gradient_batch, tm_veronda_westmann_quad9_whole_gradient_hessian_batch,
-   tm_veronda_westmann_quad9_whole_stress_batch},
+   tm_veronda_westmann_quad9_whole_stress_batch,
+   nullptr},
 
   {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
    tm_veronda_westmann_tet10_whole_hessian, tm_veronda_westmann_tet10_whole_gradient_hessian, tm_veronda_westmann_tet10_whole_stress, 1132, 2872, 25124,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
    tm_veronda_westmann_tet4_whole_hessian, tm_veronda_westmann_tet4_whole_gradient_hessian, tm_veronda_westmann_tet4_whole_stress, 175, 502, 2609,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
-   tm_veronda_westmann_tet4_whole_stress_batch},
+   tm_veronda_westmann_tet4_whole_stress_batch,
+   nullptr},
+
+  {"veronda_westmann", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_anp_precompute, tm_veronda_westmann_tet4_anp_energy, tm_veronda_westmann_tet4_anp_gradient,
+   tm_veronda_westmann_tet4_anp_hessian, tm_veronda_westmann_tet4_anp_gradient_hessian, tm_veronda_westmann_tet4_anp_stress, 175, 502, 2609,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_anp_gradient_batch, tm_veronda_westmann_tet4_anp_gradient_hessian_batch,
+   tm_veronda_westmann_tet4_anp_stress_batch,
+   tm_veronda_westmann_tet4_anp_bulk},
 
   {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
    tm_veronda_westmann_tri3_whole_hessian, tm_veronda_westmann_tri3_whole_gradient_hessian, tm_veronda_westmann_tri3_whole_stress, 76, 177, 584,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
-   tm_veronda_westmann_tri3_whole_stress_batch},
+   tm_veronda_westmann_tri3_whole_stress_batch,
+   nullptr},
+
+  {"veronda_westmann", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_anp_precompute, tm_veronda_westmann_tri3_anp_energy, tm_veronda_westmann_tri3_anp_gradient,
+   tm_veronda_westmann_tri3_anp_hessian, tm_veronda_westmann_tri3_anp_gradient_hessian, tm_veronda_westmann_tri3_anp_stress, 76, 177, 584,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_anp_gradient_batch, tm_veronda_westmann_tri3_anp_gradient_hessian_batch,
+   tm_veronda_westmann_tri3_anp_stress_batch,
+   tm_veronda_westmann_tri3_anp_bulk},
 
   {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
    tm_veronda_westmann_tri6_whole_hessian, tm_veronda_westmann_tri6_whole_gradient_hessian, tm_veronda_westmann_tri6_whole_stress, 300, 675, 2958,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
-   tm_veronda_westmann_tri6_whole_stress_batch},
+   tm_veronda_westmann_tri6_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
    tm_yeoh_hex20_whole_hessian, tm_yeoh_hex20_whole_gradient_hessian, tm_yeoh_hex20_whole_stress, 11421, 26649, 474579,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "hex27", "whole", 3, 27, 81, 27, 4, 4, 2218,
    kYeohParameters, kYeohLimits, tm_yeoh_hex27_whole_precompute, tm_yeoh_hex27_whole_energy, tm_yeoh_hex27_whole_gradient,
    tm_yeoh_hex27_whole_hessian, tm_yeoh_hex27_whole_gradient_hessian, tm_yeoh_hex27_whole_stress, 14823, 33453, 814779,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
    tm_yeoh_hex8_whole_hessian, tm_yeoh_hex8_whole_gradient_hessian, tm_yeoh_hex8_whole_stress, 1656, 4440, 33480,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "hex8", "fbar", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_fbar_precompute, tm_yeoh_hex8_fbar_energy, tm_yeoh_hex8_fbar_gradient,
    tm_yeoh_hex8_fbar_hessian, tm_yeoh_hex8_fbar_gradient_hessian, tm_yeoh_hex8_fbar_stress, 2088, 5160, 45288,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
    kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
    tm_yeoh_prism15_whole_hessian, tm_yeoh_prism15_whole_gradient_hessian, tm_yeoh_prism15_whole_stress, 5994, 14526, 193266,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
    tm_yeoh_prism6_whole_hessian, tm_yeoh_prism6_whole_gradient_hessian, tm_yeoh_prism6_whole_stress, 1026, 2898, 17766,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
-   tm_yeoh_prism6_whole_stress_batch},
+   tm_yeoh_prism6_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
    tm_yeoh_pyramid13_whole_hessian, tm_yeoh_pyramid13_whole_gradient_hessian, tm_yeoh_pyramid13_whole_stress, 8019, 19845, 229635,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
    tm_yeoh_pyramid5_whole_hessian, tm_yeoh_pyramid5_whole_gradient_hessian, tm_yeoh_pyramid5_whole_stress, 1224, 3576, 19656,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
-   tm_yeoh_pyramid5_whole_stress_batch},
+   tm_yeoh_pyramid5_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "pyramid5", "fbar", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_fbar_precompute, tm_yeoh_pyramid5_fbar_energy, tm_yeoh_pyramid5_fbar_gradient,
    tm_yeoh_pyramid5_fbar_hessian, tm_yeoh_pyramid5_fbar_gradient_hessian, tm_yeoh_pyramid5_fbar_stress, 1656, 4296, 29196,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
    tm_yeoh_quad4_whole_hessian, tm_yeoh_quad4_whole_gradient_hessian, tm_yeoh_quad4_whole_stress, 256, 612, 2452,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
-   tm_yeoh_quad4_whole_stress_batch},
+   tm_yeoh_quad4_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "quad4", "fbar", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_fbar_precompute, tm_yeoh_quad4_fbar_energy, tm_yeoh_quad4_fbar_gradient,
    tm_yeoh_quad4_fbar_hessian, tm_yeoh_quad4_fbar_gradient_hessian, tm_yeoh_quad4_fbar_stress, 352, 772, 3764,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
    tm_yeoh_quad8_whole_hessian, tm_yeoh_quad8_whole_gradient_hessian, tm_yeoh_quad8_whole_stress, 864, 1953, 11637,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
-   tm_yeoh_quad8_whole_stress_batch},
+   tm_yeoh_quad8_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "quad9", "whole", 2, 9, 18, 9, 4, 4, 175,
    kYeohParameters, kYeohLimits, tm_yeoh_quad9_whole_precompute, tm_yeoh_quad9_whole_energy, tm_yeoh_quad9_whole_gradient,
    tm_yeoh_quad9_whole_hessian, tm_yeoh_quad9_whole_gradient_hessian, tm_yeoh_quad9_whole_stress, 936, 2097, 13707,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad9_whole_gradient_batch, tm_yeoh_quad9_whole_gradient_hessian_batch,
-   tm_yeoh_quad9_whole_stress_batch},
+   tm_yeoh_quad9_whole_stress_batch,
+   nullptr},
 
   {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
    tm_yeoh_tet10_whole_hessian, tm_yeoh_tet10_whole_gradient_hessian, tm_yeoh_tet10_whole_stress, 972, 2508, 22788,
    0, 0,
-   0, nullptr, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr,
+   nullptr},
 
   {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
    tm_yeoh_tet4_whole_hessian, tm_yeoh_tet4_whole_gradient_hessian, tm_yeoh_tet4_whole_stress, 135, 411, 2025,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
-   tm_yeoh_tet4_whole_stress_batch},
+   tm_yeoh_tet4_whole_stress_batch,
+   nullptr},
+
+  {"yeoh", "tet4", "anp", 3, 4, 12, 1, 4, 4, 17,
+   kYeohParameters, kYeohLimits, tm_yeoh_tet4_anp_precompute, tm_yeoh_tet4_anp_energy, tm_yeoh_tet4_anp_gradient,
+   tm_yeoh_tet4_anp_hessian, tm_yeoh_tet4_anp_gradient_hessian, tm_yeoh_tet4_anp_stress, 135, 411, 2025,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_tet4_anp_gradient_batch, tm_yeoh_tet4_anp_gradient_hessian_batch,
+   tm_yeoh_tet4_anp_stress_batch,
+   tm_yeoh_tet4_anp_bulk},
 
   {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
    tm_yeoh_tri3_whole_hessian, tm_yeoh_tri3_whole_gradient_hessian, tm_yeoh_tri3_whole_stress, 56, 137, 503,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
-   tm_yeoh_tri3_whole_stress_batch},
+   tm_yeoh_tri3_whole_stress_batch,
+   nullptr},
+
+  {"yeoh", "tri3", "anp", 2, 3, 6, 1, 4, 4, 11,
+   kYeohParameters, kYeohLimits, tm_yeoh_tri3_anp_precompute, tm_yeoh_tri3_anp_energy, tm_yeoh_tri3_anp_gradient,
+   tm_yeoh_tri3_anp_hessian, tm_yeoh_tri3_anp_gradient_hessian, tm_yeoh_tri3_anp_stress, 56, 137, 503,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_yeoh_tri3_anp_gradient_batch, tm_yeoh_tri3_anp_gradient_hessian_batch,
+   tm_yeoh_tri3_anp_stress_batch,
+   tm_yeoh_tri3_anp_bulk},
 
   {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
    tm_yeoh_tri6_whole_hessian, tm_yeoh_tri6_whole_gradient_hessian, tm_yeoh_tri6_whole_stress, 240, 555, 2715,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
-   tm_yeoh_tri6_whole_stress_batch},
+   tm_yeoh_tri6_whole_stress_batch,
+   nullptr},
 
 };
 constexpr int kKernelCount = static_cast<int>(sizeof(kKernels) / sizeof(kKernels[0]));

@@ -16,7 +16,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/arruda_boyce_quad8_whole.cpp
   kernels/arruda_boyce_quad9_whole.cpp
   kernels/arruda_boyce_tet10_whole.cpp
+  kernels/arruda_boyce_tet4_anp.cpp
   kernels/arruda_boyce_tet4_whole.cpp
+  kernels/arruda_boyce_tri3_anp.cpp
   kernels/arruda_boyce_tri3_whole.cpp
   kernels/arruda_boyce_tri6_whole.cpp
   kernels/corotational_hex20_whole.cpp
@@ -50,7 +52,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/gent_quad8_whole.cpp
   kernels/gent_quad9_whole.cpp
   kernels/gent_tet10_whole.cpp
+  kernels/gent_tet4_anp.cpp
   kernels/gent_tet4_whole.cpp
+  kernels/gent_tri3_anp.cpp
   kernels/gent_tri3_whole.cpp
   kernels/gent_tri6_whole.cpp
   kernels/hooke_hex20_whole.cpp
@@ -71,8 +75,10 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_quad8_whole.cpp
   kernels/hooke_quad9_whole.cpp
   kernels/hooke_tet10_whole.cpp
+  kernels/hooke_tet4_anp.cpp
   kernels/hooke_tet4_tensor.cpp
   kernels/hooke_tet4_whole.cpp
+  kernels/hooke_tri3_anp.cpp
   kernels/hooke_tri3_tensor.cpp
   kernels/hooke_tri3_whole.cpp
   kernels/hooke_tri6_whole.cpp
@@ -90,7 +96,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/mooney_rivlin_quad8_whole.cpp
   kernels/mooney_rivlin_quad9_whole.cpp
   kernels/mooney_rivlin_tet10_whole.cpp
+  kernels/mooney_rivlin_tet4_anp.cpp
   kernels/mooney_rivlin_tet4_whole.cpp
+  kernels/mooney_rivlin_tri3_anp.cpp
   kernels/mooney_rivlin_tri3_whole.cpp
   kernels/mooney_rivlin_tri6_whole.cpp
   kernels/neohookean_hex20_whole.cpp
@@ -107,7 +115,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/neohookean_quad8_whole.cpp
   kernels/neohookean_quad9_whole.cpp
   kernels/neohookean_tet10_whole.cpp
+  kernels/neohookean_tet4_anp.cpp
   kernels/neohookean_tet4_whole.cpp
+  kernels/neohookean_tri3_anp.cpp
   kernels/neohookean_tri3_whole.cpp
   kernels/neohookean_tri6_whole.cpp
   kernels/stable_neohookean_hex20_whole.cpp
@@ -124,7 +134,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stable_neohookean_quad8_whole.cpp
   kernels/stable_neohookean_quad9_whole.cpp
   kernels/stable_neohookean_tet10_whole.cpp
+  kernels/stable_neohookean_tet4_anp.cpp
   kernels/stable_neohookean_tet4_whole.cpp
+  kernels/stable_neohookean_tri3_anp.cpp
   kernels/stable_neohookean_tri3_whole.cpp
   kernels/stable_neohookean_tri6_whole.cpp
   kernels/stvk_hex20_whole.cpp
@@ -164,7 +176,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/veronda_westmann_quad8_whole.cpp
   kernels/veronda_westmann_quad9_whole.cpp
   kernels/veronda_westmann_tet10_whole.cpp
+  kernels/veronda_westmann_tet4_anp.cpp
   kernels/veronda_westmann_tet4_whole.cpp
+  kernels/veronda_westmann_tri3_anp.cpp
   kernels/veronda_westmann_tri3_whole.cpp
   kernels/veronda_westmann_tri6_whole.cpp
   kernels/yeoh_hex20_whole.cpp
@@ -181,7 +195,9 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/yeoh_quad8_whole.cpp
   kernels/yeoh_quad9_whole.cpp
   kernels/yeoh_tet10_whole.cpp
+  kernels/yeoh_tet4_anp.cpp
   kernels/yeoh_tet4_whole.cpp
+  kernels/yeoh_tri3_anp.cpp
   kernels/yeoh_tri3_whole.cpp
   kernels/yeoh_tri6_whole.cpp
   registry.cpp

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import jinja2
 
-from .ir import ElementIR, KernelIR, LoweredIR, ProductBlock, SumOfProducts, TensorIR, TermsIR, WholeIR
+from .ir import ElementIR, KernelIR, LoweredIR, NodalPressureIR, ProductBlock, SumOfProducts, TensorIR, TermsIR, WholeIR
 from .model import Block, LawKernelIR, LawSpec, ParamLimit
 from .printer import double_literal, print_expr
 
@@ -134,6 +134,11 @@ def _tensor_context(tensor: TensorIR, names: dict[str, str]) -> dict:
     }
 
 
+def _batched(k: KernelIR) -> bool:
+    """Whether the kernel has batched entry points (the whole split's, which anp shares)."""
+    return isinstance(k.split_ir, (WholeIR, NodalPressureIR)) and k.split_ir.batched
+
+
 def kernel_context(k: KernelIR) -> dict:
     """The template context of one kernel (the `k` of kernel_*.cpp.j2 and registry.cpp.j2)."""
     names = dict(k.symbol_names)
@@ -151,7 +156,7 @@ def kernel_context(k: KernelIR) -> dict:
         "flops": k.flops,
         "linear": k.linear,
         "invertible": k.invertible,
-        "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched,
+        "batched": _batched(k),
         "rotation": "rotation" in k.law_ir.tangent.auxiliaries,
         "parameters": list(law.parameters),
         "limits": [_limit_context(law.limit(p)) for p in law.parameters],
@@ -170,6 +175,8 @@ def kernel_context(k: KernelIR) -> dict:
         context.update(_terms_context(k.split_ir, names))
     if isinstance(k.split_ir, TensorIR):
         context.update(_tensor_context(k.split_ir, names))
+    if isinstance(k.split_ir, NodalPressureIR):
+        context.update(bulk=[print_expr(expr) for expr in k.split_ir.bulk], bulk_text=law.bulk)
     return context
 
 
@@ -206,7 +213,7 @@ def element_context(e: ElementIR) -> dict:
     }
 
 
-SPLIT_ORDER = ("whole", "terms", "tensor", "fbar")  # lower.SPLITS, the registry's order within a (law, element)
+SPLIT_ORDER = ("whole", "terms", "tensor", "fbar", "anp")  # lower.SPLITS, the registry's order within a (law, element)
 
 
 def kernel_row(k: KernelIR, sources: list[str]) -> dict:
@@ -216,7 +223,7 @@ def kernel_row(k: KernelIR, sources: list[str]) -> dict:
             "dim": k.element.dim, "points": len(k.tables.weights), "params": len(k.law.parameters),
             "derived_params": len(k.law.constants), "consts": k.consts_size, "flops_energy": k.flops.energy,
             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
-            "invertible": k.invertible, "batched": isinstance(k.split_ir, WholeIR) and k.split_ir.batched,
+            "invertible": k.invertible, "batched": _batched(k), "bulk": isinstance(k.split_ir, NodalPressureIR),
             "sources": sources}
 
 

@@ -109,7 +109,17 @@ class MeanDilatationIR:
     own beyond the formulation's runtime loops."""
 
 
-SplitIR = Union[WholeIR, TermsIR, TensorIR, MeanDilatationIR]
+@dataclass(frozen=True)
+class NodalPressureIR:
+    """The anp split (averaged nodal pressure, assembly/nodal_pressure.hpp):
+    the whole split's kernel of the full energy, and the law's bulk part
+    U(J) with its first two derivatives in J, which the runtime moves from
+    the element to the nodes."""
+    batched: bool  # the whole split's rule (splits/whole.batch_pays)
+    bulk: tuple[sympy.Expr, sympy.Expr, sympy.Expr]  # U, dU/dJ, d2U/dJ2 in J and the law's constants
+
+
+SplitIR = Union[WholeIR, TermsIR, TensorIR, MeanDilatationIR, NodalPressureIR]
 
 
 # --- Kernels and elements ----------------------------------------------------
@@ -122,7 +132,7 @@ class KernelIR:
     expressions that hold them (H[0], u[3], GT[...], ...)."""
     law: LawSpec
     element: ElementSpec
-    split: str  # whole | terms | tensor | fbar
+    split: str  # whole | terms | tensor | fbar | anp
     tables: ElementTables
     law_ir: LawKernelIR
     consts_size: int

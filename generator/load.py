@@ -26,7 +26,7 @@ ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
 RULE_KEYS = {"degree", "points", "weights"}
 FORMAT_KEYS = {"type", "node_order"}
 LAW_KEYS = {"name", "description", "parameters"}
-LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "derived", "invertible", "limits", "rotation_invariant"}
+LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "bulk", "derived", "invertible", "limits", "rotation_invariant"}
 # One limit: `parameter op number`, op one of > >= < <=.
 _LIMIT = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|>|<)\s*([^<>=\s].*?)\s*$")
 
@@ -237,6 +237,17 @@ def _energy_text(data: dict, source: str) -> tuple[str, str, str]:
     return f"({data['isochoric']}) + ({data['volumetric']})", data["isochoric"], data["volumetric"]
 
 
+def _bulk_text(data: dict, volumetric: str, source: str) -> str:
+    """The bulk part U(J) of the energy: `bulk`, or the `volumetric` part of a split energy."""
+    if "bulk" not in data:
+        return volumetric
+    if volumetric:
+        raise _fail(source, "bulk", "a split energy's bulk part is its `volumetric` part; drop `bulk`")
+    if not isinstance(data["bulk"], str):
+        raise _fail(source, "bulk", "expected a string")
+    return data["bulk"]
+
+
 def load_law(path: Path) -> LawSpec:
     source = str(path)
     data = _read_toml(path)
@@ -252,6 +263,7 @@ def load_law(path: Path) -> LawSpec:
     if len(set(parameters)) != len(parameters):
         raise _fail(source, "parameters", "a parameter is listed twice")
     energy, isochoric, volumetric = _energy_text(data, source)
+    bulk = _bulk_text(data, volumetric, source)
     symbols = {p: sympy.Symbol(p, real=True) for p in parameters}
     derived = []
     if not isinstance(data.get("derived", {}), dict):
@@ -279,6 +291,7 @@ def load_law(path: Path) -> LawSpec:
         limits=_limits(data.get("limits", []), parameters, source),
         isochoric=isochoric,
         volumetric=volumetric,
+        bulk=bulk,
         rotation_invariant=data.get("rotation_invariant", True),
     )
 

@@ -21,17 +21,21 @@ Splits (one module each in `splits/`):
           with J̄ the element's volume ratio (a different energy from the three
           above, free of volumetric locking); first-order elements with more
           than one quadrature point but prism6
+  anp     averaged nodal pressure: the whole split's kernel of the full energy
+          and the law's bulk part U(J), which the runtime integrates at the
+          nodes instead of the element (free of volumetric locking); the
+          one-point elements (tet4, tri3) of laws with a bulk part
 """
 from __future__ import annotations
 
 from .ir import KernelIR, LoweredIR, Refusal
 from .lower_element import lower_element
 from .model import ElementSpec, LawSpec, OptimisedIR
-from .splits import fbar, tensor, terms, whole
+from .splits import anp, fbar, tensor, terms, whole
 from .splits.common import SplitRefused, Triple, point_stride
 
 from .stale import SPLITS
-_LOWERINGS = {"whole": whole.lower, "terms": terms.lower, "tensor": tensor.lower, "fbar": fbar.lower}
+_LOWERINGS = {"whole": whole.lower, "terms": terms.lower, "tensor": tensor.lower, "fbar": fbar.lower, "anp": anp.lower}
 DEFAULT_TENSOR_LIMIT = tensor.DEFAULT_LIMIT
 
 __all__ = ["SPLITS", "DEFAULT_TENSOR_LIMIT", "SplitRefused", "build_kernel_ir", "lower"]

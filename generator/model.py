@@ -107,6 +107,10 @@ class LawSpec:
     limits: tuple[ParamLimit, ...] = ()  # one per parameter (unbounded when the file gives none)
     isochoric: str = ""  # the isochoric part of the energy, when the file splits it
     volumetric: str = ""  # the volumetric part U(J), when the file splits it
+    # The part of the energy that is a function of J alone and carries the
+    # bulk stiffness (lam or kappa): `volumetric`, or the file's `bulk` beside
+    # its `energy`; "" when it has none. The anp split integrates it at the nodes.
+    bulk: str = ""
     rotation_invariant: bool = True  # W(QF) = W(F) for every rotation Q (the file's claim, checked by tests)
 
     @property

@@ -56,8 +56,8 @@ def element_files(root: Path) -> dict[str, Path]:
 # that imports no SymPy) and those it emits by default: `terms` is no default
 # path's split and is generated on request (`--splits`, the CMake option
 # TENSORMASS_TERMS_SPLIT, which generates into the build tree).
-SPLITS = ("whole", "terms", "tensor", "fbar")
-DEFAULT_SPLITS = ("whole", "tensor", "fbar")
+SPLITS = ("whole", "terms", "tensor", "fbar", "anp")
+DEFAULT_SPLITS = ("whole", "tensor", "fbar", "anp")
 
 
 def split_selection(names: list[str]) -> tuple[str, ...]:

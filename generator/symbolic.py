@@ -253,6 +253,34 @@ def law_energy(law: LawSpec, dim: int) -> sympy.Expr:
     return _without_root(_law_energy(law, dim), dim)
 
 
+BULK_J = sympy.Symbol("J", positive=True)
+
+
+@functools.lru_cache(maxsize=None)
+def law_bulk(law: LawSpec) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+    """(U, dU/dJ, d2U/dJ2) of the law's bulk part U(J) (LawSpec.bulk), in
+    BULK_J and the law's constants; GeneratorInputError when it reads other
+    names or does not vanish with its derivative at J = 1."""
+    constants = parameter_symbols(law)
+    unknown = _names(law, "bulk", law.bulk) - set(VOLUMETRIC_NAMES) - set(FUNCTION_NAMES) - set(constants)
+    if unknown:
+        raise GeneratorInputError(f"{law.source}: key 'bulk': unknown names {sorted(unknown)}; available: J, "
+                                  f"functions {', '.join(FUNCTION_NAMES)}, constants {', '.join(constants)}")
+    try:
+        U = sympy.sympify(law.bulk.replace("^", "**"), locals={**_functions(), **constants, "J": BULK_J},
+                          rational=True)
+    except Exception as error:  # SymPy raises many types for malformed input
+        raise GeneratorInputError(f"{law.source}: key 'bulk': cannot evaluate: {error}") from None
+    if isinstance(U, sympy.MatrixBase):
+        raise GeneratorInputError(f"{law.source}: key 'bulk': evaluates to a matrix, expected a scalar")
+    dU = sympy.diff(U, BULK_J)
+    # A bulk part that stores energy or stress at rest would move them to the nodes.
+    if sympy.simplify(U.subs(BULK_J, 1)) != 0 or sympy.simplify(dU.subs(BULK_J, 1)) != 0:
+        raise GeneratorInputError(f"{law.source}: key 'bulk': U(1) and U'(1) must vanish (no energy or "
+                                  "pressure at rest)")
+    return U, dU, sympy.diff(dU, BULK_J)
+
+
 def _rational_polar_point(dim: int) -> tuple[dict, dict]:
     """A rational F = R0 S0 (R0 a Cayley rotation, S0 symmetric positive
     definite): values of H.., R.. and Y.. where R = R0 and S = S0 exactly."""

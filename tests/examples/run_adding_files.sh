@@ -65,7 +65,7 @@ relink() {
 relink tensormass
 relink tests/kernels/tensormass_kernel_tests
 
-"$work/tensormass" kernels | grep -q "^16 kernels" || { "$work/tensormass" kernels; exit 1; }  # 9 whole, 4 tensor, 3 fbar (quad4)
+"$work/tensormass" kernels | grep -q "^18 kernels" || { "$work/tensormass" kernels; exit 1; }  # 9 whole, 4 tensor, 3 fbar (quad4), 2 anp (tet4)
 "$work/tensormass" kernels | grep -q "mooney_rivlin quad9"
 cd "$work"
 ./tensormass beam --type quad9 --cells 12,2 -o beam.msh > /dev/null

@@ -40,7 +40,7 @@ def test_registry_covers_every_pair_and_refuses_with_reasons(regenerated):
             assert (law, element, "whole") in kernels
             assert (law, element, "terms") not in kernels  # generated on request only
     for law, element, split, why in report.refused:
-        assert split in ("tensor", "fbar") and why
+        assert split in ("tensor", "fbar", "anp") and why
     for element in ("tri3", "quad4", "tet4", "hex8", "prism6", "pyramid5"):
         assert ("stvk", element, "tensor") in kernels
         assert ("hooke", element, "tensor") in kernels
@@ -49,6 +49,11 @@ def test_registry_covers_every_pair_and_refuses_with_reasons(regenerated):
             assert (law, element, "fbar") in kernels
         for element in ("tri3", "tet4", "prism6", "tet10", "hex20"):
             assert (law, element, "fbar") not in kernels
+    for law in laws:  # anp: the one-point elements, under the laws with a bulk part
+        for element in ("tri3", "tet4"):
+            assert ((law, element, "anp") in kernels) == (law not in ("stvk", "corotational"))
+        for element in ("quad4", "hex8", "tet10"):
+            assert (law, element, "anp") not in kernels
 
 
 def test_if_stale_needs_no_sympy():

@@ -157,3 +157,25 @@ def test_split_energy_without_derived_reads_its_parameters(tmp_path):
     assert law.split_volumetric and law.rotation_invariant and law.derived == ()
     assert law.energy == "(c10*(I1bar - 3)) + (kappa/2*(J - 1)**2)"
     assert law.constants == ((("c10", sympy.Symbol("c10", real=True)), ("kappa", sympy.Symbol("kappa", real=True))))
+
+
+@pytest.mark.parametrize("body, message", [
+    ('isochoric = "c10*(I1bar - 3)"\nvolumetric = "kappa/2*(J - 1)**2"\nbulk = "kappa/2*(J - 1)**2"\n', "drop `bulk`"),
+    ('energy = "c10*(I1 - 3)"\nbulk = 3\n', "expected a string"),
+])
+def test_bulk_key_errors_name_file_and_key(tmp_path, body, message):
+    path = tmp_path / "split.toml"
+    path.write_text(_SPLIT_LAW + body)
+    with pytest.raises(GeneratorInputError) as error:
+        load_law(path)
+    assert str(path) in str(error.value) and "'bulk'" in str(error.value) and message in str(error.value)
+
+
+def test_bulk_part_is_the_files_bulk_or_its_volumetric_part(tmp_path):
+    path = tmp_path / "split.toml"
+    path.write_text(_SPLIT_LAW + 'energy = "c10*(I1 - 3) + kappa/2*(J - 1)**2"\nbulk = "kappa/2*(J - 1)**2"\n')
+    assert load_law(path).bulk == "kappa/2*(J - 1)**2" and not load_law(path).split_volumetric
+    path.write_text(_SPLIT_LAW + 'isochoric = "c10*(I1bar - 3)"\nvolumetric = "kappa/2*(J - 1)**2"\n')
+    assert load_law(path).bulk == "kappa/2*(J - 1)**2"
+    path.write_text(_SPLIT_LAW + 'energy = "c10*(I1 - 3)"\n')
+    assert load_law(path).bulk == ""

@@ -51,9 +51,11 @@ def test_lower_orders_kernels_and_gives_refusals_reasons():
     refused = {(r.law, r.element, r.split): r.reason for r in lowered.refused}
     assert "first-order" in refused[("stvk", "tet10", "tensor")]
     assert "one strain measure" in refused[("neohookean", "tet4", "tensor")]
-    assert all(split in ("tensor", "fbar") for _, _, split in refused)
+    assert all(split in ("tensor", "fbar", "anp") for _, _, split in refused)
     assert "one quadrature point" in refused[("stvk", "tet4", "fbar")]
     assert "first-order" in refused[("stvk", "tet10", "fbar")]
+    assert "one-point" in refused[("hooke", "tet10", "anp")]
+    assert "bulk part" in refused[("stvk", "tet4", "anp")]
     assert len(lowered.kernels) + len(lowered.refused) == 3 * 3 * len(SPLITS)
 
 

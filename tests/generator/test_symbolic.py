@@ -9,8 +9,8 @@ from conftest import ROOT
 from generator.load import GeneratorInputError, load_element, load_law
 from generator.model import Inputs, LawDerivatives, SymbolicIR
 from generator.load import REFERENCE_VARIABLES
-from generator.symbolic import (corner_gradients, derive, derive_law, gradient_symbols, law_derivatives, law_energy,
-                                strain_quadratic)
+from generator.symbolic import (corner_gradients, derive, derive_law, gradient_symbols, law_bulk, law_derivatives,
+                                law_energy, strain_quadratic)
 
 LAM, MU = sympy.Symbol("lam", real=True), sympy.Symbol("mu", real=True)
 H_VALUES = [0.03, -0.02, 0.05, 0.01, 0.04, -0.03, 0.02, 0.06, -0.01]
@@ -234,3 +234,59 @@ def test_corner_gradients_are_the_gradients_at_the_corners_or_their_limit_from_t
             for v, value in zip(variables, row):
                 expected = float(sympy.diff(n, v).subs(dict(zip(variables, near))))
                 assert value == pytest.approx(expected, abs=1e-6)
+
+
+def _bulk_law(tmp_path, bulk: str):
+    path = tmp_path / "bulky.toml"
+    path.write_text('name = "bulky"\ndescription = "test"\nparameters = ["c10", "kappa"]\n'
+                    f'energy = "c10*(I1 - 3) + kappa/2*(J - 1)**2"\nbulk = "{bulk}"\n')
+    return load_law(path)
+
+
+@pytest.mark.parametrize("bulk, message", [
+    ("kappa/2*(J - 1)**2 + c10*I1", "unknown names ['I1']"),
+    ("kappa*(J - 1)", "must vanish"),
+    ("kappa/2*J**2", "must vanish"),
+])
+def test_bulk_part_errors_name_file_and_key(tmp_path, bulk, message):
+    with pytest.raises(GeneratorInputError) as error:
+        law_bulk(_bulk_law(tmp_path, bulk))
+    assert "bulky.toml" in str(error.value) and "'bulk'" in str(error.value) and message in str(error.value)
+
+
+def test_neohookean_bulk_part_and_its_derivatives():
+    U, dU, d2U = law_bulk(_law("neohookean"))
+    J, lam = sympy.Symbol("J", positive=True), sympy.Symbol("lam", real=True)
+    assert sympy.simplify(U - lam / 2 * sympy.log(J) ** 2) == 0
+    assert sympy.simplify(dU - lam * sympy.log(J) / J) == 0
+    assert sympy.simplify(d2U - lam * (1 - sympy.log(J)) / J ** 2) == 0
+
+
+def _remainder_bulk_modulus(law, values: dict) -> float:
+    """K of psi - U(J) under a pure dilatation F = s I (3D): d2/ds2 at s = 1, over 9."""
+    s = sympy.Symbol("s", positive=True)
+    psi = law_energy(law, 3).subs({h: 0 for h in gradient_symbols(3)[1:4] + gradient_symbols(3)[5:8]})
+    H = gradient_symbols(3)
+    psi = psi.subs({H[0]: s - 1, H[4]: s - 1, H[8]: s - 1})
+    J = 3 * s - 2 if derive_law(law, 3).linear else s ** 3  # a linear law's J is 1 + tr(eps)
+    U = law_bulk(law)[0].subs(sympy.Symbol("J", positive=True), J)
+    constants = {sympy.Symbol(name, real=True): expr for name, expr in law.constants}
+    curvature = sympy.diff(psi - U, s, 2).subs(s, 1).subs(constants)
+    return float(curvature.subs({sympy.Symbol(k, real=True): v for k, v in values.items()})) / 9
+
+
+@pytest.mark.parametrize("name", ["hooke", "neohookean", "stable_neohookean"])
+def test_what_the_bulk_part_leaves_does_not_stiffen_near_incompressibility(name):
+    """The bulk part carries lam: the rest of the energy keeps a bulk modulus
+    of order mu, which falls as nu nears 1/2 where the whole law's grows 100-fold."""
+    law = _law(name)
+    loose = _remainder_bulk_modulus(law, {"young": 1.0, "poisson": 0.3})
+    tight = _remainder_bulk_modulus(law, {"young": 1.0, "poisson": 0.499})
+    assert abs(tight) <= 1.0 and abs(tight) <= abs(loose) + 1e-12
+
+
+@pytest.mark.parametrize("name", ["mooney_rivlin", "yeoh", "gent", "arruda_boyce", "veronda_westmann"])
+def test_a_split_laws_bulk_part_is_its_whole_volume_response(name):
+    law = _law(name)
+    values = {p: 1.0 for p in law.parameters}
+    assert abs(_remainder_bulk_modulus(law, values)) < 1e-12

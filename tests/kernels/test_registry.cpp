@@ -17,7 +17,7 @@
 namespace tmtest {
 namespace {
 
-const std::vector<std::string> kSplits = {"fbar", "tensor", "terms", "whole"};
+const std::vector<std::string> kSplits = {"anp", "fbar", "tensor", "terms", "whole"};
 
 struct ExpectedElement {
   int dim, order, nodes, vtk_type;
@@ -84,7 +84,13 @@ TEST(Registry, OffersTheExpectedTriples) {
           EXPECT_EQ(kernel != nullptr,
                     element->order == 1 && element->quadrature_points > 1 && std::string(element->name) != "prism6")
               << law << "/" << element->name << "/fbar";
+        // anp: the one-point elements, under the laws with a bulk part.
+        if (split == "anp")
+          EXPECT_EQ(kernel != nullptr,
+                    element->quadrature_points == 1 && element->order == 1 && law != "stvk" && law != "corotational")
+              << law << "/" << element->name << "/anp";
         if (kernel == nullptr) continue;
+        EXPECT_EQ(kernel->bulk != nullptr, split == "anp");
         ++count;
         EXPECT_EQ(kernel->law, law);
         EXPECT_EQ(kernel->element, std::string(element->name));

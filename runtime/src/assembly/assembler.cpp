@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "tensormass/assembly/psd_projection.hpp"
+#include "tensormass/common/errors.hpp"
 #include "tensormass/parallel/mpi_world.hpp"
 
 namespace tensormass {
@@ -101,7 +102,8 @@ double cell_energy(const Model& model, int cell, const double* u) {
 }  // namespace
 
 Assembler::Assembler(const Model& model, bool fold_linear_cells, const Distribution* distribution)
-    : model_(&model), graph_(make_node_graph(model)) {
+    : model_(&model), nodal_(model), graph_(make_node_graph(model, &nodal_)) {
+  if (distribution) refuse_nodal_pressure_over_ranks();
   distribution_ = distribution;
   build_colours();
   if (fold_linear_cells) linear_ = std::make_unique<LinearPart>(model, graph_, pattern_);
@@ -151,7 +153,16 @@ NodeRuns node_runs(const NodeGraph& graph, const std::vector<int>& free_index, i
 
 bool Assembler::keeps_rows_of(int node) const { return !distribution_ || distribution_->owns_node(node); }
 
+void Assembler::refuse_nodal_pressure_over_ranks() const {
+  // A patch's tangent couples two rings of neighbours; the ranks' halos hold one.
+  if (!nodal_.empty())
+    throw InputError(
+        "split: anp (averaged nodal pressure) does not run over MPI ranks yet; run on one process, "
+        "or use split: fbar on hexahedra");
+}
+
 void Assembler::distribute(const Distribution* distribution) {
+  if (distribution) refuse_nodal_pressure_over_ranks();
   distribution_ = distribution;
   plan_key_ = PlanKey{};  // the cells this rank assembles changed
   // Built again for this rank's rows only at the next need; the whole
@@ -332,6 +343,7 @@ void Assembler::assemble(std::span<const double> u, std::span<double> gradient, 
     if (stiffness) std::fill(stiffness->values.begin(), stiffness->values.end(), 0.0);
   }
   if (folded < model_->cell_count()) assemble_kernels(u, gradient, stiffness);
+  nodal_.assemble(u, gradient, stiffness);
   if (!distribution_) return;
   // A divided state reads its own rows only: its ghost rows are partial
   // sums, zeroed; the other rows were never touched.
@@ -347,12 +359,17 @@ const std::vector<int>& Assembler::changing_rows() const {
   const Model& model = *model_;
   const int d = model.dim();
   std::vector<char> changing(model.free_dof_count(), 0);
+  const auto mark = [&](int node) {
+    for (int a = 0; a < d; ++a)
+      if (const int row = model.free_index()[node * d + a]; row >= 0) changing[row] = 1;
+  };
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     if (linear_ && linear_->folded(cell)) continue;
-    for (int node : model.cell_nodes(cell))
-      for (int a = 0; a < d; ++a)
-        if (const int row = model.free_index()[node * d + a]; row >= 0) changing[row] = 1;
+    for (int node : model.cell_nodes(cell)) mark(node);
   }
+  for (int patch = 0; patch < nodal_.patch_count(); ++patch)
+    if (nodal_.patch_changes(patch))
+      for (int node : nodal_.patch_nodes(patch)) mark(node);
   changing_rows_.clear();
   for (int row = 0; row < model.free_dof_count(); ++row)
     if (changing[row]) changing_rows_.push_back(row);
@@ -456,6 +473,7 @@ double Assembler::energy(std::span<const double> u) const {
     if (distribution_) distribution_->keep_own_dofs(g);  // each row counted on one rank
     for (std::size_t d = 0; d < u.size(); ++d) total += 0.5 * u[d] * g[d];
   }
+  if (!nodal_.empty()) total += nodal_.energy(u);
   const int cells = model.cell_count();
   if (folded == cells) return distribution_ ? parallel::sum_over_ranks(total) : total;
   const Distribution* shared = distribution_;

@@ -12,10 +12,14 @@ int NodeGraph::position(int node, int neighbour) const {
   return static_cast<int>(found - columns.begin());
 }
 
-NodeGraph make_node_graph(const Model& model) {
+NodeGraph make_node_graph(const Model& model, const NodalPressure* nodal) {
   std::vector<std::vector<int>> neighbours(model.mesh().node_count());
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const auto nodes = model.cell_nodes(cell);
+    for (int a : nodes) neighbours[a].insert(neighbours[a].end(), nodes.begin(), nodes.end());
+  }
+  for (int patch = 0; nodal && patch < nodal->patch_count(); ++patch) {
+    const auto nodes = nodal->patch_nodes(patch);
     for (int a : nodes) neighbours[a].insert(neighbours[a].end(), nodes.begin(), nodes.end());
   }
   NodeGraph graph;

@@ -113,4 +113,8 @@ std::vector<std::string> Registry::splits() const {
   return {names.begin(), names.end()};
 }
 
+bool locking_free_split(const tm_kernel& kernel) {
+  return nodal_pressure_split(kernel) || std::string_view(kernel.split) == "fbar";
+}
+
 }  // namespace tensormass

@@ -17,11 +17,14 @@ double poisson_of(const MaterialSpec& material) {
   return found == material.constants.end() ? -1.0 : found->second;
 }
 
-/// The remedy the registry offers for `element`: its fbar kernels (mean
-/// dilatation) where the material's law has one, else a quadratic mesh.
+/// The remedy the registry offers for `element`: its anp kernels (averaged
+/// nodal pressure) or fbar kernels (mean dilatation) where the material's law
+/// has them, else a quadratic mesh.
 std::string remedy(const MaterialSpec& material, const std::string& element) {
+  if (Registry::instance().find(material.law, element, "anp"))
+    return "set `split: anp` on the material (averaged nodal pressure, docs/formulations.md)";
   if (Registry::instance().find(material.law, element, "fbar"))
-    return "set `split: fbar` on the material (mean dilatation, docs/formulations.md)";
+    return "set `split: fbar` (or `anp`) on the material (mean dilatation, docs/formulations.md)";
   return "quadratic elements lock far less (tensormass raise-order, tensormass beam --order 2)";
 }
 
@@ -45,7 +48,7 @@ std::vector<std::string> locking_warnings(const Model& model, const ModelSpec& s
     if (block.element->order != 1) continue;
     for (int cell = block.first_cell; cell < block.first_cell + block.count(); ++cell) {
       const int material = model.material(cell);
-      if (std::string(model.kernel(cell).split) == "fbar") continue;  // locking-free
+      if (locking_free_split(model.kernel(cell))) continue;
       if (material >= 0 && material < static_cast<int>(spec.materials.size()) &&
           poisson_of(spec.materials[material]) > kLockingPoisson)
         locking.insert({material, block.element->name});

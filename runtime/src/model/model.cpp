@@ -37,7 +37,12 @@ std::string material_split(const MaterialSpec& material, const tm_element_info& 
   // (one quadrature point, where the mean dilatation is the point's own, and
   // the quadratic elements and prism6, which it does not free); the locking
   // warning still names the first-order ones.
-  if (material.split == "fbar" && !Registry::instance().find(material.law, element.name, "fbar")) return "whole";
+  const Registry& registry = Registry::instance();
+  if (material.split == "fbar" && !registry.find(material.law, element.name, "fbar")) return "whole";
+  // anp on a mixed mesh: the one-point elements take the nodal pressure, the
+  // others the mean dilatation where they have it (hex8, pyramid5, quad4).
+  if (material.split == "anp" && !registry.find(material.law, element.name, "anp"))
+    return registry.find(material.law, element.name, "fbar") ? "fbar" : "whole";
   return material.split;
 }
 
@@ -120,9 +125,10 @@ const tm_kernel* Model::law_kernel(int cell, const std::string& law) const {
   const Registry& registry = Registry::instance();
   // The tensor split's constants extend the quadrature layout that `whole`
   // reads, so a tensor cell can switch to `whole` of another law in place.
-  // An fbar cell stays fbar: `whole` would bring its volumetric locking back.
+  // An fbar or anp cell keeps its split: `whole` would bring its volumetric
+  // locking back (and anp's patches are fixed for the assembler's life).
   const tm_kernel* next = registry.find(law, current.element, current.split);
-  if ((!next || next->consts > current.consts) && std::string(current.split) != "fbar")
+  if ((!next || next->consts > current.consts) && !locking_free_split(current))
     next = registry.find(law, current.element, "whole");
   const std::size_t slot = consts_offsets_[cell + 1] - consts_offsets_[cell];
   return next && static_cast<std::size_t>(next->consts) <= slot ? next : nullptr;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <span>
 
+#include "support/assembly_checks.hpp"
 #include "support/cantilever.hpp"
 #include "tensormass/assembly/assembler.hpp"
 #include "tensormass/model/model.hpp"
@@ -15,11 +16,8 @@
 namespace tensormass {
 namespace {
 
-std::vector<double> wavy_displacement(int dofs, double amplitude) {
-  std::vector<double> u(dofs);
-  for (int i = 0; i < dofs; ++i) u[i] = amplitude * std::sin(0.7 * i + 0.3);
-  return u;
-}
+using test::entry;
+using test::wavy_displacement;
 
 /// A 3D beam of `cells` unit-long cubes across a 1 x 1 section, in four
 /// phases along x: hex8, tet4 (6 per cube), prism6 and pyramid5.
@@ -30,12 +28,6 @@ Mesh mixed_beam(std::array<int, 3> cells) {
   spec.size = {double(cells[0]), 1, 1};
   spec.phases = {{"hex8", 0.25}, {"tet6", 0.25}, {"prism6", 0.25}, {"pyramid5", 0.25}};
   return make_beam(spec);
-}
-
-double entry(const SparseMatrix& K, int row, int column) {
-  for (int k = K.row_start[row]; k < K.row_start[row + 1]; ++k)
-    if (K.columns[k] == column) return K.values[k];
-  return 0.0;
 }
 
 /// Forces and tangent bitwise equal on one and on two threads.
@@ -57,26 +49,7 @@ TEST(Assembler, TangentIsTheDerivativeOfTheForcesOnAMixedBeam) {
   const Mesh mesh = mixed_beam({4, 1, 1});
   const Model model(mesh, test::cantilever("stvk").model);
   const Assembler assembler(model);
-  std::vector<double> u = wavy_displacement(model.dof_count(), 0.02), g(model.dof_count()), gp(g), gm(g);
-  SparseMatrix K = assembler.pattern();
-  assembler.assemble(u, g, &K);
-  const double h = 1e-6;
-  double worst = 0, scale = 0;
-  for (int column = 0; column < model.free_dof_count(); ++column) {
-    const int dof = model.free_dofs()[column];
-    std::vector<double> up = u, um = u;
-    up[dof] += h;
-    um[dof] -= h;
-    assembler.assemble(up, gp, nullptr);
-    assembler.assemble(um, gm, nullptr);
-    for (int row = 0; row < model.free_dof_count(); ++row) {
-      const int r = model.free_dofs()[row];
-      const double fd = (gp[r] - gm[r]) / (2 * h);
-      worst = std::max(worst, std::abs(fd - entry(K, row, column)));
-      scale = std::max(scale, std::abs(fd));
-    }
-  }
-  EXPECT_LT(worst, 1e-6 * scale);
+  EXPECT_LT(test::tangent_error(model, assembler, wavy_displacement(model.dof_count(), 0.02)), 1e-6);
 }
 
 /// Largest |a - b| over the largest |b|.

@@ -48,12 +48,14 @@ double largest_eigenvalue(std::vector<double> a, int n) {
 
 // The matrix-free Lanczos estimate against the largest eigenvalue of the
 // assembled M^-1/2 K M^-1/2 at rest, on a linear and two non-linear laws,
-// and on the mean-dilatation (fbar) kernels near incompressibility.
+// and on the mean-dilatation (fbar) and nodal-pressure (anp) splits near
+// incompressibility.
 TEST(ExplicitSolver, StableStepMatchesTheAssembledTangentsLargestEigenvalue) {
   for (const auto& [dim, type, order, law, split] :
        {std::tuple{2, "quad4", 1, "hooke", ""}, std::tuple{2, "tri3", 2, "stvk", ""},
         std::tuple{3, "tet6", 1, "neohookean", ""}, std::tuple{3, "hex8", 1, "neohookean", "fbar"},
-        std::tuple{2, "quad4", 1, "hooke", "fbar"}}) {
+        std::tuple{2, "quad4", 1, "hooke", "fbar"}, std::tuple{3, "tet6", 1, "neohookean", "anp"},
+        std::tuple{2, "tri3", 1, "hooke", "anp"}}) {
     SCOPED_TRACE(std::string(type) + " " + law + " " + split);
     const Mesh mesh =
         test::beam(dim, type, dim == 2 ? std::array<int, 3>{6, 2, 1} : std::array<int, 3>{4, 2, 2}, order);

@@ -19,7 +19,7 @@ using test_support::expect_contains;
 std::vector<std::string> warnings_of(const Mesh& mesh, double poisson, const std::string& law = "stvk",
                                      const std::string& split = "") {
   Scene scene = test::cantilever(law);
-  if (law == "stvk") scene.model.materials[0].constants = elastic_constants(1e6, poisson);
+  scene.model.materials[0].constants = elastic_constants(1e6, poisson);
   scene.model.materials[0].split = split;
   scene.model.materials[0].line = 7;
   const Model model(mesh, scene.model);
@@ -51,6 +51,20 @@ TEST(LockingWarning, NoneForFbarCells) {
   EXPECT_TRUE(warnings_of(test::beam(2, "quad4", {4, 2, 1}), 0.499, "stvk", "fbar").empty());
   // prism6 has no fbar kernels: its cells keep `whole` and are named.
   EXPECT_EQ(warnings_of(test::beam(3, "prism6", {4, 2, 2}), 0.499, "stvk", "fbar").size(), 1u);
+}
+
+/// tet4 under a law with a bulk part is offered `split: anp`, and its anp
+/// cells are not named; under stvk (no bulk part) anp keeps `whole`.
+TEST(LockingWarning, NamesAnpForTet4AndNoneForAnpCells) {
+  const Mesh tets = test::beam(3, "tet6", {4, 2, 2});
+  const std::vector<std::string> plain = warnings_of(tets, 0.499, "neohookean");
+  ASSERT_EQ(plain.size(), 1u);
+  expect_contains(plain[0], {"tet4", "split: anp"});
+  EXPECT_TRUE(warnings_of(tets, 0.499, "neohookean", "anp").empty());
+  EXPECT_TRUE(warnings_of(test::beam(2, "tri3", {4, 2, 1}), 0.499, "hooke", "anp").empty());
+  EXPECT_EQ(warnings_of(tets, 0.499, "stvk", "anp").size(), 1u);
+  // anp on hexahedra is their mean dilatation.
+  EXPECT_TRUE(warnings_of(test::beam(3, "hex8", {4, 2, 2}), 0.499, "neohookean", "anp").empty());
 }
 
 TEST(LockingWarning, NoneForQuadraticElements) {

@@ -166,6 +166,23 @@ TEST(Model, FbarCellsSwitchLawWithinFbarAndOtherElementsKeepWhole) {
   EXPECT_STREQ(Model(tets, scene.model).kernel(0).split, "whole");
 }
 
+/// `split: anp` binds the nodal-pressure kernels on tet4 and the mean
+/// dilatation on hex8 (a mixed mesh's two first-order families); a switch of
+/// law stays anp.
+TEST(Model, AnpCellsSwitchLawWithinAnpAndHexahedraTakeFbar) {
+  const Mesh tets = test::beam(3, "tet6", {2, 1, 1});
+  Scene scene = test::cantilever("hooke");
+  scene.model.materials[0].split = "anp";
+  Model model(tets, scene.model);
+  EXPECT_STREQ(model.kernel(0).split, "anp");
+  EXPECT_TRUE(nodal_pressure_split(model.kernel(0)));
+  model.set_law(0, "neohookean");
+  EXPECT_STREQ(model.kernel(0).law, "neohookean");
+  EXPECT_STREQ(model.kernel(0).split, "anp");
+  const Mesh hexes = test::beam(3, "hex8", {2, 1, 1});
+  EXPECT_STREQ(Model(hexes, scene.model).kernel(0).split, "fbar");
+}
+
 /// Flipping every cell along x (u_x = -2 x, so F_xx = -1) inverts them all:
 /// the check names one under neo-Hookean and none under the invertible
 /// stable neo-Hookean, whose energy stays finite there.

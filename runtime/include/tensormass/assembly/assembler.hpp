@@ -16,6 +16,9 @@
 /// Over MPI ranks (distribute()), each rank runs the kernels of the cells
 /// touching its nodes only: its rows are complete, the gradient is completed
 /// over the ranks, and products with the tangent go through tangent_product.
+///
+/// Cells of the anp split add their nodal part (nodal_pressure.hpp) after
+/// the kernels; its patches widen the pattern to two rings of neighbours.
 #ifndef TENSORMASS_ASSEMBLER_HPP
 #define TENSORMASS_ASSEMBLER_HPP
 
@@ -25,6 +28,7 @@
 
 #include "tensormass/assembly/kernel_plan.hpp"
 #include "tensormass/assembly/linear_part.hpp"
+#include "tensormass/assembly/nodal_pressure.hpp"
 #include "tensormass/assembly/node_graph.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
 #include "tensormass/model/model.hpp"
@@ -145,9 +149,12 @@ class Assembler {
   /// Fills the scatter maps above for the pattern in pattern_.
   void build_scatter_map() const;
   void build_colours();
+  /// Throws InputError when the model has anp cells (not distributed yet).
+  void refuse_nodal_pressure_over_ranks() const;
   void assemble_kernels(std::span<const double> u, std::span<double> gradient, SparseMatrix* stiffness) const;
 
   const Model* model_;
+  NodalPressure nodal_;  ///< the anp cells' bulk part at the nodes (empty without anp cells)
   NodeGraph graph_;
   /// The tangent's layout below is built (require_tangent_layout).
   mutable bool tangent_layout_ = false;

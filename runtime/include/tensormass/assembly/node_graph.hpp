@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "tensormass/assembly/nodal_pressure.hpp"
 #include "tensormass/model/model.hpp"
 
 namespace tensormass {
@@ -22,8 +23,9 @@ struct NodeGraph {
   int position(int node, int neighbour) const;
 };
 
-/// The adjacency of every node of the model's mesh through its cells.
-NodeGraph make_node_graph(const Model& model);
+/// The adjacency of every node of the model's mesh through its cells, and
+/// through the patches of `nodal` when given (each patch couples all its nodes).
+NodeGraph make_node_graph(const Model& model, const NodalPressure* nodal = nullptr);
 
 }  // namespace tensormass
 

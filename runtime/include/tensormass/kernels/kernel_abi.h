@@ -48,6 +48,11 @@ typedef void (*tm_gradient_batch_fn)(const double* u, const double* consts, doub
 typedef void (*tm_gradient_hessian_batch_fn)(const double* u, const double* consts, double* gradient, double* hessian);
 typedef void (*tm_stress_batch_fn)(const double* u, const double* consts, double* stress);
 
+/// The law's bulk part U(J) (the anp split): out = {U(J), dU/dJ, d2U/dJ2}
+/// for the element's consts (only the leading derived parameters are read).
+/// Under a law flagged `linear`, J stands for 1 + tr(eps).
+typedef void (*tm_bulk_fn)(double J, const double* consts, double* out);
+
 /// Layout shared by every split: consts[0 .. derived_params) are the
 /// parameters the law's energy reads (its derived ones, lam, mu, ..., or its
 /// own constants when it declares none), then per quadrature point q the weight
@@ -100,6 +105,8 @@ typedef struct tm_kernel {
   tm_gradient_batch_fn gradient_batch;
   tm_gradient_hessian_batch_fn gradient_hessian_batch;
   tm_stress_batch_fn stress_batch;
+  /// The anp split's bulk part (kernel_abi.h's tm_bulk_fn); NULL in the other splits.
+  tm_bulk_fn bulk;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).

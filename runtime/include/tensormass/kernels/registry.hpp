@@ -62,6 +62,13 @@ class Registry {
   std::unordered_map<std::string, const tm_kernel*> laws_by_name_;
 };
 
+/// True for a kernel of the anp split: its law's bulk part is integrated at
+/// the nodes (assembly/nodal_pressure.hpp), not over the cell.
+inline bool nodal_pressure_split(const tm_kernel& kernel) { return kernel.bulk != nullptr; }
+/// True for the splits that keep a cell free of volumetric locking (fbar,
+/// anp): a law switch keeps them, the locking warning skips them.
+bool locking_free_split(const tm_kernel& kernel);
+
 }  // namespace tensormass
 
 #endif
