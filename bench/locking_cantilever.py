@@ -7,11 +7,13 @@ on a coarse mesh of 20 x 2 x 2 cubes cut into each element type, for each
 Poisson's ratio; the largest displacement (summary.json's
 max_displacement) against the reference: hex20 on 80 x 8 x 8 cubes at the
 same ratio. Each run uses the default settings; the `fbar` rows set
-`split: fbar` on the material (the mean-dilatation formulation).
+`split: fbar` on the material (the mean-dilatation formulation), the `anp`
+rows `split: anp` (the averaged nodal pressure).
 
-The cost of the formulation: the median step of a neo-Hookean block of
-60 x 20 x 20 hex8 (24,000 cells, nu = 0.499) under gravity, implicit and
-explicit, plain and fbar, run one after the other in this process.
+The cost of the formulations: the median step of a neo-Hookean block of
+24,000 cells (60 x 20 x 20 hex8; 40 x 10 x 10 cubes of 6 tet4) at
+nu = 0.499 under gravity, implicit and explicit, plain and with the
+locking-free split (fbar, anp), run one after the other in this process.
 
     /usr/bin/python3 bench/locking_cantilever.py --json docs/results/locking.json
     /usr/bin/python3 scripts/results/render_locking.py docs/results/locking.json > docs/results/locking.md
@@ -38,9 +40,9 @@ ELEMENTS = {
 }
 # the rows: (label, element, split; "" is the default)
 VARIANTS = [("tet4", "tet4", ""), ("hex8", "hex8", ""), ("prism6", "prism6", ""), ("pyramid5", "pyramid5", ""),
-            ("hex8 fbar", "hex8", "fbar"), ("pyramid5 fbar", "pyramid5", "fbar"),
+            ("tet4 anp", "tet4", "anp"), ("hex8 fbar", "hex8", "fbar"), ("pyramid5 fbar", "pyramid5", "fbar"),
             ("tet10", "tet10", ""), ("hex20", "hex20", "")]
-QUICK_VARIANTS = [("tet4", "tet4", ""), ("hex8", "hex8", ""), ("hex8 fbar", "hex8", "fbar")]
+QUICK_VARIANTS = [("tet4", "tet4", ""), ("tet4 anp", "tet4", "anp"), ("hex8", "hex8", ""), ("hex8 fbar", "hex8", "fbar")]
 RATIOS = [0.3, 0.45, 0.49, 0.499]
 COARSE = (20, 2, 2)
 FINE = (80, 8, 8)
@@ -81,8 +83,9 @@ def sag(binary, work, label, cells, poisson, split=""):
             "warned": bool(summary["warnings"])}
 
 
-COST_CELLS = (60, 20, 20)
-QUICK_COST_CELLS = (12, 4, 4)
+# (element, beam cut, cubes, quick cubes, locking-free split): 24,000 cells each.
+COST_CASES = [("hex8", "hex8", (60, 20, 20), (12, 4, 4), "fbar"),
+              ("tet4", "tet6", (40, 10, 10), (8, 2, 2), "anp")]
 COST_SOLVERS = {"implicit": "{type: implicit, dt: 0.01, steps: 10}",
                 "explicit": "{type: explicit, dt: 1.0e-5, steps: 200}"}
 COST_SCENE = """mesh: {mesh}
@@ -94,15 +97,15 @@ output: {{directory: {out}}}
 """
 
 
-def step_cost(binary, work, cells, solver, split):
-    """The median step (ms) of the cost block under `solver` with `split`."""
-    path = os.path.join(work, f"cost_{'x'.join(map(str, cells))}.msh")
+def step_cost(binary, work, cut, cells, solver, split):
+    """The median step (ms) of the cost block of `cut` cubes under `solver` with `split`."""
+    path = os.path.join(work, f"cost_{cut}_{'x'.join(map(str, cells))}.msh")
     if not os.path.exists(path):
         subprocess.run([binary, "beam", "--dim", "3", "--cells", ",".join(map(str, cells)), "--size",
-                        f"{cells[0] / cells[1]},1,{cells[2] / cells[1]}", "-o", path], check=True,
+                        f"{cells[0] / cells[1]},1,{cells[2] / cells[1]}", "--type", cut, "-o", path], check=True,
                        stdout=subprocess.DEVNULL)
-    scene = os.path.join(work, f"cost_{solver}_{split}.yaml")
-    out = os.path.join(work, f"out_cost_{solver}_{split}")
+    scene = os.path.join(work, f"cost_{cut}_{solver}_{split}.yaml")
+    out = os.path.join(work, f"out_cost_{cut}_{solver}_{split}")
     with open(scene, "w", encoding="utf-8") as handle:
         handle.write(COST_SCENE.format(mesh=path, split=split, solver=COST_SOLVERS[solver], out=out))
     run = subprocess.run([binary, "run", "--quiet", scene], capture_output=True, text=True)
@@ -119,7 +122,7 @@ def main():
     parser.add_argument("--binary", default="build/tensormass")
     parser.add_argument("--json", help="write the rows here")
     parser.add_argument("--quick", action="store_true",
-                        help="tet4, hex8 and hex8 fbar at 0.3 and 0.499, hex20 reference on 20 x 2 x 2")
+                        help="tet4, tet4 anp, hex8 and hex8 fbar at 0.3 and 0.499, hex20 reference on 20 x 2 x 2")
     parser.add_argument("--work", help="a directory for meshes and runs (default: a temporary one)")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
@@ -139,15 +142,17 @@ def main():
                 rows.append(row)
                 print(f"{label:9} nu {nu:<6} sag {row['max_displacement']:.4f} m  "
                       f"{row['ratio']:.3f} of hex20 {'x'.join(map(str, fine))}", flush=True)
-        cost_cells = QUICK_COST_CELLS if args.quick else COST_CELLS
         costs = []
-        for solver in COST_SOLVERS:
-            plain, fbar = (step_cost(binary, work, cost_cells, solver, split) for split in ("whole", "fbar"))
-            costs.append({"solver": solver, "cells": plain["cells"], "steps": plain["steps"],
-                          "whole_ms": plain["median_step_ms"], "fbar_ms": fbar["median_step_ms"],
-                          "ratio": fbar["median_step_ms"] / plain["median_step_ms"]})
-            print(f"hex8 {solver} step: whole {plain['median_step_ms']:.2f} ms, fbar {fbar['median_step_ms']:.2f} ms "
-                  f"({costs[-1]['ratio']:.2f}x)", flush=True)
+        for element, cut, full_cells, quick_cells, free in COST_CASES:
+            cells = quick_cells if args.quick else full_cells
+            for solver in COST_SOLVERS:
+                plain, other = (step_cost(binary, work, cut, cells, solver, split) for split in ("whole", free))
+                costs.append({"element": element, "split": free, "solver": solver, "cells": plain["cells"],
+                              "steps": plain["steps"], "whole_ms": plain["median_step_ms"],
+                              "split_ms": other["median_step_ms"],
+                              "ratio": other["median_step_ms"] / plain["median_step_ms"]})
+                print(f"{element} {solver} step: whole {plain['median_step_ms']:.2f} ms, {free} "
+                      f"{other['median_step_ms']:.2f} ms ({costs[-1]['ratio']:.2f}x)", flush=True)
     result = {
         "metadata": metadata(binary),
         "settings": {"coarse_cubes": list(COARSE), "reference_cubes": list(fine), "size_m": [10, 1, 1],

@@ -290,6 +290,12 @@ void NodalPressure::build_positions(const SparseMatrix& stiffness) const {
     pair_start_.push_back(pair_position_.size());
   }
   positions_row_start_ = stiffness.row_start;
+  full_row_length_.assign(model.mesh().node_count(), 0);
+  for (int node = 0; node < model.mesh().node_count(); ++node)
+    if (std::all_of(&free_index[node * d], &free_index[node * d] + d, [](int i) { return i >= 0; })) {
+      const int row = free_index[node * d];
+      full_row_length_[node] = stiffness.row_start[row + 1] - stiffness.row_start[row];
+    }
 }
 
 void NodalPressure::add_block(SparseMatrix& stiffness, int patch, int a, int b, const double* block) const {
@@ -297,6 +303,11 @@ void NodalPressure::add_block(SparseMatrix& stiffness, int patch, int a, int b, 
   const int position = pair_position_[pair_start_[patch] + static_cast<std::size_t>(a) * nodes.size() + b];
   if (position < 0) return;
   const int d = model_->dim();
+  if (const int length = full_row_length_[nodes[a]]; length > 0 && full_row_length_[nodes[b]] > 0) {
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j < d; ++j) stiffness.values[position + i * length + j] += block[i * d + j];
+    return;
+  }
   const auto& free_index = model_->free_index();
   const int* rows = &free_index[nodes[a] * d];
   const int* columns = &free_index[nodes[b] * d];

@@ -104,6 +104,7 @@ class NodalPressure {
   mutable std::vector<int>
       pair_position_;  ///< per patch |nodes|^2: (first free row of a, first free column of b) in values, or -1
   mutable std::vector<std::size_t> pair_start_;   ///< patches+1
+  mutable std::vector<int> full_row_length_;      ///< per node: its rows' length when all its dofs are free, else 0
   mutable std::vector<int> positions_row_start_;  ///< the row_start the positions were built for
   // Scratch of one evaluation (assemble and energy are not re-entrant, as the assembler).
   mutable std::vector<double> J_, dJ_, F_, U_, dU_, d2U_, coefficient_;
