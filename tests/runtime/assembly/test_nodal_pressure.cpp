@@ -109,5 +109,26 @@ INSTANTIATE_TEST_SUITE_P(Laws, NodalPressureDerivatives,
                            return info.param.law + "_" + std::to_string(info.param.dim) + "d";
                          });
 
+/// Cells blending between two laws (the adaptive model's smooth switch)
+/// blend their bulk parts too: the tangent stays the forces' derivative.
+TEST(NodalPressure, BlendingCellsBlendTheirBulkParts) {
+  const Mesh mesh = test::beam(3, "tet6", {3, 1, 1});
+  Model model(mesh, anp_cantilever("neohookean", 0.45).model);
+  const tm_kernel& neohookean = model.kernel(0);
+  for (int cell = 0; cell < model.cell_count(); cell += 2) {
+    model.set_law(cell, "stable_neohookean");
+    model.start_blend(cell, &neohookean);
+    model.set_blend_weight(cell, 0.4);
+  }
+  const Assembler assembler(model);
+  const std::vector<double> u = wavy_displacement(model.dof_count(), 0.02);
+  EXPECT_LT(test::tangent_error(model, assembler, u), 1e-6);
+  std::vector<double> g(model.dof_count());
+  assembler.assemble(u, g, nullptr);
+  double work = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i) work += g[i] * u[i];
+  EXPECT_TRUE(std::isfinite(work) && work > 0.0);
+}
+
 }  // namespace
 }  // namespace tensormass
