@@ -20,6 +20,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -199,6 +200,9 @@ def main():
     parser.add_argument("--work", help="a directory for meshes and runs (default: a temporary one)")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
+    if not shutil.which(args.ccx):
+        sys.exit(f"cooks_membrane: no CalculiX executable '{args.ccx}' (install calculix-ccx: scripts/install-deps.sh, "
+                 "or give --ccx PATH)")
     sizes = QUICK_SIZES if args.quick else SIZES
     reference_sizes = QUICK_REFERENCE_SIZES if args.quick else REFERENCE_SIZES
     with tempfile.TemporaryDirectory() as scratch:
