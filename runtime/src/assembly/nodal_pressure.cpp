@@ -1,6 +1,7 @@
 #include "tensormass/assembly/nodal_pressure.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -200,7 +201,7 @@ bool NodalPressure::uniform_patch(int patch) const {
 void NodalPressure::evaluate(std::span<const double> u) const {
   const Model& model = *model_;
   const int count = static_cast<int>(cells_.size()), patches = patch_count();
-  for (auto* values : {&J_, &U_, &dU_, &d2U_, &coefficient_}) values->resize(count);
+  for (auto* values : {&J_, &U_, &dU_, &d2U_, &coefficient_, &geometric_}) values->resize(count);
   dJ_.resize(static_cast<std::size_t>(count) * kCellDofs);
   F_.resize(static_cast<std::size_t>(count) * 9);
   for (auto* values : {&JA_, &pA_, &kA_}) values->resize(patches);
@@ -242,7 +243,15 @@ void NodalPressure::evaluate(std::span<const double> u) const {
   for (int e = 0; e < count; ++e) {
     double mean = 0.0;
     for (int k = corner_start_[e]; k < corner_start_[e + 1]; ++k) mean += pA_[corner_patch_[k]];
-    coefficient_[e] = rest_volume_[e] * (mean / corners(e) - dU_[e]);
+    const double pressure = mean / corners(e);
+    coefficient_[e] = rest_volume_[e] * (pressure - dU_[e]);
+    // The pressure's geometric stiffness p d2J is indefinite; where |p|
+    // exceeds the cell's modulus (Newton's first iterates near nu = 1/2,
+    // whose linearised volume errors lambda amplifies) it is scaled down to
+    // that size, so that the tangent stays near positive definite there.
+    const double cap = model.cell_modulus(cells_[e]);
+    const double scaled = std::abs(pressure) > cap ? std::copysign(cap, pressure) : pressure;
+    geometric_[e] = rest_volume_[e] * (scaled - dU_[e]);
   }
 }
 
@@ -345,7 +354,7 @@ void NodalPressure::assemble_node(int node, std::span<double> gradient, SparseMa
           double ga[3], gb[3];
           for (int c = 0; c < d; ++c) ga[c] = GT[c * n + a], gb[c] = GT[c * n + b];
           second_derivative_block(d, &F_[e * 9], ga, gb, block);
-          for (int m = 0; m < d * d; ++m) block[m] *= coefficient_[e];
+          for (int m = 0; m < d * d; ++m) block[m] *= geometric_[e];
         }
         for (int i = 0; i < d; ++i)
           for (int j = 0; j < d; ++j) block[i * d + j] -= curvature * g[a * d + i] * g[b * d + j];

@@ -23,6 +23,11 @@
 /// The tangent is symmetric (W is an energy); its pattern couples the nodes
 /// of each patch, two rings of neighbours (make_node_graph adds them).
 /// Under a linear law (Hooke) J_e is 1 + tr(eps_e) and d2J_e/du2 = 0.
+/// Where |p̄_e| exceeds the cell's modulus, the tangent's p̄_e d2J_e term
+/// takes the modulus (with p̄_e's sign) instead: that term is indefinite, and
+/// Newton's first iterates near nu = 1/2 reach such pressures (lambda
+/// amplifies their linearised volume errors); the tangent is then not the
+/// exact derivative there, and is again once the pressure is physical.
 ///
 /// Shapes: u and gradient are dof_count (node-major); the stiffness is the
 /// assembler's pattern over the free dofs.
@@ -108,6 +113,7 @@ class NodalPressure {
   mutable std::vector<int> positions_row_start_;  ///< the row_start the positions were built for
   // Scratch of one evaluation (assemble and energy are not re-entrant, as the assembler).
   mutable std::vector<double> J_, dJ_, F_, U_, dU_, d2U_, coefficient_;
+  mutable std::vector<double> geometric_;  ///< per cell, the d2J_e coefficient of the tangent (the pressure capped)
   mutable std::vector<double> JA_, pA_, kA_, w_;            ///< per patch; w_ per patch node and component
   mutable std::vector<char> uniform_;                       ///< per patch, uniform_patch() as of uniform_revision_
   mutable std::pair<long, long> uniform_revision_{-1, -1};  ///< (law, consts) revisions of the model
