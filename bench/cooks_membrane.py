@@ -25,10 +25,9 @@ import subprocess
 import sys
 import tempfile
 
-import meshio
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_metadata import metadata  # noqa: E402
+from mapped_meshes import SOLIDS, mapped_grid, run_tensormass, write_msh  # noqa: E402
 
 YOUNG, POISSON, FORCE = 250.0, 0.4999, 100.0
 # (label, element, split): the plain and the locking-free formulation of each first-order element
@@ -48,125 +47,55 @@ def point(xi, eta):
     return x, bottom + eta * (top - bottom)
 
 
-def grid_mesh(element, n):
-    """(points, cells, clamp nodes, right-edge nodes with their share of the force, tip node) of an n x n mesh.
-
-    Points are 3D; quad8 takes the mid-edge nodes of a (2n+1) x (2n+1) grid,
-    the 3D elements a second layer at z = 1."""
+def panel_mesh(element, n):
+    """(points, cells, clamp nodes, right-edge nodes with their share of the force, tip node) of an n x n mesh."""
+    points, cells, index = mapped_grid(element, n, point)
     quadratic = element == "quad8"
     m = 2 * n if quadratic else n
-    index, points = {}, []
-    layers = (0, 1) if element in ("hex8", "tet4") else (0,)
-    for k in layers:
-        for j in range(m + 1):
-            for i in range(m + 1):
-                if quadratic and i % 2 == 1 and j % 2 == 1:
-                    continue  # no centre node
-                x, y = point(i / m, j / m)
-                index[(i, j, k)] = len(points)
-                points.append((x, y, float(k)))
-    cells = []
-    for j in range(n):
-        for i in range(n):
-            if quadratic:
-                a, b = 2 * i, 2 * j
-                corners = [(a, b), (a + 2, b), (a + 2, b + 2), (a, b + 2)]
-                mids = [(a + 1, b), (a + 2, b + 1), (a + 1, b + 2), (a, b + 1)]
-                cells.append([index[c + (0,)] for c in corners + mids])
-                continue
-            square = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
-            if element == "quad4":
-                cells.append([index[c + (0,)] for c in square])
-            elif element == "tri3":
-                q = [index[c + (0,)] for c in square]
-                cells += [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
-            else:
-                h = [index[c + (0,)] for c in square] + [index[c + (1,)] for c in square]
-                if element == "hex8":
-                    cells.append(h)
-                else:  # six tets around the diagonal h0-h6 (Kuhn): conforming when every cube is cut alike
-                    for path in ((1, 2), (2, 3), (3, 7), (7, 4), (4, 5), (5, 1)):
-                        cells.append([h[0], h[path[0]], h[path[1]], h[6]])
+    layers = (0, 1) if element in SOLIDS else (0,)
     clamp = sorted({index[key] for key in index if key[0] == 0})
     # The consistent nodal forces of a uniform traction on the right edge: linear edges
     # give their ends half the edge's force each, quadratic ones 1/6, 2/3, 1/6.
     edge = {}
-    for j in range(m):
-        ends = [(m, j), (m, j + 1)]
+    for j in range(0, m, 2 if quadratic else 1):
         if quadratic:
-            if j % 2 == 1:
-                continue
-            ends = [(m, j), (m, j + 2)]
             weights = {(m, j): 1 / 6, (m, j + 1): 4 / 6, (m, j + 2): 1 / 6}
         else:
-            weights = {ends[0]: 0.5, ends[1]: 0.5}
-        share = FORCE / n
+            weights = {(m, j): 0.5, (m, j + 1): 0.5}
         for key, weight in weights.items():
             for k in layers:
-                edge[index[key + (k,)]] = edge.get(index[key + (k,)], 0.0) + weight * share / len(layers)
-    tip = index[(m, m, 0)]
-    return points, cells, clamp, edge, tip
-
-
-GMSH_TYPES = {"quad4": 3, "tri3": 2, "hex8": 5, "tet4": 4, "quad8": 16}
-
-
-def write_msh(path, points, cells, element, clamp, edge):
-    """Gmsh 2.2 ASCII: the cells, and node groups `clamp`, one `load_<k>` per
-    distinct nodal force and, in 3D, `plane` (every node but the clamp's)."""
-    loads = sorted(set(round(f, 12) for f in edge.values()))
-    names = ["clamp"] + [f"load_{k}" for k in range(len(loads))] + (["plane"] if element in ("hex8", "tet4") else [])
-    lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", str(len(names))]
-    lines += [f'0 {t + 1} "{name}"' for t, name in enumerate(names)]
-    lines += ["$EndPhysicalNames", "$Nodes", str(len(points))]
-    lines += [f"{i + 1} {x!r} {y!r} {z!r}" for i, (x, y, z) in enumerate(points)]
-    groups = [(1, node) for node in clamp] + [(2 + loads.index(round(f, 12)), node) for node, f in edge.items()]
-    if "plane" in names:
-        fixed = set(clamp)
-        groups += [(len(names), node) for node in range(len(points)) if node not in fixed]
-    lines += ["$EndNodes", "$Elements", str(len(groups) + len(cells))]
-    number = 0
-    for tag, node in groups:
-        number += 1
-        lines.append(f"{number} 15 2 {tag} {tag} {node + 1}")
-    volume_tag = len(names) + 1
-    for cell in cells:
-        number += 1
-        lines.append(f"{number} {GMSH_TYPES[element]} 2 {volume_tag} {volume_tag} {' '.join(str(c + 1) for c in cell)}")
-    lines.append("$EndElements")
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write("\n".join(lines) + "\n")
-    return loads
+                node = index[key + (k,)]
+                edge[node] = edge.get(node, 0.0) + weight * FORCE / n / len(layers)
+    return points, cells, clamp, edge, index[(m, m, 0)]
 
 
 def tensormass_tip(binary, work, element, split, n):
     """The tip's vertical displacement and the run's cells and dofs."""
-    points, cells, clamp, edge, tip = grid_mesh(element, n)
+    points, cells, clamp, edge, tip = panel_mesh(element, n)
     stem = os.path.join(work, f"{element}_{split}_{n}")
-    loads = write_msh(stem + ".msh", points, cells, element, clamp, edge)
+    loads = sorted(set(round(f, 12) for f in edge.values()))
+    groups = [("clamp", clamp)] + [(f"load_{k}", [node for node, f in edge.items() if round(f, 12) == load])
+                                   for k, load in enumerate(loads)]
+    plane = ""
+    if element in SOLIDS:  # u_z = 0 at every node: plane strain
+        fixed = set(clamp)
+        groups.append(("plane", [node for node in range(len(points)) if node not in fixed]))
+        plane = "\nprescribed: [{region: plane, displacement: [null, null, 0]}]"
+    write_msh(stem + ".msh", points, element, cells, groups)
     forces = ", ".join(f"{{region: load_{k}, force: [0, {f!r}, 0]}}" for k, f in enumerate(loads))
-    plane = "\nprescribed: [{region: plane, displacement: [null, null, 0]}]" if element in ("hex8", "tet4") else ""
     scene = (f"mesh: {stem}.msh\n"
              f"materials: [{{region: all, law: hooke, young: {YOUNG}, poisson: {POISSON}, density: 1, split: {split}}}]\n"
              f"fixed: [clamp]{plane}\n"
              f"loads: {{nodal_forces: [{forces}]}}\n"
              f"solver: {{type: static}}\n"
              f"output: {{directory: {stem}_out}}\n")
-    with open(stem + ".yaml", "w", encoding="utf-8") as handle:
-        handle.write(scene)
-    run = subprocess.run([binary, "run", "--quiet", stem + ".yaml"], capture_output=True, text=True)
-    if run.returncode != 0:
-        sys.exit(f"cooks_membrane: {binary} run {stem}.yaml exited {run.returncode}: {run.stderr}")
-    result = meshio.read(os.path.join(stem + "_out", "final.vtu"))
-    with open(os.path.join(stem + "_out", "summary.json"), encoding="utf-8") as handle:
-        summary = json.load(handle)
-    return {"tip": float(result.point_data["displacement"][tip][1]), "cells": summary["elements"],
-            "dofs": summary["dofs"]}
+    displacement, summary = run_tensormass(binary, stem, scene, "cooks_membrane")
+    return {"tip": float(displacement[tip][1]), "cells": summary["elements"], "dofs": summary["dofs"]}
 
 
 def calculix_tip(work, n, ccx):
     """CalculiX CPE8 on the n x n quad8 mesh: the tip's vertical displacement."""
-    points, cells, clamp, edge, tip = grid_mesh("quad8", n)
+    points, cells, clamp, edge, tip = panel_mesh("quad8", n)
     deck = ["*NODE, NSET=NALL"] + [f"{i + 1}, {x!r}, {y!r}" for i, (x, y, _) in enumerate(points)]
     deck += ["*ELEMENT, TYPE=CPE8, ELSET=EALL"] + [f"{e + 1}, " + ", ".join(str(c + 1) for c in cell)
                                                  for e, cell in enumerate(cells)]
