@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string_view>
 #include <type_traits>
@@ -23,6 +24,23 @@ constexpr int kParallelCells = 4096;  // below this a parallel region costs more
 /// kScreenPause evaluations evaluate every cell and skip the screen.
 constexpr double kScreenBusyShare = 0.25;
 constexpr int kScreenPause = 8;
+
+/// A cell keeps its split over a switch (fbar, anp): each rung must have a
+/// kernel of it for every such cell of a material on the ladder.
+void check_split_kernels(const std::vector<std::string>& ladder, const Model& model,
+                         const std::vector<bool>& on_ladder) {
+  std::set<const tm_kernel*> checked;
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    const tm_kernel& kernel = model.kernel(cell);
+    if (!on_ladder[model.material(cell)] || !locking_free_split(kernel) || !checked.insert(&kernel).second) continue;
+    for (const std::string& law : ladder)
+      if (!model.law_kernel(cell, law))
+        throw InputError(model.material_laws(model.material(cell)).owner() + ": its " + kernel.element +
+                         " cells use split " + kernel.split + ", for which the adaptivity ladder's law '" + law +
+                         "' has no kernel (anp needs a law with a bulk part U(J): not stvk or corotational; "
+                         "docs/formulations.md); take a ladder such as [hooke, neohookean]");
+  }
+}
 
 /// Every ladder law must have a kernel for every element type of the mesh,
 /// and compute the same leading constants from each material that starts on
@@ -44,6 +62,7 @@ void check_ladder(const std::vector<std::string>& ladder, const Model& model) {
         throw InputError(model.material_laws(m).owner() + ": the ladder's laws " + ladder[0] + " and " + ladder[r] +
                          " do not compute the same constants from this material (a ladder takes laws with the "
                          "same parameters and derived constants, such as hooke, stvk and neohookean)");
+  check_split_kernels(ladder, model, on_ladder);
 }
 
 /// The ladder index a criterion asks for: its rung, or the last law.

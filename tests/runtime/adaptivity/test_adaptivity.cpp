@@ -344,6 +344,28 @@ TEST(Adaptivity, LadderWithoutKernelsForTheMeshIsRefused) {
   EXPECT_THROW(Adaptivity(adaptive, model, assembler), std::invalid_argument);
 }
 
+/// anp cells keep their split over a switch: a ladder with a law that has
+/// no anp kernel (stvk) is refused before the first step, naming the
+/// material, the element and the law; [hooke, neohookean] is taken.
+TEST(Adaptivity, LadderWithoutKernelsOfTheCellsSplitIsRefused) {
+  const Mesh mesh = test::beam(3, "tet6", {2, 1, 1});
+  Scene scene = test::cantilever("hooke");
+  scene.model.source = "anp.yaml";
+  scene.model.materials[0].split = "anp";
+  scene.model.materials[0].line = 4;
+  Model model(mesh, scene.model);
+  const Assembler assembler(model);
+  try {
+    Adaptivity adaptivity(ladder_settings(0.01, {"hooke", "stvk"}), model, assembler);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    for (const char* part : {"anp.yaml:4: material 0", "tet4 cells use split anp", "law 'stvk' has no kernel"})
+      EXPECT_NE(message.find(part), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(Adaptivity(ladder_settings(0.01, {"hooke", "neohookean"}), model, assembler));
+}
+
 TEST(Adaptivity, DowngradeReturnsToTheInitialKernelExactly) {
   BeamSpec spec;
   spec.cells = {6, 2, 1};
