@@ -40,7 +40,8 @@ ELEMENTS = {
 }
 # the rows: (label, element, split; "" is the default)
 VARIANTS = [("tet4", "tet4", ""), ("hex8", "hex8", ""), ("prism6", "prism6", ""), ("pyramid5", "pyramid5", ""),
-            ("tet4 anp", "tet4", "anp"), ("hex8 fbar", "hex8", "fbar"), ("pyramid5 fbar", "pyramid5", "fbar"),
+            ("tet4 anp", "tet4", "anp"), ("prism6 anp", "prism6", "anp"), ("hex8 fbar", "hex8", "fbar"),
+            ("pyramid5 fbar", "pyramid5", "fbar"),
             ("tet10", "tet10", ""), ("hex20", "hex20", "")]
 QUICK_VARIANTS = [("tet4", "tet4", ""), ("tet4 anp", "tet4", "anp"), ("hex8", "hex8", ""), ("hex8 fbar", "hex8", "fbar")]
 RATIOS = [0.3, 0.45, 0.49, 0.499]

@@ -43,6 +43,13 @@ void tm_arruda_boyce_prism6_whole_stress(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_arruda_boyce_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_arruda_boyce_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_arruda_boyce_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_arruda_boyce_prism6_anp_energy(const double*, const double*);
+void tm_arruda_boyce_prism6_anp_gradient(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_anp_hessian(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_arruda_boyce_prism6_anp_stress(const double*, const double*, double*);
+void tm_arruda_boyce_prism6_anp_bulk(double, const double*, double*);
 int tm_arruda_boyce_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_arruda_boyce_pyramid13_whole_energy(const double*, const double*);
 void tm_arruda_boyce_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -315,6 +322,13 @@ void tm_gent_prism6_whole_stress(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_gent_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_gent_prism6_anp_energy(const double*, const double*);
+void tm_gent_prism6_anp_gradient(const double*, const double*, double*);
+void tm_gent_prism6_anp_hessian(const double*, const double*, double*);
+void tm_gent_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_gent_prism6_anp_stress(const double*, const double*, double*);
+void tm_gent_prism6_anp_bulk(double, const double*, double*);
 int tm_gent_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_gent_pyramid13_whole_energy(const double*, const double*);
 void tm_gent_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -473,6 +487,13 @@ void tm_hooke_prism6_tensor_gradient(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_hessian(const double*, const double*, double*);
 void tm_hooke_prism6_tensor_gradient_hessian(const double*, const double*, double*, double*);
 void tm_hooke_prism6_tensor_stress(const double*, const double*, double*);
+int tm_hooke_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_hooke_prism6_anp_energy(const double*, const double*);
+void tm_hooke_prism6_anp_gradient(const double*, const double*, double*);
+void tm_hooke_prism6_anp_hessian(const double*, const double*, double*);
+void tm_hooke_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_hooke_prism6_anp_stress(const double*, const double*, double*);
+void tm_hooke_prism6_anp_bulk(double, const double*, double*);
 int tm_hooke_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_pyramid13_whole_energy(const double*, const double*);
 void tm_hooke_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -643,6 +664,13 @@ void tm_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*)
 void tm_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_mooney_rivlin_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_mooney_rivlin_prism6_anp_energy(const double*, const double*);
+void tm_mooney_rivlin_prism6_anp_gradient(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_anp_hessian(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_mooney_rivlin_prism6_anp_stress(const double*, const double*, double*);
+void tm_mooney_rivlin_prism6_anp_bulk(double, const double*, double*);
 int tm_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
 void tm_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -789,6 +817,13 @@ void tm_neohookean_prism6_whole_stress(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_neohookean_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_neohookean_prism6_anp_energy(const double*, const double*);
+void tm_neohookean_prism6_anp_gradient(const double*, const double*, double*);
+void tm_neohookean_prism6_anp_hessian(const double*, const double*, double*);
+void tm_neohookean_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_neohookean_prism6_anp_stress(const double*, const double*, double*);
+void tm_neohookean_prism6_anp_bulk(double, const double*, double*);
 int tm_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -935,6 +970,13 @@ void tm_stable_neohookean_prism6_whole_stress(const double*, const double*, doub
 void tm_stable_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stable_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stable_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_stable_neohookean_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_stable_neohookean_prism6_anp_energy(const double*, const double*);
+void tm_stable_neohookean_prism6_anp_gradient(const double*, const double*, double*);
+void tm_stable_neohookean_prism6_anp_hessian(const double*, const double*, double*);
+void tm_stable_neohookean_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_stable_neohookean_prism6_anp_stress(const double*, const double*, double*);
+void tm_stable_neohookean_prism6_anp_bulk(double, const double*, double*);
 int tm_stable_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_stable_neohookean_pyramid13_whole_energy(const double*, const double*);
 void tm_stable_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1243,6 +1285,13 @@ void tm_veronda_westmann_prism6_whole_stress(const double*, const double*, doubl
 void tm_veronda_westmann_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_veronda_westmann_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_veronda_westmann_prism6_anp_energy(const double*, const double*);
+void tm_veronda_westmann_prism6_anp_gradient(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_anp_hessian(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_veronda_westmann_prism6_anp_stress(const double*, const double*, double*);
+void tm_veronda_westmann_prism6_anp_bulk(double, const double*, double*);
 int tm_veronda_westmann_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_pyramid13_whole_energy(const double*, const double*);
 void tm_veronda_westmann_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1389,6 +1438,13 @@ void tm_yeoh_prism6_whole_stress(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_batch(const double*, const double*, double*);
 void tm_yeoh_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_yeoh_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_yeoh_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_yeoh_prism6_anp_energy(const double*, const double*);
+void tm_yeoh_prism6_anp_gradient(const double*, const double*, double*);
+void tm_yeoh_prism6_anp_hessian(const double*, const double*, double*);
+void tm_yeoh_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_yeoh_prism6_anp_stress(const double*, const double*, double*);
+void tm_yeoh_prism6_anp_bulk(double, const double*, double*);
 int tm_yeoh_pyramid13_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_pyramid13_whole_energy(const double*, const double*);
 void tm_yeoh_pyramid13_whole_gradient(const double*, const double*, double*);
@@ -1563,6 +1619,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch,
    nullptr},
+
+  {"arruda_boyce", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
+   kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_anp_precompute, tm_arruda_boyce_prism6_anp_energy, tm_arruda_boyce_prism6_anp_gradient,
+   tm_arruda_boyce_prism6_anp_hessian, tm_arruda_boyce_prism6_anp_gradient_hessian, tm_arruda_boyce_prism6_anp_stress, 1656, 4158, 28326,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_arruda_boyce_prism6_anp_bulk},
 
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
@@ -1834,6 +1897,13 @@ const tm_kernel kKernels[] = {
    tm_gent_prism6_whole_stress_batch,
    nullptr},
 
+  {"gent", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
+   kGentParameters, kGentLimits, tm_gent_prism6_anp_precompute, tm_gent_prism6_anp_energy, tm_gent_prism6_anp_gradient,
+   tm_gent_prism6_anp_hessian, tm_gent_prism6_anp_gradient_hessian, tm_gent_prism6_anp_stress, 1344, 3096, 26622,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_gent_prism6_anp_bulk},
+
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
    tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
@@ -1990,6 +2060,13 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr},
+
+  {"hooke", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
+   kHookeParameters, kHookeLimits, tm_hooke_prism6_anp_precompute, tm_hooke_prism6_anp_energy, tm_hooke_prism6_anp_gradient,
+   tm_hooke_prism6_anp_hessian, tm_hooke_prism6_anp_gradient_hessian, tm_hooke_prism6_anp_stress, 1110, 1920, 19764,
+   1, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_hooke_prism6_anp_bulk},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid13_whole_precompute, tm_hooke_pyramid13_whole_energy, tm_hooke_pyramid13_whole_gradient,
@@ -2162,6 +2239,13 @@ const tm_kernel kKernels[] = {
    tm_mooney_rivlin_prism6_whole_stress_batch,
    nullptr},
 
+  {"mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
+   kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_anp_precompute, tm_mooney_rivlin_prism6_anp_energy, tm_mooney_rivlin_prism6_anp_gradient,
+   tm_mooney_rivlin_prism6_anp_hessian, tm_mooney_rivlin_prism6_anp_gradient_hessian, tm_mooney_rivlin_prism6_anp_stress, 1560, 3930, 26100,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_mooney_rivlin_prism6_anp_bulk},
+
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
    tm_mooney_rivlin_pyramid13_whole_hessian, tm_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_mooney_rivlin_pyramid13_whole_stress, 8964, 22059, 231174,
@@ -2305,6 +2389,13 @@ const tm_kernel kKernels[] = {
    tm_neohookean_prism6_whole_stress_batch,
    nullptr},
 
+  {"neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
+   kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_anp_precompute, tm_neohookean_prism6_anp_energy, tm_neohookean_prism6_anp_gradient,
+   tm_neohookean_prism6_anp_hessian, tm_neohookean_prism6_anp_gradient_hessian, tm_neohookean_prism6_anp_stress, 1296, 2574, 22782,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_neohookean_prism6_anp_bulk},
+
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
    tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
@@ -2447,6 +2538,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch,
    nullptr},
+
+  {"stable_neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
+   kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_anp_precompute, tm_stable_neohookean_prism6_anp_energy, tm_stable_neohookean_prism6_anp_gradient,
+   tm_stable_neohookean_prism6_anp_hessian, tm_stable_neohookean_prism6_anp_gradient_hessian, tm_stable_neohookean_prism6_anp_stress, 1494, 2940, 22662,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_stable_neohookean_prism6_anp_bulk},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
@@ -2760,6 +2858,13 @@ const tm_kernel kKernels[] = {
    tm_veronda_westmann_prism6_whole_stress_batch,
    nullptr},
 
+  {"veronda_westmann", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
+   kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_anp_precompute, tm_veronda_westmann_prism6_anp_energy, tm_veronda_westmann_prism6_anp_gradient,
+   tm_veronda_westmann_prism6_anp_hessian, tm_veronda_westmann_prism6_anp_gradient_hessian, tm_veronda_westmann_prism6_anp_stress, 1590, 3984, 29262,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_veronda_westmann_prism6_anp_bulk},
+
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
    tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
@@ -2902,6 +3007,13 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch,
    nullptr},
+
+  {"yeoh", "prism6", "anp", 3, 6, 18, 6, 4, 4, 118,
+   kYeohParameters, kYeohLimits, tm_yeoh_prism6_anp_precompute, tm_yeoh_prism6_anp_energy, tm_yeoh_prism6_anp_gradient,
+   tm_yeoh_prism6_anp_hessian, tm_yeoh_prism6_anp_gradient_hessian, tm_yeoh_prism6_anp_stress, 1350, 3438, 25758,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_yeoh_prism6_anp_bulk},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,

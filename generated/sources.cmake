@@ -7,6 +7,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/arruda_boyce_hex8_fbar.cpp
   kernels/arruda_boyce_hex8_whole.cpp
   kernels/arruda_boyce_prism15_whole.cpp
+  kernels/arruda_boyce_prism6_anp.cpp
   kernels/arruda_boyce_prism6_whole.cpp
   kernels/arruda_boyce_pyramid13_whole.cpp
   kernels/arruda_boyce_pyramid5_fbar.cpp
@@ -43,6 +44,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/gent_hex8_fbar.cpp
   kernels/gent_hex8_whole.cpp
   kernels/gent_prism15_whole.cpp
+  kernels/gent_prism6_anp.cpp
   kernels/gent_prism6_whole.cpp
   kernels/gent_pyramid13_whole.cpp
   kernels/gent_pyramid5_fbar.cpp
@@ -63,6 +65,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/hooke_hex8_tensor.cpp
   kernels/hooke_hex8_whole.cpp
   kernels/hooke_prism15_whole.cpp
+  kernels/hooke_prism6_anp.cpp
   kernels/hooke_prism6_tensor.cpp
   kernels/hooke_prism6_whole.cpp
   kernels/hooke_pyramid13_whole.cpp
@@ -87,6 +90,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/mooney_rivlin_hex8_fbar.cpp
   kernels/mooney_rivlin_hex8_whole.cpp
   kernels/mooney_rivlin_prism15_whole.cpp
+  kernels/mooney_rivlin_prism6_anp.cpp
   kernels/mooney_rivlin_prism6_whole.cpp
   kernels/mooney_rivlin_pyramid13_whole.cpp
   kernels/mooney_rivlin_pyramid5_fbar.cpp
@@ -106,6 +110,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/neohookean_hex8_fbar.cpp
   kernels/neohookean_hex8_whole.cpp
   kernels/neohookean_prism15_whole.cpp
+  kernels/neohookean_prism6_anp.cpp
   kernels/neohookean_prism6_whole.cpp
   kernels/neohookean_pyramid13_whole.cpp
   kernels/neohookean_pyramid5_fbar.cpp
@@ -125,6 +130,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stable_neohookean_hex8_fbar.cpp
   kernels/stable_neohookean_hex8_whole.cpp
   kernels/stable_neohookean_prism15_whole.cpp
+  kernels/stable_neohookean_prism6_anp.cpp
   kernels/stable_neohookean_prism6_whole.cpp
   kernels/stable_neohookean_pyramid13_whole.cpp
   kernels/stable_neohookean_pyramid5_fbar.cpp
@@ -167,6 +173,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/veronda_westmann_hex8_fbar.cpp
   kernels/veronda_westmann_hex8_whole.cpp
   kernels/veronda_westmann_prism15_whole.cpp
+  kernels/veronda_westmann_prism6_anp.cpp
   kernels/veronda_westmann_prism6_whole.cpp
   kernels/veronda_westmann_pyramid13_whole.cpp
   kernels/veronda_westmann_pyramid5_fbar.cpp
@@ -186,6 +193,7 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/yeoh_hex8_fbar.cpp
   kernels/yeoh_hex8_whole.cpp
   kernels/yeoh_prism15_whole.cpp
+  kernels/yeoh_prism6_anp.cpp
   kernels/yeoh_prism6_whole.cpp
   kernels/yeoh_pyramid13_whole.cpp
   kernels/yeoh_pyramid5_fbar.cpp

@@ -176,7 +176,8 @@ def kernel_context(k: KernelIR) -> dict:
     if isinstance(k.split_ir, TensorIR):
         context.update(_tensor_context(k.split_ir, names))
     if isinstance(k.split_ir, NodalPressureIR):
-        context.update(bulk=[print_expr(expr) for expr in k.split_ir.bulk], bulk_text=law.bulk)
+        context.update(bulk=[print_expr(expr) for expr in k.split_ir.bulk], bulk_text=law.bulk,
+                       anp_base=k.split_ir.base)
     return context
 
 

@@ -112,11 +112,13 @@ class MeanDilatationIR:
 @dataclass(frozen=True)
 class NodalPressureIR:
     """The anp split (averaged nodal pressure, assembly/nodal_pressure.hpp):
-    the whole split's kernel of the full energy, and the law's bulk part
-    U(J) with its first two derivatives in J, which the runtime moves from
-    the element to the nodes."""
-    batched: bool  # the whole split's rule (splits/whole.batch_pays)
+    the base split's kernel of the full energy (whole on one-point elements,
+    fbar where the element's points need tying into one J), and the law's
+    bulk part U(J) with its first two derivatives in J, which the runtime
+    moves from the element to the nodes."""
+    batched: bool  # the whole split's rule (splits/whole.batch_pays); False on fbar
     bulk: tuple[sympy.Expr, sympy.Expr, sympy.Expr]  # U, dU/dJ, d2U/dJ2 in J and the law's constants
+    base: str = "whole"  # whole | fbar: whose entry points the kernel has
 
 
 SplitIR = Union[WholeIR, TermsIR, TensorIR, MeanDilatationIR, NodalPressureIR]

@@ -21,10 +21,10 @@ Splits (one module each in `splits/`):
           with J̄ the element's volume ratio (a different energy from the three
           above, free of volumetric locking); first-order elements with more
           than one quadrature point but prism6
-  anp     averaged nodal pressure: the whole split's kernel of the full energy
-          and the law's bulk part U(J), which the runtime integrates at the
-          nodes instead of the element (free of volumetric locking); the
-          one-point elements (tet4, tri3) of laws with a bulk part
+  anp     averaged nodal pressure: the whole (or, on prism6, fbar) split's
+          kernel of the full energy and the law's bulk part U(J), which the
+          runtime integrates at the nodes instead of the element (free of
+          volumetric locking); tet4, tri3 and prism6, laws with a bulk part
 """
 from __future__ import annotations
 
@@ -69,7 +69,8 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     consts = len(law.constants) + len(tables.weights) * point_stride(element) + lowering.extra_consts
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
-                    linear=derivatives.linear, invertible=law.invertible and split != "fbar")
+                    linear=derivatives.linear, invertible=law.invertible and split != "fbar" and not (
+                        split == "anp" and lowering.split_ir.base == "fbar"))
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

@@ -19,7 +19,8 @@ from .whole import quadrature_flops
 
 # First-order elements the mean dilatation does not free, measured
 # (bench/locking_cantilever.py): prism6 fbar sagged 0.114 of the converged
-# answer at nu = 0.499, plain prism6 0.024, hex8 fbar 0.968.
+# answer at nu = 0.499, plain prism6 0.024, hex8 fbar 0.968. The anp split
+# builds on their mean dilatation and averages J over each node's cells.
 NOT_FREED = {
     "prism6": "the mean dilatation does not free prism6: its triangular cross-section has one strain, as tri3 "
               "(docs/results/locking.md)",

@@ -49,8 +49,8 @@ def test_registry_covers_every_pair_and_refuses_with_reasons(regenerated):
             assert (law, element, "fbar") in kernels
         for element in ("tri3", "tet4", "prism6", "tet10", "hex20"):
             assert (law, element, "fbar") not in kernels
-    for law in laws:  # anp: the one-point elements, under the laws with a bulk part
-        for element in ("tri3", "tet4"):
+    for law in laws:  # anp: the one-point elements and prism6, under the laws with a bulk part
+        for element in ("tri3", "tet4", "prism6"):
             assert ((law, element, "anp") in kernels) == (law not in ("stvk", "corotational"))
         for element in ("quad4", "hex8", "tet10"):
             assert (law, element, "anp") not in kernels

@@ -47,13 +47,18 @@ void second_derivative_block(int d, const double* F, const double* ga, const dou
 NodalPressure::NodalPressure(const Model& model) : model_(&model) {
   std::vector<std::tuple<int, int, int, int>> entries;  // (node, material, anp cell, corner)
   corner_start_.assign(1, 0);
+  point_start_.assign(1, 0);
   for (int cell = 0; cell < model.cell_count(); ++cell) {
     const tm_kernel& kernel = model.kernel(cell);
     if (!nodal_pressure_split(kernel)) continue;
-    if (kernel.dofs > kCellDofs) throw std::logic_error("NodalPressure: an anp kernel with more than 12 dofs");
+    if (kernel.dofs > kCellDofs) throw std::logic_error("NodalPressure: an anp kernel with more than 18 dofs");
     const int index = static_cast<int>(cells_.size());
     cells_.push_back(cell);
-    rest_volume_.push_back(model.consts(cell)[kernel.derived_params]);
+    const double* points = model.consts(cell) + kernel.derived_params;
+    double volume = 0.0;  // the points' w_q det J_q
+    for (int q = 0; q < kernel.quadrature_points; ++q) volume += points[q * (1 + kernel.dim * kernel.nodes)];
+    rest_volume_.push_back(volume);
+    point_start_.push_back(point_start_.back() + kernel.quadrature_points);
     const auto nodes = model.cell_nodes(cell);
     for (int k = 0; k < static_cast<int>(nodes.size()); ++k)
       entries.emplace_back(nodes[k], model.material(cell), index, k);
@@ -157,10 +162,42 @@ void one_point_kinematics(bool linear, const double* local, const double* GT, do
 
 void NodalPressure::cell_kinematics(int cell, const double* local, double& J, double* dJ, double* F) const {
   const tm_kernel& kernel = model_->kernel(cell);
-  const double* GT = model_->consts(cell) + kernel.derived_params + 1;
-  if (kernel.dim == 3 && kernel.nodes == 4) return one_point_kinematics<3, 4>(kernel.linear, local, GT, J, dJ, F);
-  if (kernel.dim == 2 && kernel.nodes == 3) return one_point_kinematics<2, 3>(kernel.linear, local, GT, J, dJ, F);
-  throw std::logic_error(std::string("NodalPressure: no kinematics for ") + kernel.element);
+  const int d = kernel.dim, n = kernel.nodes, stride = 1 + d * n;
+  const double* points = model_->consts(cell) + kernel.derived_params;
+  if (kernel.quadrature_points == 1 && d == 3 && n == 4)
+    return one_point_kinematics<3, 4>(kernel.linear, local, points + 1, J, dJ, F);
+  if (kernel.quadrature_points == 1 && d == 2 && n == 3)
+    return one_point_kinematics<2, 3>(kernel.linear, local, points + 1, J, dJ, F);
+  // Several points (an fbar base): J = J̄ = sum_q w_q J_q / V and its derivative.
+  double volume = 0.0, point_J, point_dJ[kCellDofs];
+  J = 0.0;
+  std::fill(dJ, dJ + n * d, 0.0);
+  for (int q = 0; q < kernel.quadrature_points; ++q) {
+    const double* point = points + q * stride;
+    if (d == 3) one_point_kinematics<3, 6>(kernel.linear, local, point + 1, point_J, point_dJ, F + q * 9);
+    else throw std::logic_error(std::string("NodalPressure: no kinematics for ") + kernel.element);
+    volume += point[0];
+    J += point[0] * point_J;
+    for (int k = 0; k < n * d; ++k) dJ[k] += point[0] * point_dJ[k];
+  }
+  J /= volume;
+  for (int k = 0; k < n * d; ++k) dJ[k] /= volume;
+}
+
+/// d2J_e/du_a du_b (d by d) into block: the points' blocks weighted by w_q / V_e.
+void NodalPressure::second_derivative(int e, int a, int b, double* block) const {
+  const tm_kernel& kernel = model_->kernel(cells_[e]);
+  const int d = kernel.dim, n = kernel.nodes, stride = 1 + d * n;
+  const double* points = model_->consts(cells_[e]) + kernel.derived_params;
+  std::fill(block, block + d * d, 0.0);
+  double point_block[9], ga[3], gb[3];
+  for (int q = 0; q < kernel.quadrature_points; ++q) {
+    const double* GT = points + q * stride + 1;
+    for (int c = 0; c < d; ++c) ga[c] = GT[c * n + a], gb[c] = GT[c * n + b];
+    second_derivative_block(d, &F_[static_cast<std::size_t>(point_start_[e] + q) * 9], ga, gb, point_block);
+    const double share = points[q * stride] / rest_volume_[e];
+    for (int m = 0; m < d * d; ++m) block[m] += share * point_block[m];
+  }
 }
 
 void NodalPressure::cell_bulk(int cell, double J, double* out) const {
@@ -203,14 +240,15 @@ void NodalPressure::evaluate(std::span<const double> u) const {
   const int count = static_cast<int>(cells_.size()), patches = patch_count();
   for (auto* values : {&J_, &U_, &dU_, &d2U_, &coefficient_, &geometric_}) values->resize(count);
   dJ_.resize(static_cast<std::size_t>(count) * kCellDofs);
-  F_.resize(static_cast<std::size_t>(count) * 9);
+  F_.resize(static_cast<std::size_t>(point_start_.back()) * 9);
   for (auto* values : {&JA_, &pA_, &kA_}) values->resize(patches);
   update_uniform_patches();
 #pragma omp parallel for schedule(static) if (count >= kParallelCells)
   for (int e = 0; e < count; ++e) {
     double local[kMaxCellDofs], bulk[3];
     model.gather(cells_[e], u, local);
-    cell_kinematics(cells_[e], local, J_[e], &dJ_[static_cast<std::size_t>(e) * kCellDofs], &F_[e * 9]);
+    cell_kinematics(cells_[e], local, J_[e], &dJ_[static_cast<std::size_t>(e) * kCellDofs],
+                    &F_[static_cast<std::size_t>(point_start_[e]) * 9]);
     cell_bulk(cells_[e], J_[e], bulk);
     U_[e] = bulk[0], dU_[e] = bulk[1], d2U_[e] = bulk[2];
   }
@@ -344,16 +382,13 @@ void NodalPressure::assemble_node(int node, std::span<double> gradient, SparseMa
       const double* g = &dJ_[static_cast<std::size_t>(e) * kCellDofs];
       for (int i = 0; i < d; ++i) gradient[node * d + i] += coefficient_[e] * g[a * d + i];
       if (!stiffness) continue;
-      const tm_kernel& kernel = model.kernel(cell);
-      const double* GT = model.consts(cell) + kernel.derived_params + 1;
+      const bool linear = model.kernel(cell).linear;
       const int* in_patch = &pair_local_[pair_local_start_[k]];
       const double curvature = rest_volume_[e] * d2U_[e];
       for (int b = 0; b < n; ++b) {
         std::fill(block, block + d * d, 0.0);
-        if (!kernel.linear) {
-          double ga[3], gb[3];
-          for (int c = 0; c < d; ++c) ga[c] = GT[c * n + a], gb[c] = GT[c * n + b];
-          second_derivative_block(d, &F_[e * 9], ga, gb, block);
+        if (!linear) {
+          second_derivative(e, a, b, block);
           for (int m = 0; m < d * d; ++m) block[m] *= geometric_[e];
         }
         for (int i = 0; i < d; ++i)

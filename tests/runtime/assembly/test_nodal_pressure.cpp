@@ -32,12 +32,13 @@ Scene anp_cantilever(const std::string& law, double poisson, const std::string& 
 struct Case {
   std::string law;
   int dim;
+  std::string cut = "tet6";  ///< the 3D beam's cells: tet6 (tet4) or prism6 (the fbar-based anp)
 };
 
 class NodalPressureDerivatives : public testing::TestWithParam<Case> {
  protected:
   Mesh mesh() const {
-    return GetParam().dim == 3 ? test::beam(3, "tet6", {3, 1, 1}) : test::beam(2, "tri3", {4, 2, 1});
+    return GetParam().dim == 3 ? test::beam(3, GetParam().cut, {3, 1, 1}) : test::beam(2, "tri3", {4, 2, 1});
   }
 };
 
@@ -104,9 +105,12 @@ TEST_P(NodalPressureDerivatives, HomogeneousDeformationGivesTheWholeKernels) {
 
 INSTANTIATE_TEST_SUITE_P(Laws, NodalPressureDerivatives,
                          testing::Values(Case{"neohookean", 3}, Case{"hooke", 3}, Case{"mooney_rivlin", 3},
-                                         Case{"stable_neohookean", 3}, Case{"neohookean", 2}, Case{"hooke", 2}),
+                                         Case{"stable_neohookean", 3}, Case{"neohookean", 2}, Case{"hooke", 2},
+                                         Case{"neohookean", 3, "prism6"}, Case{"hooke", 3, "prism6"},
+                                         Case{"mooney_rivlin", 3, "prism6"}),
                          [](const testing::TestParamInfo<Case>& info) {
-                           return info.param.law + "_" + std::to_string(info.param.dim) + "d";
+                           return info.param.law + "_" + std::to_string(info.param.dim) + "d" +
+                                  (info.param.cut == "tet6" ? "" : "_" + info.param.cut);
                          });
 
 /// Cells blending between two laws (the adaptive model's smooth switch)

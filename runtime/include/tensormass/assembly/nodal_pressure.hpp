@@ -66,12 +66,16 @@ class NodalPressure {
   /// Whether a patch's tangent changes with u (a non-linear or blending cell in it).
   bool patch_changes(int patch) const;
 
-  /// Doubles of dJ_e/du per cell: the one-point elements have at most 4 nodes in 3D.
-  static constexpr int kCellDofs = 12;
+  /// Doubles of dJ_e/du per cell: anp cells have at most 6 nodes in 3D (prism6).
+  static constexpr int kCellDofs = 18;
 
  private:
-  /// J_e, dJ_e/du (dofs) and F_e (d by d) of an anp cell from its local displacements (nodes by dim).
+  /// J_e, dJ_e/du (dofs) and F at each point (points by d by d) of an anp
+  /// cell from its local displacements (nodes by dim); J_e is the mean of
+  /// the points' J weighted by w_q det J_q (the fbar base's J̄).
   void cell_kinematics(int cell, const double* local, double& J, double* dJ, double* F) const;
+  /// d2J_e/du_a du_b (d by d) of anp cell e's nodes a, b at the F of the last evaluation.
+  void second_derivative(int e, int a, int b, double* block) const;
   /// U_e, U_e', U_e'' at J for the cell's law (blended while it blends).
   void cell_bulk(int cell, double J, double* out) const;
   /// Whether every cell of the patch has the same U (kernel, blend and derived parameters).
@@ -92,6 +96,7 @@ class NodalPressure {
   std::vector<int> cells_;             ///< the anp cells
   std::vector<double> rest_volume_;    ///< per anp cell, V_e
   std::vector<int> corner_start_;      ///< anp cells+1, into corner_patch_
+  std::vector<int> point_start_;       ///< anp cells+1: the cells' quadrature points, into F_ (9 each)
   std::vector<int> corner_patch_;      ///< per anp cell and corner (its node order), the corner's patch
   std::vector<int> patch_start_;       ///< patches+1, into patch_nodes_
   std::vector<int> patch_nodes_;       ///< nodes of each patch, sorted
