@@ -12,18 +12,20 @@ namespace {
 
 constexpr int kParallelCells = 4096;
 
-/// det F and its cofactor matrix (d by d) for d = 2 (plane strain) or 3.
-double determinant_and_cofactor(int d, const double* F, double* cof) {
-  if (d == 2) {
+/// det F and its cofactor matrix (D by D) for D = 2 (plane strain) or 3.
+template <int D>
+inline double determinant_and_cofactor(const double* F, double* cof) {
+  if constexpr (D == 2) {
     cof[0] = F[3], cof[1] = -F[2], cof[2] = -F[1], cof[3] = F[0];
     return F[0] * F[3] - F[1] * F[2];
+  } else {
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        cof[i * 3 + c] = F[i1 * 3 + c1] * F[i2 * 3 + c2] - F[i1 * 3 + c2] * F[i2 * 3 + c1];
+      }
+    return F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
   }
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-      cof[i * 3 + c] = F[i1 * 3 + c1] * F[i2 * 3 + c2] - F[i1 * 3 + c2] * F[i2 * 3 + c1];
-    }
-  return F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
 }
 
 /// d2J/du_a du_b (d by d) of nodes a, b with shape gradients g_a, g_b:
@@ -149,7 +151,7 @@ void one_point_kinematics(bool linear, const double* local, const double* GT, do
     return;
   }
   double cof[9];
-  J = determinant_and_cofactor(D, F, cof);
+  J = determinant_and_cofactor<D>(F, cof);
   for (int j = 0; j < N; ++j)
     for (int i = 0; i < D; ++i) {
       double sum = 0.0;
@@ -239,7 +241,7 @@ void NodalPressure::evaluate(std::span<const double> u) const {
   const Model& model = *model_;
   const int count = static_cast<int>(cells_.size()), patches = patch_count();
   for (auto* values : {&J_, &U_, &dU_, &d2U_, &coefficient_, &geometric_}) values->resize(count);
-  dJ_.resize(static_cast<std::size_t>(count) * kCellDofs);
+  dJ_.resize(static_cast<std::size_t>(corner_start_.back()) * model.dim());
   F_.resize(static_cast<std::size_t>(point_start_.back()) * 9);
   for (auto* values : {&JA_, &pA_, &kA_}) values->resize(patches);
   update_uniform_patches();
@@ -247,8 +249,7 @@ void NodalPressure::evaluate(std::span<const double> u) const {
   for (int e = 0; e < count; ++e) {
     double local[kMaxCellDofs], bulk[3];
     model.gather(cells_[e], u, local);
-    cell_kinematics(cells_[e], local, J_[e], &dJ_[static_cast<std::size_t>(e) * kCellDofs],
-                    &F_[static_cast<std::size_t>(point_start_[e]) * 9]);
+    cell_kinematics(cells_[e], local, J_[e], cell_dJ(e), &F_[static_cast<std::size_t>(point_start_[e]) * 9]);
     cell_bulk(cells_[e], J_[e], bulk);
     U_[e] = bulk[0], dU_[e] = bulk[1], d2U_[e] = bulk[2];
   }
@@ -379,7 +380,7 @@ void NodalPressure::assemble_node(int node, std::span<double> gradient, SparseMa
   for (int patch = node_first_patch_[node]; patch < node_first_patch_[node + 1]; ++patch)
     for (int k = patch_cell_start_[patch]; k < patch_cell_start_[patch + 1]; ++k) {
       const int e = patch_cells_[k], cell = cells_[e], n = corners(e), a = pair_corner_[k];
-      const double* g = &dJ_[static_cast<std::size_t>(e) * kCellDofs];
+      const double* g = cell_dJ(e);
       for (int i = 0; i < d; ++i) gradient[node * d + i] += coefficient_[e] * g[a * d + i];
       if (!stiffness) continue;
       const bool linear = model.kernel(cell).linear;
@@ -428,7 +429,7 @@ void NodalPressure::assemble(std::span<const double> u, std::span<double> gradie
         const int e = patch_cells_[k], n = corners(e);
         const double share = rest_volume_[e] / n;
         const int* in_patch = &pair_local_[pair_local_start_[k]];
-        const double* g = &dJ_[static_cast<std::size_t>(e) * kCellDofs];
+        const double* g = cell_dJ(e);
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < d; ++i) w[in_patch[j] * d + i] += share * g[j * d + i];
       }

@@ -66,7 +66,7 @@ class NodalPressure {
   /// Whether a patch's tangent changes with u (a non-linear or blending cell in it).
   bool patch_changes(int patch) const;
 
-  /// Doubles of dJ_e/du per cell: anp cells have at most 6 nodes in 3D (prism6).
+  /// Doubles of dJ_e/du at most per cell: anp cells have at most 6 nodes in 3D (prism6).
   static constexpr int kCellDofs = 18;
 
  private:
@@ -91,6 +91,8 @@ class NodalPressure {
   /// Node `node`'s rows: its force and, when non-null, its rows of the tangent.
   void assemble_node(int node, std::span<double> gradient, SparseMatrix* stiffness) const;
   int corners(int e) const { return corner_start_[e + 1] - corner_start_[e]; }
+  /// dJ_e/du of anp cell e (its nodes by dim) in dJ_, cells packed one after the other.
+  double* cell_dJ(int e) const { return &dJ_[static_cast<std::size_t>(corner_start_[e]) * model_->dim()]; }
 
   const Model* model_;
   std::vector<int> cells_;             ///< the anp cells
