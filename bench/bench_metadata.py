@@ -2,6 +2,7 @@
 does (bench/bench_metadata.cpp): version, date, commit, machine, threads and
 load average, so that a results page can name them."""
 import datetime
+import json
 import os
 import subprocess
 
@@ -37,3 +38,13 @@ def metadata(binary):
         "threads": os.cpu_count(),
         "load_average": " ".join(f"{x:.2f}" for x in os.getloadavg()),
     }
+
+
+def write_result(path, result):
+    """Writes a benchmark's JSON to `path` (indented, one trailing newline) through a
+    temporary file renamed into place: never a half-written result."""
+    partial = f"{path}.partial"
+    with open(partial, "w", encoding="utf-8") as handle:
+        json.dump(result, handle, indent=1)
+        handle.write("\n")
+    os.replace(partial, path)

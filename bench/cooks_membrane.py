@@ -17,7 +17,6 @@ but the `split`.
     /usr/bin/python3 bench/cooks_membrane.py --quick   # ctest: N = 2, 4 and a coarse reference
 """
 import argparse
-import json
 import os
 import re
 import shutil
@@ -26,7 +25,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_metadata import metadata  # noqa: E402
+from bench_metadata import metadata, write_result  # noqa: E402
 from mapped_meshes import SOLIDS, mapped_grid, run_tensormass, write_msh  # noqa: E402
 
 YOUNG, POISSON, FORCE = 250.0, 0.4999, 100.0
@@ -159,9 +158,7 @@ def main():
         "rows": rows,
     }
     if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(result, handle, indent=1)
-            handle.write("\n")
+        write_result(args.json, result)
     return 0
 
 

@@ -27,7 +27,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_metadata import metadata  # noqa: E402
+from bench_metadata import metadata, write_result  # noqa: E402
 
 # element -> `tensormass beam` options making it
 ELEMENTS = {
@@ -163,9 +163,7 @@ def main():
         "costs": costs,
     }
     if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(result, handle, indent=1)
-            handle.write("\n")
+        write_result(args.json, result)
     return 0
 
 

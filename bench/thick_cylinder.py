@@ -21,14 +21,13 @@ settings but the `split`.
     /usr/bin/python3 bench/thick_cylinder.py --quick   # ctest: N = 2 and 4
 """
 import argparse
-import json
 import math
 import os
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_metadata import metadata  # noqa: E402
+from bench_metadata import metadata, write_result  # noqa: E402
 from mapped_meshes import SOLIDS, mapped_grid, run_tensormass, write_msh  # noqa: E402
 
 INNER, OUTER = 1.0, 2.0
@@ -124,9 +123,7 @@ def main():
         "rows": rows,
     }
     if args.json:
-        with open(args.json, "w", encoding="utf-8") as handle:
-            json.dump(result, handle, indent=1)
-            handle.write("\n")
+        write_result(args.json, result)
     return 0
 
 

@@ -6,27 +6,13 @@
 #include <string>
 #include <tuple>
 
+#include "tensormass/kernels/mean_dilatation.hpp"
+
 namespace tensormass {
 
 namespace {
 
 constexpr int kParallelCells = 4096;
-
-/// det F and its cofactor matrix (D by D) for D = 2 (plane strain) or 3.
-template <int D>
-inline double determinant_and_cofactor(const double* F, double* cof) {
-  if constexpr (D == 2) {
-    cof[0] = F[3], cof[1] = -F[2], cof[2] = -F[1], cof[3] = F[0];
-    return F[0] * F[3] - F[1] * F[2];
-  } else {
-    for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-        cof[i * 3 + c] = F[i1 * 3 + c1] * F[i2 * 3 + c2] - F[i1 * 3 + c2] * F[i2 * 3 + c1];
-      }
-    return F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
-  }
-}
 
 /// d2J/du_a du_b (d by d) of nodes a, b with shape gradients g_a, g_b:
 /// eps_ijm (F (g_a x g_b))_m in 3D, eps_ij (g_a x g_b)_z in 2D.
@@ -151,7 +137,7 @@ void one_point_kinematics(bool linear, const double* local, const double* GT, do
     return;
   }
   double cof[9];
-  J = determinant_and_cofactor<D>(F, cof);
+  J = kernel::mean_dilatation::finite_strain::cofactor<D>(F, cof);  // det F
   for (int j = 0; j < N; ++j)
     for (int i = 0; i < D; ++i) {
       double sum = 0.0;

@@ -8,9 +8,11 @@ namespace tensormass::detail {
 Octree::Octree(std::array<double, 3> origin, double base_size, std::array<int, 3> counts, int max_depth)
     : origin_(origin), base_size_(base_size), counts_(counts), max_depth_(max_depth) {
   if (max_depth < 0 || max_depth > 14) throw std::invalid_argument("octree depth out of range");
-  for (int a = 0; a < 3; ++a)
-    if (counts[a] < 1 || (static_cast<std::int64_t>(counts[a]) << (max_depth + 1)) >= (std::int64_t{1} << 20))
+  for (int a = 0; a < 3; ++a) {
+    if (counts[a] < 1) throw std::invalid_argument("octree lattice empty: no base cell along an axis");
+    if ((static_cast<std::int64_t>(counts[a]) << (max_depth + 1)) >= (std::int64_t{1} << 20))
       throw std::invalid_argument("octree lattice too large");
+  }
   for (int i = 0; i < counts[0]; ++i)
     for (int j = 0; j < counts[1]; ++j)
       for (int k = 0; k < counts[2]; ++k) leaves_.insert(cell_key(0, i, j, k));

@@ -122,7 +122,7 @@ TEST(Octree, RefusesDepthsAndGridsItsKeysCannotHold) {
   // 31 base cells of 2^15 lattice units fit below 2^20; 32 do not.
   EXPECT_EQ(construction_error({31, 1, 1}, 14), "");
   EXPECT_EQ(construction_error({1, 32, 1}, 14), "octree lattice too large");
-  EXPECT_EQ(construction_error({1, 1, 0}, 2), "octree lattice too large");
+  EXPECT_EQ(construction_error({1, 1, 0}, 2), "octree lattice empty: no base cell along an axis");
 }
 
 TEST(Octree, CellGeometryLiesOnTheLattice) {
