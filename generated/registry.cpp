@@ -436,6 +436,159 @@ void tm_gent_tri6_whole_stress(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_gent_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_gent_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_hex20_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_hex20_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex20_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_hex20_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_hex27_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_hex27_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex27_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_hex27_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_hex8_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_hex8_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_hex8_fbar_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_hex8_fbar_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_prism15_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_prism15_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism15_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_prism15_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_prism6_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_prism6_anp_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_prism6_anp_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_anp_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_anp_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_prism6_anp_bulk(double, const double*, double*);
+int tm_holzapfel_gasser_ogden_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_pyramid13_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid13_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_pyramid5_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_pyramid5_fbar_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_pyramid5_fbar_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_quad4_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_quad4_fbar_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad4_fbar_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_quad8_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_quad9_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_quad9_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tet10_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tet10_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet10_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tet10_whole_stress(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tet4_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tet4_anp_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tet4_anp_bulk(double, const double*, double*);
+int tm_holzapfel_gasser_ogden_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tri3_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_holzapfel_gasser_ogden_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tri3_anp_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri3_anp_bulk(double, const double*, double*);
+int tm_holzapfel_gasser_ogden_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_holzapfel_gasser_ogden_tri6_whole_energy(const double*, const double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_gradient(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_hessian(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_stress(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_holzapfel_gasser_ogden_tri6_whole_stress_batch(const double*, const double*, double*);
 int tm_hooke_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_hooke_hex20_whole_energy(const double*, const double*);
 void tm_hooke_hex20_whole_gradient(const double*, const double*, double*);
@@ -1246,6 +1399,159 @@ void tm_stvk_tri6_whole_stress(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_stvk_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_stvk_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_hex20_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex20_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex20_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_hex27_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex27_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex27_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_hex8_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_hex8_fbar_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_hex8_fbar_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_prism15_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism15_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism15_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_prism6_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_prism6_anp_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_anp_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_anp_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_prism6_anp_bulk(double, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_quad4_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_quad4_fbar_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad4_fbar_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_quad8_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_quad9_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tet10_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet10_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet10_whole_stress(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tet4_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tet4_anp_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tet4_anp_bulk(double, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tri3_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress_batch(const double*, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tri3_anp_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri3_anp_bulk(double, const double*, double*);
+int tm_transversely_isotropic_mooney_rivlin_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_transversely_isotropic_mooney_rivlin_tri6_whole_energy(const double*, const double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_hessian(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress_batch(const double*, const double*, double*);
 int tm_veronda_westmann_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_veronda_westmann_hex20_whole_energy(const double*, const double*);
 void tm_veronda_westmann_hex20_whole_gradient(const double*, const double*, double*);
@@ -1561,6 +1867,8 @@ const char* const kCorotationalParameters[] = { "young", "poisson" };
 const tm_param_limit kCorotationalLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kGentParameters[] = { "mu", "Jm", "kappa" };
 const tm_param_limit kGentLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
+const char* const kHolzapfel_gasser_ogdenParameters[] = { "c10", "k1", "k2", "kappa", "fibre_x", "fibre_y", "fibre_z", "fibre2_x", "fibre2_y", "fibre2_z" };
+const tm_param_limit kHolzapfel_gasser_ogdenLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 } };
 const char* const kHookeParameters[] = { "young", "poisson" };
 const tm_param_limit kHookeLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kMooney_rivlinParameters[] = { "c10", "c01", "kappa" };
@@ -1571,6 +1879,8 @@ const char* const kStable_neohookeanParameters[] = { "young", "poisson" };
 const tm_param_limit kStable_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
 const char* const kStvkParameters[] = { "young", "poisson" };
 const tm_param_limit kStvkLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -1.0, 0.5, 0, 0 } };
+const char* const kTransversely_isotropic_mooney_rivlinParameters[] = { "c10", "c01", "eta", "kappa", "fibre_x", "fibre_y", "fibre_z" };
+const tm_param_limit kTransversely_isotropic_mooney_rivlinLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 } };
 const char* const kVeronda_westmannParameters[] = { "c1", "c2", "kappa" };
 const tm_param_limit kVeronda_westmannLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 const char* const kYeohParameters[] = { "c10", "c20", "c30", "kappa" };
@@ -2002,6 +2312,156 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
    tm_gent_tri6_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "hex20", "whole", 3, 20, 60, 27, 10, 10, 1657,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex20_whole_precompute, tm_holzapfel_gasser_ogden_hex20_whole_energy, tm_holzapfel_gasser_ogden_hex20_whole_gradient,
+   tm_holzapfel_gasser_ogden_hex20_whole_hessian, tm_holzapfel_gasser_ogden_hex20_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex20_whole_stress, 13311, 33210, 492669,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "hex27", "whole", 3, 27, 81, 27, 10, 10, 2224,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex27_whole_precompute, tm_holzapfel_gasser_ogden_hex27_whole_energy, tm_holzapfel_gasser_ogden_hex27_whole_gradient,
+   tm_holzapfel_gasser_ogden_hex27_whole_hessian, tm_holzapfel_gasser_ogden_hex27_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex27_whole_stress, 16713, 40014, 832869,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "hex8", "whole", 3, 8, 24, 8, 10, 10, 210,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_whole_precompute, tm_holzapfel_gasser_ogden_hex8_whole_energy, tm_holzapfel_gasser_ogden_hex8_whole_gradient,
+   tm_holzapfel_gasser_ogden_hex8_whole_hessian, tm_holzapfel_gasser_ogden_hex8_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex8_whole_stress, 2216, 6384, 38840,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "hex8", "fbar", 3, 8, 24, 8, 10, 10, 210,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_fbar_precompute, tm_holzapfel_gasser_ogden_hex8_fbar_energy, tm_holzapfel_gasser_ogden_hex8_fbar_gradient,
+   tm_holzapfel_gasser_ogden_hex8_fbar_hessian, tm_holzapfel_gasser_ogden_hex8_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_hex8_fbar_stress, 2648, 7104, 50648,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "prism15", "whole", 3, 15, 45, 18, 10, 10, 838,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism15_whole_precompute, tm_holzapfel_gasser_ogden_prism15_whole_energy, tm_holzapfel_gasser_ogden_prism15_whole_gradient,
+   tm_holzapfel_gasser_ogden_prism15_whole_hessian, tm_holzapfel_gasser_ogden_prism15_whole_gradient_hessian, tm_holzapfel_gasser_ogden_prism15_whole_stress, 7254, 18900, 205326,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "prism6", "whole", 3, 6, 18, 6, 10, 10, 124,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_whole_precompute, tm_holzapfel_gasser_ogden_prism6_whole_energy, tm_holzapfel_gasser_ogden_prism6_whole_gradient,
+   tm_holzapfel_gasser_ogden_prism6_whole_hessian, tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian, tm_holzapfel_gasser_ogden_prism6_whole_stress, 1446, 4356, 21786,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_prism6_whole_gradient_batch, tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_prism6_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "prism6", "anp", 3, 6, 18, 6, 10, 10, 124,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_anp_precompute, tm_holzapfel_gasser_ogden_prism6_anp_energy, tm_holzapfel_gasser_ogden_prism6_anp_gradient,
+   tm_holzapfel_gasser_ogden_prism6_anp_hessian, tm_holzapfel_gasser_ogden_prism6_anp_gradient_hessian, tm_holzapfel_gasser_ogden_prism6_anp_stress, 1770, 4896, 29778,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_holzapfel_gasser_ogden_prism6_anp_bulk},
+
+  {"holzapfel_gasser_ogden", "pyramid13", "whole", 3, 13, 39, 27, 10, 10, 1090,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid13_whole_precompute, tm_holzapfel_gasser_ogden_pyramid13_whole_energy, tm_holzapfel_gasser_ogden_pyramid13_whole_gradient,
+   tm_holzapfel_gasser_ogden_pyramid13_whole_hessian, tm_holzapfel_gasser_ogden_pyramid13_whole_gradient_hessian, tm_holzapfel_gasser_ogden_pyramid13_whole_stress, 9909, 26406, 247725,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "pyramid5", "whole", 3, 5, 15, 8, 10, 10, 138,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_whole_precompute, tm_holzapfel_gasser_ogden_pyramid5_whole_energy, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient,
+   tm_holzapfel_gasser_ogden_pyramid5_whole_hessian, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian, tm_holzapfel_gasser_ogden_pyramid5_whole_stress, 1784, 5520, 25016,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_batch, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_pyramid5_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "pyramid5", "fbar", 3, 5, 15, 8, 10, 10, 138,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_fbar_precompute, tm_holzapfel_gasser_ogden_pyramid5_fbar_energy, tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient,
+   tm_holzapfel_gasser_ogden_pyramid5_fbar_hessian, tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_pyramid5_fbar_stress, 2216, 6240, 34556,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "quad4", "whole", 2, 4, 8, 4, 10, 10, 46,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_whole_precompute, tm_holzapfel_gasser_ogden_quad4_whole_energy, tm_holzapfel_gasser_ogden_quad4_whole_gradient,
+   tm_holzapfel_gasser_ogden_quad4_whole_hessian, tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian, tm_holzapfel_gasser_ogden_quad4_whole_stress, 416, 984, 3316,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad4_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_quad4_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "quad4", "fbar", 2, 4, 8, 4, 10, 10, 46,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_fbar_precompute, tm_holzapfel_gasser_ogden_quad4_fbar_energy, tm_holzapfel_gasser_ogden_quad4_fbar_gradient,
+   tm_holzapfel_gasser_ogden_quad4_fbar_hessian, tm_holzapfel_gasser_ogden_quad4_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_quad4_fbar_stress, 512, 1144, 4628,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "quad8", "whole", 2, 8, 16, 9, 10, 10, 163,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad8_whole_precompute, tm_holzapfel_gasser_ogden_quad8_whole_energy, tm_holzapfel_gasser_ogden_quad8_whole_gradient,
+   tm_holzapfel_gasser_ogden_quad8_whole_hessian, tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian, tm_holzapfel_gasser_ogden_quad8_whole_stress, 1224, 2790, 13581,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad8_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_quad8_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "quad9", "whole", 2, 9, 18, 9, 10, 10, 181,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad9_whole_precompute, tm_holzapfel_gasser_ogden_quad9_whole_energy, tm_holzapfel_gasser_ogden_quad9_whole_gradient,
+   tm_holzapfel_gasser_ogden_quad9_whole_hessian, tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian, tm_holzapfel_gasser_ogden_quad9_whole_stress, 1296, 2934, 15651,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad9_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_quad9_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "tet10", "whole", 3, 10, 30, 4, 10, 10, 134,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet10_whole_precompute, tm_holzapfel_gasser_ogden_tet10_whole_energy, tm_holzapfel_gasser_ogden_tet10_whole_gradient,
+   tm_holzapfel_gasser_ogden_tet10_whole_hessian, tm_holzapfel_gasser_ogden_tet10_whole_gradient_hessian, tm_holzapfel_gasser_ogden_tet10_whole_stress, 1252, 3480, 25468,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "tet4", "whole", 3, 4, 12, 1, 10, 10, 23,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_whole_precompute, tm_holzapfel_gasser_ogden_tet4_whole_energy, tm_holzapfel_gasser_ogden_tet4_whole_gradient,
+   tm_holzapfel_gasser_ogden_tet4_whole_hessian, tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian, tm_holzapfel_gasser_ogden_tet4_whole_stress, 205, 654, 2695,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_whole_gradient_batch, tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_tet4_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "tet4", "anp", 3, 4, 12, 1, 10, 10, 23,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_anp_precompute, tm_holzapfel_gasser_ogden_tet4_anp_energy, tm_holzapfel_gasser_ogden_tet4_anp_gradient,
+   tm_holzapfel_gasser_ogden_tet4_anp_hessian, tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian, tm_holzapfel_gasser_ogden_tet4_anp_stress, 205, 654, 2695,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_anp_gradient_batch, tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_tet4_anp_stress_batch,
+   tm_holzapfel_gasser_ogden_tet4_anp_bulk},
+
+  {"holzapfel_gasser_ogden", "tri3", "whole", 2, 3, 6, 1, 10, 10, 17,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_whole_precompute, tm_holzapfel_gasser_ogden_tri3_whole_energy, tm_holzapfel_gasser_ogden_tri3_whole_gradient,
+   tm_holzapfel_gasser_ogden_tri3_whole_hessian, tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian, tm_holzapfel_gasser_ogden_tri3_whole_stress, 96, 230, 719,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_tri3_whole_stress_batch,
+   nullptr},
+
+  {"holzapfel_gasser_ogden", "tri3", "anp", 2, 3, 6, 1, 10, 10, 17,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_anp_precompute, tm_holzapfel_gasser_ogden_tri3_anp_energy, tm_holzapfel_gasser_ogden_tri3_anp_gradient,
+   tm_holzapfel_gasser_ogden_tri3_anp_hessian, tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian, tm_holzapfel_gasser_ogden_tri3_anp_stress, 96, 230, 719,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_anp_gradient_batch, tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_tri3_anp_stress_batch,
+   tm_holzapfel_gasser_ogden_tri3_anp_bulk},
+
+  {"holzapfel_gasser_ogden", "tri6", "whole", 2, 6, 12, 3, 10, 10, 49,
+   kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri6_whole_precompute, tm_holzapfel_gasser_ogden_tri6_whole_energy, tm_holzapfel_gasser_ogden_tri6_whole_gradient,
+   tm_holzapfel_gasser_ogden_tri6_whole_hessian, tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian, tm_holzapfel_gasser_ogden_tri6_whole_stress, 360, 834, 3363,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri6_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian_batch,
+   tm_holzapfel_gasser_ogden_tri6_whole_stress_batch,
    nullptr},
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
@@ -2813,6 +3273,156 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 7, 7, 1654,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex20_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex20_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_hex20_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex20_whole_stress, 13068, 32265, 484191,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 7, 7, 2221,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex27_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex27_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_hex27_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex27_whole_stress, 16470, 39069, 824391,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 7, 7, 207,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_hex8_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_whole_stress, 2144, 6104, 36328,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 7, 7, 207,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_energy, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient,
+   tm_transversely_isotropic_mooney_rivlin_hex8_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_stress, 2576, 6824, 48136,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 7, 7, 835,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism15_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism15_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_prism15_whole_hessian, tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_prism15_whole_stress, 7092, 18270, 199674,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 7, 7, 121,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_prism6_whole_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress, 1392, 4146, 19902,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 7, 7, 121,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_anp_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_anp_energy, tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient,
+   tm_transversely_isotropic_mooney_rivlin_prism6_anp_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_anp_stress, 1716, 4686, 27894,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_transversely_isotropic_mooney_rivlin_prism6_anp_bulk},
+
+  {"transversely_isotropic_mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 7, 7, 1087,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_stress, 9666, 25461, 239247,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 7, 7, 135,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress, 1712, 5240, 22504,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 7, 7, 135,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient,
+   tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_stress, 2144, 5960, 32044,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 7, 7, 43,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_quad4_whole_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress, 384, 920, 2840,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 7, 7, 43,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_energy, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient,
+   tm_transversely_isotropic_mooney_rivlin_quad4_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_stress, 480, 1080, 4152,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 7, 7, 160,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad8_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_quad8_whole_hessian, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress, 1152, 2646, 12510,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 7, 7, 178,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad9_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad9_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_quad9_whole_hessian, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress, 1224, 2790, 14580,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 7, 7, 131,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet10_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet10_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tet10_whole_hessian, tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tet10_whole_stress, 1216, 3340, 24212,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 7, 7, 20,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tet4_whole_hessian, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress, 196, 619, 2381,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 7, 7, 20,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_anp_energy, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tet4_anp_hessian, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress, 196, 619, 2381,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress_batch,
+   tm_transversely_isotropic_mooney_rivlin_tet4_anp_bulk},
+
+  {"transversely_isotropic_mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 7, 7, 14,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tri3_whole_hessian, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress, 88, 214, 600,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress_batch,
+   nullptr},
+
+  {"transversely_isotropic_mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 7, 7, 14,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_anp_energy, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tri3_anp_hessian, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress, 88, 214, 600,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress_batch,
+   tm_transversely_isotropic_mooney_rivlin_tri3_anp_bulk},
+
+  {"transversely_isotropic_mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 7, 7, 46,
+   kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri6_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient,
+   tm_transversely_isotropic_mooney_rivlin_tri6_whole_hessian, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress, 336, 786, 3006,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian_batch,
+   tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress_batch,
    nullptr},
 
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,

@@ -59,6 +59,26 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/gent_tri3_anp.cpp
   kernels/gent_tri3_whole.cpp
   kernels/gent_tri6_whole.cpp
+  kernels/holzapfel_gasser_ogden_hex20_whole.cpp
+  kernels/holzapfel_gasser_ogden_hex27_whole.cpp
+  kernels/holzapfel_gasser_ogden_hex8_fbar.cpp
+  kernels/holzapfel_gasser_ogden_hex8_whole.cpp
+  kernels/holzapfel_gasser_ogden_prism15_whole.cpp
+  kernels/holzapfel_gasser_ogden_prism6_anp.cpp
+  kernels/holzapfel_gasser_ogden_prism6_whole.cpp
+  kernels/holzapfel_gasser_ogden_pyramid13_whole.cpp
+  kernels/holzapfel_gasser_ogden_pyramid5_fbar.cpp
+  kernels/holzapfel_gasser_ogden_pyramid5_whole.cpp
+  kernels/holzapfel_gasser_ogden_quad4_fbar.cpp
+  kernels/holzapfel_gasser_ogden_quad4_whole.cpp
+  kernels/holzapfel_gasser_ogden_quad8_whole.cpp
+  kernels/holzapfel_gasser_ogden_quad9_whole.cpp
+  kernels/holzapfel_gasser_ogden_tet10_whole.cpp
+  kernels/holzapfel_gasser_ogden_tet4_anp.cpp
+  kernels/holzapfel_gasser_ogden_tet4_whole.cpp
+  kernels/holzapfel_gasser_ogden_tri3_anp.cpp
+  kernels/holzapfel_gasser_ogden_tri3_whole.cpp
+  kernels/holzapfel_gasser_ogden_tri6_whole.cpp
   kernels/hooke_hex20_whole.cpp
   kernels/hooke_hex27_whole.cpp
   kernels/hooke_hex8_fbar.cpp
@@ -168,6 +188,26 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/stvk_tri3_tensor.cpp
   kernels/stvk_tri3_whole.cpp
   kernels/stvk_tri6_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_hex20_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_hex27_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_hex8_fbar.cpp
+  kernels/transversely_isotropic_mooney_rivlin_hex8_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_prism15_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_prism6_anp.cpp
+  kernels/transversely_isotropic_mooney_rivlin_prism6_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_pyramid13_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_pyramid5_fbar.cpp
+  kernels/transversely_isotropic_mooney_rivlin_pyramid5_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_quad4_fbar.cpp
+  kernels/transversely_isotropic_mooney_rivlin_quad4_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_quad8_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_quad9_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tet10_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tet4_anp.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tet4_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tri3_anp.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tri3_whole.cpp
+  kernels/transversely_isotropic_mooney_rivlin_tri6_whole.cpp
   kernels/veronda_westmann_hex20_whole.cpp
   kernels/veronda_westmann_hex27_whole.cpp
   kernels/veronda_westmann_hex8_fbar.cpp

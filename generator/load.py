@@ -7,6 +7,7 @@ later stages rely on about the files' structure is checked here.
 """
 from __future__ import annotations
 
+import ast
 import re
 import tomllib
 from pathlib import Path
@@ -14,7 +15,8 @@ from typing import Any
 
 import sympy
 
-from .model import ElementSpec, FormatOrder, Inputs, LawSpec, ParamLimit, QuadratureRule
+from .model import (FIBRE_CONSTANTS, FIBRE_INVARIANT_FAMILIES, FIBRE_PARAMETERS, ElementSpec, FormatOrder, Inputs,
+                    LawSpec, ParamLimit, QuadratureRule)
 
 REFERENCE_VARIABLES = sympy.symbols("r s t", real=True)
 ELEMENT_KEYS = {
@@ -248,6 +250,16 @@ def _bulk_text(data: dict, volumetric: str, source: str) -> str:
     return data["bulk"]
 
 
+def _fibre_families(energy: str, source: str) -> int:
+    """How many fibre families the energy's invariants read (0, 1 or 2)."""
+    try:
+        tree = ast.parse(energy.replace("^", "**"), mode="eval")
+    except SyntaxError:
+        return 0  # the symbolic stage reports the syntax error with its key
+    names = {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
+    return max((FIBRE_INVARIANT_FAMILIES.get(name, 0) for name in names), default=0)
+
+
 def load_law(path: Path) -> LawSpec:
     source = str(path)
     data = _read_toml(path)
@@ -262,8 +274,13 @@ def load_law(path: Path) -> LawSpec:
         raise _fail(source, "parameters", "expected a non-empty list of identifiers")
     if len(set(parameters)) != len(parameters):
         raise _fail(source, "parameters", "a parameter is listed twice")
+    reserved = sorted(set(parameters) & {n for family in FIBRE_PARAMETERS + FIBRE_CONSTANTS for n in family})
+    if reserved:
+        raise _fail(source, "parameters", f"{reserved} are the fibre directions' names (set per cell by the "
+                    "scene); rename them")
     energy, isochoric, volumetric = _energy_text(data, source)
     bulk = _bulk_text(data, volumetric, source)
+    families = _fibre_families(energy, source)
     symbols = {p: sympy.Symbol(p, real=True) for p in parameters}
     derived = []
     if not isinstance(data.get("derived", {}), dict):
@@ -280,19 +297,22 @@ def load_law(path: Path) -> LawSpec:
         if unknown:
             raise _fail(source, key, f"unknown symbols {sorted(map(str, unknown))}; parameters are {parameters}")
         derived.append((name, expr))
+    limits = _limits(data.get("limits", []), parameters, source)
+    fibres = tuple(name for family in FIBRE_PARAMETERS[:families] for name in family)
     return LawSpec(
         name=data["name"],
         description=str(data["description"]),
         source=source,
         energy=energy,
-        parameters=tuple(parameters),
+        parameters=tuple(parameters) + fibres,
         derived=tuple(derived),
         invertible=data.get("invertible", False),
-        limits=_limits(data.get("limits", []), parameters, source),
+        limits=limits + (ParamLimit(),) * len(fibres) if limits else (),
         isochoric=isochoric,
         volumetric=volumetric,
         bulk=bulk,
         rotation_invariant=data.get("rotation_invariant", True),
+        fibre_families=families,
     )
 
 

@@ -88,6 +88,27 @@ class ParamLimit:
     upper_inclusive: bool = False
 
 
+# Fibre families: the parameters a law with fibre invariants takes after its
+# own (the runtime fills them per cell from the scene's fibre field), the
+# unit directions the energy reads (among its constants), and the invariants
+# of each family: I4 = a0.C a0, I5 = a0.C^2 a0, I6 = g0.C g0, I7 = g0.C^2 g0,
+# I8 = a0.C g0; the `bar` ones with J^(-2/3) C.
+FIBRE_PARAMETERS = (("fibre_x", "fibre_y", "fibre_z"), ("fibre2_x", "fibre2_y", "fibre2_z"))
+FIBRE_CONSTANTS = (("a0x", "a0y", "a0z"), ("g0x", "g0y", "g0z"))
+FIBRE_INVARIANT_FAMILIES = {"I4": 1, "I5": 1, "I4bar": 1, "I5bar": 1, "I6": 2, "I7": 2, "I6bar": 2, "I7bar": 2,
+                            "I8": 2, "I8bar": 2}
+
+
+def fibre_constants(families: int) -> tuple[tuple[str, sympy.Expr], ...]:
+    """(name, expression) of the unit fibre directions: each family's parameters divided by their norm."""
+    out = []
+    for parameters, constants in zip(FIBRE_PARAMETERS[:families], FIBRE_CONSTANTS[:families]):
+        components = [sympy.Symbol(p, real=True) for p in parameters]
+        norm = sympy.sqrt(sum(c ** 2 for c in components))
+        out.extend((name, c / norm) for name, c in zip(constants, components))
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class LawSpec:
     """A law file. The energy reads `constants`: the derived parameters when
@@ -112,13 +133,22 @@ class LawSpec:
     # its `energy`; "" when it has none. The anp split integrates it at the nodes.
     bulk: str = ""
     rotation_invariant: bool = True  # W(QF) = W(F) for every rotation Q (the file's claim, checked by tests)
+    # Fibre families the energy reads (0, 1 or 2): their FIBRE_PARAMETERS end
+    # `parameters` and their FIBRE_CONSTANTS end `constants`.
+    fibre_families: int = 0
 
     @property
     def constants(self) -> tuple[tuple[str, sympy.Expr], ...]:
         """(name, expression of the parameters) of each symbol the energy reads besides the kinematics."""
+        fibres = fibre_constants(self.fibre_families)
         if self.derived:
-            return self.derived
-        return tuple((name, sympy.Symbol(name, real=True)) for name in self.parameters)
+            return self.derived + fibres
+        return tuple((name, sympy.Symbol(name, real=True)) for name in self.own_parameters) + fibres
+
+    @property
+    def own_parameters(self) -> tuple[str, ...]:
+        """The parameters the law file lists (`parameters` without the fibre components)."""
+        return self.parameters[: len(self.parameters) - 3 * self.fibre_families]
 
     @property
     def split_volumetric(self) -> bool:

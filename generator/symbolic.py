@@ -27,13 +27,18 @@ import functools
 import sympy
 
 from .load import REFERENCE_VARIABLES, GeneratorInputError
-from .model import ElementSpec, ElementTables, Inputs, LawDerivatives, LawSpec, StrainQuadratic, SymbolicIR
+from .model import FIBRE_CONSTANTS, ElementSpec, ElementTables, Inputs, LawDerivatives, LawSpec, StrainQuadratic, SymbolicIR
 
 # Names a law's energy may use, besides its constants (docs/laws.md). In 2D
 # (plane strain, F33 = 1) the invariants are those of the 3D C = diag(C2, 1).
-KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "I1bar", "I2bar", "R", "S", "d", "I")
+# The fibre invariants I4 .. I8 (model.FIBRE_INVARIANT_FAMILIES) read the unit
+# fibre directions a0, g0 of the cell, 3 components in 2D too (a0z enters as
+# the out-of-plane stretch 1).
+FIBRE_NAMES = ("I4", "I5", "I6", "I7", "I8")
+KINEMATIC_NAMES = ("F", "H", "C", "E", "eps", "J", "I1", "I2", "I3", "I1bar", "I2bar", "R", "S", "d", "I") + \
+    FIBRE_NAMES + tuple(name + "bar" for name in FIBRE_NAMES)
 # The names each part of a split energy may read besides constants and functions.
-ISOCHORIC_NAMES = ("I1bar", "I2bar")
+ISOCHORIC_NAMES = ("I1bar", "I2bar") + tuple(name + "bar" for name in FIBRE_NAMES)
 VOLUMETRIC_NAMES = ("J",)
 ROTATION_NAMES = ("R", "S")
 FUNCTION_NAMES = ("tr", "det", "inv", "log", "exp", "sqrt", "transpose")
@@ -209,6 +214,24 @@ def _determinant(dim: int) -> sympy.Expr:
     return (sympy.eye(dim) + sympy.Matrix(dim, dim, gradient_symbols(dim))).det()
 
 
+def _fibre_invariants(C: sympy.Matrix, dim: int) -> dict:
+    """Builders of I4 .. I8 and their isochoric forms (J^(-2/3) C) from the
+    fibre constants; in 2D C = diag(C2, 1), so a direction's z component adds
+    its square (I4, I5) or the product (I8)."""
+    a, g = ([sympy.Symbol(n, real=True) for n in names] for names in FIBRE_CONSTANTS)
+
+    def pair(u, v, power):
+        inner, outer = sympy.Matrix(u[:dim]), sympy.Matrix(v[:dim])
+        value = (inner.T * C ** power * outer)[0]
+        return value + (u[2] * v[2] if dim == 2 else 0)
+
+    plain = {"I4": lambda: pair(a, a, 1), "I5": lambda: pair(a, a, 2), "I6": lambda: pair(g, g, 1),
+             "I7": lambda: pair(g, g, 2), "I8": lambda: pair(a, g, 1)}
+    powers = {"I4": 2, "I5": 4, "I6": 2, "I7": 4, "I8": 2}  # J^(-1/3) to the power: J^(-2/3) C, its square
+    bars = {name + "bar": (lambda n=name: ROOT_J ** powers[n] * plain[n]()) for name in plain}
+    return {**plain, **bars}
+
+
 @functools.lru_cache(maxsize=None)
 def _law_energy(law: LawSpec, dim: int) -> sympy.Expr:
     """psi as an expression of H0.., the law's constants and ROOT_J (standing for J^(-1/3))."""
@@ -227,6 +250,7 @@ def _law_energy(law: LawSpec, dim: int) -> sympy.Expr:
         "I1bar": lambda: ROOT_J ** 2 * I1(), "I2bar": lambda: ROOT_J ** 4 * I2(),
         "R": lambda: R, "S": lambda: R.T * F, "d": lambda: sympy.Integer(dim), "I": lambda: identity,
     }
+    names.update(_fibre_invariants(C, dim))
     used = _energy_names(law)
     psi = _evaluate(law, {name: value() for name, value in names.items() if name in used})
     allowed = set(gradient_symbols(dim)) | set(parameter_symbols(law).values()) | set(rotation_symbols(dim))

@@ -207,3 +207,67 @@ def test_mooney_rivlin_shear_stress_is_linear_in_the_shear(path):
     assert F[0, 1] == gamma
     actual = _generator_stress(law, 3, F)
     assert actual[0, 1] == pytest.approx(2 * (p["c10"] + p["c01"]) * gamma, rel=1e-12)
+
+
+# --- Fibre laws -------------------------------------------------------------------
+# Per law the fibre terms' derivatives (dW/dI4bar, dW/dI6bar) and the matrix's
+# (dW/dI1bar, dW/dI2bar, dU/dJ). A fibre family a0 adds to the Cauchy stress
+# (Holzapfel, Nonlinear Solid Mechanics, 6.7)
+#   2/J W4 (abar abar^T - I4bar/3 I),  abar = J^(-1/3) F a0,  I4bar = |abar|^2.
+FIBRE_FORMS = {
+    "transversely_isotropic_mooney_rivlin": lambda p, I1, I2, I4, I6, J: (
+        (p["c10"], p["c01"], p["kappa"] * (J - 1)), (p["eta"] * (I4 - 1), 0.0)),
+    "holzapfel_gasser_ogden": lambda p, I1, I2, I4, I6, J: (
+        (p["c10"], 0.0, p["kappa"] / 2 * (J - 1 / J)),
+        tuple(p["k1"] * (I - 1) * numpy.exp(p["k2"] * (I - 1) ** 2) for I in (I4, I6))),
+}
+FIBRE_FILES = [p for p in LAW_FILES if p.stem in FIBRE_FORMS]
+# Fibre directions (first family; the second is the first turned 90 degrees
+# about z) along, across and at 45 degrees to the stretch of DEFORMATIONS.
+FIBRE_DIRECTIONS = {"along": (1.0, 0.0, 0.0), "across": (0.0, 1.0, 0.0), "at_45": (0.6, 0.6, 0.0)}
+
+
+def _fibre_parameters(law, direction) -> dict:
+    second = (-direction[1], direction[0], direction[2])
+    values = {p: sympy.Rational(round(value_inside(law.limit(p), i), 6)) for i, p in enumerate(law.own_parameters)}
+    for name, component in zip(("fibre_x", "fibre_y", "fibre_z", "fibre2_x", "fibre2_y", "fibre2_z"),
+                               direction + second):
+        values[name] = sympy.Rational(str(component))
+    return {name: value for name, value in values.items() if name in law.parameters}
+
+
+def _fibre_closed_form_stress(law, p: dict, F: numpy.ndarray) -> numpy.ndarray:
+    J = numpy.linalg.det(F)
+    Bbar = J ** (-2 / 3) * F @ F.T
+    I1 = numpy.trace(Bbar)
+    I2 = (I1 ** 2 - numpy.trace(Bbar @ Bbar)) / 2
+    fibres = []
+    for family in ("fibre", "fibre2"):
+        a0 = numpy.array([p.get(f"{family}_{c}", 0.0) for c in "xyz"])
+        fibres.append(J ** (-1 / 3) * F @ (a0 / numpy.linalg.norm(a0)) if a0.any() else numpy.zeros(3))
+    I4, I6 = (a @ a for a in fibres)
+    (W1, W2, dU), (W4, W6) = FIBRE_FORMS[law.name](p, I1, I2, I4, I6, J)
+    sigma = 2 / J * ((W1 + I1 * W2) * Bbar - W2 * Bbar @ Bbar - (W1 * I1 + 2 * W2 * I2) / 3 * numpy.eye(3))
+    for W, a in ((W4, fibres[0]), (W6, fibres[1])):
+        sigma += 2 / J * W * (numpy.outer(a, a) - a @ a / 3 * numpy.eye(3))
+    sigma += dU * numpy.eye(3)
+    return J * sigma @ numpy.linalg.inv(F).T
+
+
+@pytest.mark.parametrize("direction", sorted(FIBRE_DIRECTIONS))
+@pytest.mark.parametrize("deformation", sorted(DEFORMATIONS))
+@pytest.mark.parametrize("dim", DIMS)
+@pytest.mark.parametrize("path", FIBRE_FILES, ids=_ids)
+def test_fibre_law_stress_matches_the_closed_form(path, dim, deformation, direction):
+    law = _law(path)
+    F = (DEFORMATIONS if dim == 3 else DEFORMATIONS_2D)[deformation]
+    parameters = _fibre_parameters(law, FIBRE_DIRECTIONS[direction])
+    _, P, _ = law_derivatives(law, dim)
+    Fd = sympy.Matrix(dim, dim, [sympy.Rational(str(x)) for x in F[:dim, :dim].flatten()])
+    at = dict(zip(gradient_symbols(dim), Fd - sympy.eye(dim)))
+    symbols = {sympy.Symbol(name, real=True): value for name, value in parameters.items()}
+    at.update({sympy.Symbol(name, real=True): sympy.sympify(expr).subs(symbols) for name, expr in law.constants})
+    actual = numpy.array([_number(p, at) for p in P]).reshape(dim, dim)
+    expected = _fibre_closed_form_stress(law, {n: float(v) for n, v in parameters.items()}, F)[:dim, :dim]
+    numpy.testing.assert_allclose(actual, expected, rtol=1e-11, atol=1e-11 * abs(expected).max())
+

@@ -179,3 +179,26 @@ def test_bulk_part_is_the_files_bulk_or_its_volumetric_part(tmp_path):
     assert load_law(path).bulk == "kappa/2*(J - 1)**2"
     path.write_text(_SPLIT_LAW + 'energy = "c10*(I1 - 3)"\n')
     assert load_law(path).bulk == ""
+
+
+@pytest.mark.parametrize("energy, families", [("c*(I1 - 3)", 0), ("c*(I1 - 3) + c*(I4 - 1)**2", 1),
+                                              ("c*(I5 - 1)", 1), ("c*(I4bar - 1) + c*I8bar", 2),
+                                              ("c*(I6 - 1)", 2)])
+def test_fibre_invariants_append_the_direction_parameters(tmp_path, energy, families):
+    path = tmp_path / "fibred.toml"
+    path.write_text(f'name = "fibred"\ndescription = "d"\nenergy = "{energy}"\nparameters = ["c"]\n'
+                    'limits = ["c > 0"]\n')
+    law = load_law(path)
+    directions = ("fibre_x", "fibre_y", "fibre_z", "fibre2_x", "fibre2_y", "fibre2_z")[: 3 * families]
+    assert law.fibre_families == families
+    assert law.parameters == ("c",) + directions
+    assert law.own_parameters == ("c",)
+    assert len(law.limits) == len(law.parameters)
+    assert [name for name, _ in law.constants] == ["c"] + ["a0x", "a0y", "a0z", "g0x", "g0y", "g0z"][: 3 * families]
+
+
+def test_fibre_direction_names_are_reserved(tmp_path):
+    path = tmp_path / "fibred.toml"
+    path.write_text('name = "fibred"\ndescription = "d"\nenergy = "fibre_x*(I4 - 1)"\nparameters = ["fibre_x"]\n')
+    with pytest.raises(GeneratorInputError, match=r"fibred.toml: key 'parameters': .*fibre directions"):
+        load_law(path)

@@ -1,5 +1,6 @@
 #include "tensormass/kernels/law_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -49,6 +50,12 @@ std::vector<double> parameter_array(const tm_kernel& kernel, const std::map<std:
   values.reserve(static_cast<std::size_t>(kernel.params));
   for (int p = 0; p < kernel.params; ++p) {
     const auto found = constants.find(kernel.param_names[p]);
+    if (found == constants.end() && is_fibre_parameter(kernel.param_names[p])) {
+      const std::string_view name = kernel.param_names[p];
+      const bool second = name.starts_with("fibre2_");
+      values.push_back(name.ends_with(second ? "y" : "x") ? 1.0 : 0.0);
+      continue;
+    }
     if (found == constants.end())
       throw InputError(owner + ": law " + kernel.law + " needs the constant '" + kernel.param_names[p] +
                        "' (its parameters: " + joined(parameter_names(kernel)) + ")");
@@ -71,6 +78,18 @@ std::vector<double> admissible_parameters(const tm_kernel& kernel) {
                                  : 1.0);
   }
   return values;
+}
+
+bool is_fibre_parameter(std::string_view name) { return name.starts_with("fibre_") || name.starts_with("fibre2_"); }
+
+int fibre_families(const tm_kernel& kernel) {
+  int families = 0;
+  for (int p = 0; p < kernel.params; ++p) {
+    const std::string_view name = kernel.param_names[p];
+    if (name == "fibre_x") families = std::max(families, 1);
+    if (name == "fibre2_x") families = 2;
+  }
+  return families;
 }
 
 int precompute_checked(const tm_kernel& kernel, const double* rest_positions, std::span<const double> params,

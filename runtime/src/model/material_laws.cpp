@@ -15,7 +15,7 @@ namespace {
 /// Whether `constants` has every parameter of `kernel`'s law.
 bool has_parameters(const tm_kernel& kernel, const std::map<std::string, double>& constants) {
   for (int p = 0; p < kernel.params; ++p)
-    if (!constants.contains(kernel.param_names[p])) return false;
+    if (!constants.contains(kernel.param_names[p]) && !is_fibre_parameter(kernel.param_names[p])) return false;
   return true;
 }
 
@@ -65,7 +65,7 @@ std::array<double, 2> elastic_lame(double young, double poisson) {
 }  // namespace
 
 MaterialLaws::MaterialLaws(const MaterialSpec& material, std::string owner)
-    : constants_(material.constants), owner_(std::move(owner)) {
+    : constants_(material.constants), fibres_(material.fibres), owner_(std::move(owner)) {
   const Registry& registry = Registry::instance();
   const tm_kernel* own = registry.law_kernel(material.law);
   if (!own) throw std::invalid_argument(owner_ + ": unknown law '" + material.law + "'");
@@ -105,6 +105,12 @@ const std::vector<double>& MaterialLaws::parameters(const tm_kernel& kernel) con
 
 bool MaterialLaws::share_constants(std::string_view a, std::string_view b) const {
   const auto first = laws_.find(a), second = laws_.find(b);
+  // The fibre directions among the leading constants differ cell by cell.
+  const auto fibred = [](std::string_view law) {
+    const tm_kernel* kernel = Registry::instance().law_kernel(law);
+    return kernel && fibre_families(*kernel) > 0;
+  };
+  if (fibred(a) || fibred(b)) return false;
   return first != laws_.end() && second != laws_.end() && first->second.leading_consts == second->second.leading_consts;
 }
 

@@ -101,8 +101,8 @@ void Model::precompute(int cell) {
   double rest[kMaxCellDofs] = {};
   add_rest_positions(cell, rest);
   const MaterialLaws& material = materials_[cell_material_[cell]];
-  const int status = precompute_checked(kernel, rest, material.parameters(kernel),
-                                        consts_.data() + consts_offsets_[cell], material.owner());
+  const std::vector<double> params = cell_parameters(cell, kernel, rest);
+  const int status = precompute_checked(kernel, rest, params, consts_.data() + consts_offsets_[cell], material.owner());
   if (status != 0)
     throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) +
                      " has a non-positive Jacobian at rest (quadrature point " + std::to_string(status - 1) +
@@ -111,6 +111,27 @@ void Model::precompute(int cell) {
   if (corner >= 0)
     throw InputError(mesh_->source + ": " + mesh_->describe_cell(cell) + " has a non-positive Jacobian at corner " +
                      std::to_string(corner) + " at rest: inverted or degenerate element");
+}
+
+std::vector<double> Model::cell_parameters(int cell, const tm_kernel& kernel, const double* rest) const {
+  const MaterialLaws& material = materials_[cell_material_[cell]];
+  std::vector<double> params = material.parameters(kernel);
+  const int families = fibre_families(kernel);
+  if (families == 0) return params;
+  FibreField::Vector centre{};
+  for (int j = 0; j < kernel.nodes; ++j)
+    for (int a = 0; a < dim_; ++a) centre[a] += rest[j * dim_ + a] / kernel.nodes;
+  for (int f = 0; f < families; ++f) {
+    const FibreField& field = material.fibres()[f];
+    if (!field.given())
+      throw InputError(material.owner() + ": law " + kernel.law + " reads " +
+                       (families == 2 ? "two fibre families" : "a fibre direction") + "; give the material `" +
+                       (f == 0 ? "fibres" : "fibres2") + "` (docs/scene.md)");
+    const FibreField::Vector a = field.at(centre, mesh_->describe_cell(cell));
+    const std::size_t first = static_cast<std::size_t>(kernel.params - 3 * (families - f));
+    std::copy(a.begin(), a.end(), params.begin() + static_cast<std::ptrdiff_t>(first));
+  }
+  return params;
 }
 
 int Model::law_id(int cell) const {

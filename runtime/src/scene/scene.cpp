@@ -10,6 +10,7 @@
 #include <new>
 #include <set>
 
+#include "common/input_cursor.hpp"
 #include "scene/yaml_reader.hpp"
 #include "tensormass/adaptivity/criteria.hpp"
 #include "tensormass/common/errors.hpp"
@@ -28,7 +29,7 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kProfileKeys = {"type", "duration", "period", "phase"};
 /// A material's keys besides its laws' constants.
-const std::vector<std::string> kMaterialKeys = {"region", "law", "split", "density"};
+const std::vector<std::string> kMaterialKeys = {"region", "law", "split", "density", "fibres", "fibres2"};
 
 /// kMaterialKeys and every parameter name of the registry's laws (which
 /// constants a material takes is checked against its laws in read_material).
@@ -36,7 +37,8 @@ std::vector<std::string> material_keys() {
   std::set<std::string> keys(kMaterialKeys.begin(), kMaterialKeys.end());
   const Registry& registry = Registry::instance();
   for (const std::string& law : registry.laws())
-    for (const std::string& name : parameter_names(*registry.law_kernel(law))) keys.insert(name);
+    for (const std::string& name : parameter_names(*registry.law_kernel(law)))
+      if (!is_fibre_parameter(name)) keys.insert(name);
   return {keys.begin(), keys.end()};
 }
 
@@ -45,6 +47,8 @@ const KeyTable& scene_keys() {
   static const KeyTable table = {
       {"", {"mesh", "materials", "fixed", "prescribed", "loads", "solver", "adaptivity", "output"}},
       {"materials[]", material_keys()},
+      {"materials[].fibres", {"file"}},
+      {"materials[].fibres2", {"file"}},
       {"prescribed[]", {"region", "displacement", "rotation", "profile"}},
       {"prescribed[].rotation", {"axis", "centre", "angle"}},
       {"prescribed[].profile", kProfileKeys},
@@ -177,6 +181,7 @@ void check_constants(const Value& item, const MaterialSpec& m, const std::vector
     const tm_kernel& kernel = *Registry::instance().law_kernel(law);
     for (int p = 0; p < kernel.params; ++p) {
       const std::string name = kernel.param_names[p];
+      if (is_fibre_parameter(name)) continue;  // set per cell from `fibres`
       if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
       const auto given = m.constants.find(name);
       if (given == m.constants.end())
@@ -194,7 +199,46 @@ void check_constants(const Value& item, const MaterialSpec& m, const std::vector
                             "; other keys: " + scene_yaml::join(kMaterialKeys) + ")");
 }
 
-MaterialSpec read_material(const Value& item, const AdaptivitySettings& adaptivity) {
+/// A fibre field: [ax, ay, az] (numbers: constant; any a formula of x, y,
+/// z: formulas) or {file: path} (samples x y z ax ay az).
+FibreField read_fibre_field(const Value& value, const fs::path& directory) {
+  const std::string owner = value.location();
+  if (value.is_map()) return FibreField::samples(resolve_path(directory, value.required("file").text()), owner);
+  const std::vector<Value> items = value.items();
+  if (items.size() != 3) value.fail("expected [ax, ay, az] (numbers or formulas of x, y, z) or {file: path}");
+  std::array<std::string, 3> text;
+  bool numbers = true;
+  std::array<double, 3> direction{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    text[c] = items[c].text();
+    numbers = numbers && detail::parse_real(text[c], direction[c]);
+  }
+  return numbers ? FibreField::constant(direction, owner) : FibreField::formula(text, owner);
+}
+
+/// `fibres` (and `fibres2`) exactly where one of the material's laws reads that family.
+void read_fibres(const Value& item, MaterialSpec& m, const std::vector<std::string>& laws, const fs::path& directory) {
+  int families = 0;
+  std::string reader;
+  for (const std::string& law : laws) {
+    const int f = fibre_families(*Registry::instance().law_kernel(law));
+    if (f > families) reader = law;
+    families = std::max(families, f);
+  }
+  for (int f = 0; f < 2; ++f) {
+    const char* key = f == 0 ? "fibres" : "fibres2";
+    const Value value = item.child(key);
+    if (value.present() && f >= families)
+      value.fail(families == 0 ? "no law of the material reads fibre directions (" + scene_yaml::join(laws) + ")"
+                               : "law " + reader + " reads one fibre family (`fibres`)");
+    if (!value.present() && f < families)
+      item.fail("law " + reader + " reads " + (families == 2 ? "two fibre families" : "a fibre direction") +
+                ": give `" + key + ": [ax, ay, az]` (or formulas of x, y, z, or {file: path})");
+    if (value.present()) m.fibres[static_cast<std::size_t>(f)] = read_fibre_field(value, directory);
+  }
+}
+
+MaterialSpec read_material(const Value& item, const AdaptivitySettings& adaptivity, const fs::path& directory) {
   item.expect_map();
   const Registry& registry = Registry::instance();
   MaterialSpec m;
@@ -207,15 +251,17 @@ MaterialSpec read_material(const Value& item, const AdaptivitySettings& adaptivi
     if (std::find(kMaterialKeys.begin(), kMaterialKeys.end(), key.scalar()) == kMaterialKeys.end())
       m.constants[key.scalar()] = value.number();
   check_constants(item, m, material_laws(m.law, adaptivity));
+  read_fibres(item, m, material_laws(m.law, adaptivity), directory);
   m.density = positive(item.required("density"));
   return m;
 }
 
-std::vector<MaterialSpec> read_materials(const Value& list, const AdaptivitySettings& adaptivity) {
+std::vector<MaterialSpec> read_materials(const Value& list, const AdaptivitySettings& adaptivity,
+                                         const fs::path& directory) {
   const std::vector<Value> items = list.items();
   if (items.empty()) list.fail("needs at least one material");
   std::vector<MaterialSpec> out;
-  for (const Value& item : items) out.push_back(read_material(item, adaptivity));
+  for (const Value& item : items) out.push_back(read_material(item, adaptivity, directory));
   return out;
 }
 
@@ -557,7 +603,7 @@ Scene read_scene(const Value& root, const std::string& path) {
   scene.model.source = path;
   // The ladder first: a material on it takes the constants of every ladder law.
   scene.adaptivity = read_adaptivity(root.child("adaptivity"));
-  scene.model.materials = read_materials(root.required("materials"), scene.adaptivity);
+  scene.model.materials = read_materials(root.required("materials"), scene.adaptivity, directory);
   read_fixed(root.child("fixed"), scene.model);
   scene.model.prescribed = read_prescribed(root.child("prescribed"));
   scene.model.loads = read_loads(root.child("loads"));

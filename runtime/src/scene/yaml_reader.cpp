@@ -149,6 +149,11 @@ std::string Value::describe() const {
   return "'" + node_.Scalar() + "'";
 }
 
+std::string Value::location() const {
+  const std::string name = path_.text();
+  return source_->where(path_, place_) + (name.empty() ? "" : ": " + name);
+}
+
 void Value::fail(const std::string& message) const {
   const std::string name = path_.text();
   throw InputError(source_->where(path_, place_) + ": " + (name.empty() ? "" : name + ": ") + message);

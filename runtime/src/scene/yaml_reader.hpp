@@ -98,6 +98,9 @@ class Value {
   const Path& path() const { return path_; }
   /// "'abc'", "a list", "a map" or "nothing": for "expected ..., got ..." messages.
   std::string describe() const;
+  /// "scene.yaml:7: materials[0].fibres": the prefix of `fail`'s messages, for
+  /// errors found later (a fibre file, a formula).
+  std::string location() const;
 
   /// Throws InputError "where: path: message".
   [[noreturn]] void fail(const std::string& message) const;

@@ -40,6 +40,8 @@ class MaterialLaws {
   /// from its `young` and `poisson` constants, else measured as modulus().
   std::array<double, 2> lame() const { return lame_; }
   const std::string& owner() const { return owner_; }
+  /// The material's fibre fields (first and second family).
+  const std::array<FibreField, 2>& fibres() const { return fibres_; }
 
  private:
   struct Bound {
@@ -48,6 +50,7 @@ class MaterialLaws {
   };
   std::map<std::string, Bound, std::less<>> laws_;
   std::map<std::string, double> constants_;
+  std::array<FibreField, 2> fibres_;
   std::string owner_;
   double modulus_ = 0;
   std::array<double, 2> lame_{};

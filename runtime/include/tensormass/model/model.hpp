@@ -177,6 +177,9 @@ class Model {
   void apply_nodal_forces_and_pressure(const ModelSpec& spec);
   void collect_constraints(const ModelSpec& spec);
   void precompute(int cell);
+  /// The parameters `kernel` takes on `cell` (rest: its node positions):
+  /// the material's, with the fibre directions of the cell's centre.
+  std::vector<double> cell_parameters(int cell, const tm_kernel& kernel, const double* rest) const;
   /// local (nodes by dim) += the cell's rest positions.
   void add_rest_positions(int cell, double* local) const;
 

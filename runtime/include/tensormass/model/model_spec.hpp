@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tensormass/model/fibre_field.hpp"
+
 namespace tensormass {
 
 /// First match wins; region is a physical group name or "all".
@@ -26,6 +28,9 @@ struct MaterialSpec {
   std::map<std::string, double> constants;
   double density = 0;  ///< > 0
   int line = 0;
+  /// The directions of the first and second fibre family, for laws that
+  /// read fibre invariants (fibre_families > 0); not given otherwise.
+  std::array<FibreField, 2> fibres;
 };
 
 /// The constants of a law with Young's modulus and Poisson's ratio (hooke,
