@@ -15,6 +15,7 @@
 #include "support/test_support.hpp"
 #include "tensormass/common/errors.hpp"
 #include "tensormass/model/fibre_field.hpp"
+#include "tensormass/model/material_laws.hpp"
 
 namespace tensormass {
 namespace {
@@ -285,6 +286,28 @@ TEST(FibreModel, ALawWithFibresNeedsAField) {
   scene.model.materials[0].constants = {{"c10", 1e3}, {"c01", 2e2}, {"eta", 5e3}, {"kappa", 1e5}};
   const std::string message = input_error([&] { const Model model(mesh, scene.model); });
   EXPECT_NE(message.find("reads a fibre direction; give the material `fibres`"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace tensormass
+
+namespace tensormass {
+namespace {
+
+/// Fibre directions differ cell by cell, so a fibre law shares its leading
+/// constants with no other law: an adaptivity ladder holding one is
+/// refused (check_ladder) rather than switching cells onto wrong directions.
+TEST(FibreModel, AFibreLawSharesItsConstantsWithNoOtherLaw) {
+  MaterialSpec material;
+  material.law = "transversely_isotropic_mooney_rivlin";
+  material.constants = {{"c10", 1e3}, {"c01", 2e2}, {"eta", 5e3}, {"kappa", 1e5}};
+  material.fibres[0] = FibreField::constant({1, 0, 0}, "m");
+  material.density = 1000;
+  const MaterialLaws laws(material, "m");
+  EXPECT_FALSE(laws.share_constants("transversely_isotropic_mooney_rivlin", "mooney_rivlin"));
+  material.law = "mooney_rivlin";
+  material.constants.erase("eta");
+  EXPECT_TRUE(MaterialLaws(material, "m").share_constants("mooney_rivlin", "mooney_rivlin"));
 }
 
 }  // namespace
