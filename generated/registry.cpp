@@ -1705,6 +1705,173 @@ void tm_veronda_westmann_tri6_whole_stress(const double*, const double*, double*
 void tm_veronda_westmann_tri6_whole_gradient_batch(const double*, const double*, double*);
 void tm_veronda_westmann_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
 void tm_veronda_westmann_tri6_whole_stress_batch(const double*, const double*, double*);
+int tm_viscoelastic_neohookean_hex20_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_hex20_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_hex20_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex20_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex20_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_hex20_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex20_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_hex27_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_hex27_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_hex27_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex27_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex27_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_hex27_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex27_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_hex8_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_hex8_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_hex8_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex8_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_hex8_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex8_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_hex8_fbar_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_hex8_fbar_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_hex8_fbar_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex8_fbar_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_hex8_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_hex8_fbar_stress(const double*, const double*, double*);
+int tm_viscoelastic_neohookean_prism15_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_prism15_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_prism15_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism15_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism15_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_prism15_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism15_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_prism6_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_prism6_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_prism6_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_prism6_anp_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_prism6_anp_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_prism6_anp_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_anp_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_prism6_anp_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_prism6_anp_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_pyramid13_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_pyramid13_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_pyramid13_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid13_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid13_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_pyramid13_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid13_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_pyramid5_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_pyramid5_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_pyramid5_fbar_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_pyramid5_fbar_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_pyramid5_fbar_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_fbar_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_pyramid5_fbar_stress(const double*, const double*, double*);
+int tm_viscoelastic_neohookean_quad4_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_quad4_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_quad4_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_quad4_fbar_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_quad4_fbar_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_quad4_fbar_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_fbar_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad4_fbar_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad4_fbar_stress(const double*, const double*, double*);
+int tm_viscoelastic_neohookean_quad8_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_quad8_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_quad8_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad8_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_quad9_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_quad9_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_quad9_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_quad9_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tet10_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tet10_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tet10_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet10_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet10_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tet10_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet10_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tet4_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tet4_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tet4_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tet4_anp_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tet4_anp_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tet4_anp_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tet4_anp_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tri3_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tri3_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tri3_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_whole_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tri3_anp_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tri3_anp_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tri3_anp_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri3_anp_bulk(double, const double*, double*);
+int tm_viscoelastic_neohookean_tri6_whole_precompute(const double*, const double*, int, double*);
+double tm_viscoelastic_neohookean_tri6_whole_energy(const double*, const double*);
+void tm_viscoelastic_neohookean_tri6_whole_gradient(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_hessian(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_gradient_hessian(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_stress(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_gradient_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_gradient_hessian_batch(const double*, const double*, double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_stress_batch(const double*, const double*, double*);
+void tm_viscoelastic_neohookean_tri6_whole_bulk(double, const double*, double*);
 int tm_yeoh_hex20_whole_precompute(const double*, const double*, int, double*);
 double tm_yeoh_hex20_whole_energy(const double*, const double*);
 void tm_yeoh_hex20_whole_gradient(const double*, const double*, double*);
@@ -1883,6 +2050,10 @@ const char* const kTransversely_isotropic_mooney_rivlinParameters[] = { "c10", "
 const tm_param_limit kTransversely_isotropic_mooney_rivlinLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 } };
 const char* const kVeronda_westmannParameters[] = { "c1", "c2", "kappa" };
 const tm_param_limit kVeronda_westmannLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
+const char* const kViscoelastic_neohookeanParameters[] = { "mu", "kappa", "g1", "tau1", "g2", "tau2" };
+const tm_param_limit kViscoelastic_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
+const int kViscoelastic_neohookeanPronyWeights[] = { 2, 4 };
+const int kViscoelastic_neohookeanPronyTimes[] = { 3, 5 };
 const char* const kYeohParameters[] = { "c10", "c20", "c30", "kappa" };
 const tm_param_limit kYeohLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 
@@ -1892,35 +2063,40 @@ const tm_kernel kKernels[] = {
    tm_arruda_boyce_hex20_whole_hessian, tm_arruda_boyce_hex20_whole_gradient_hessian, tm_arruda_boyce_hex20_whole_stress, 12798, 29889, 486135,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_whole_precompute, tm_arruda_boyce_hex27_whole_energy, tm_arruda_boyce_hex27_whole_gradient,
    tm_arruda_boyce_hex27_whole_hessian, tm_arruda_boyce_hex27_whole_gradient_hessian, tm_arruda_boyce_hex27_whole_stress, 16200, 36693, 826335,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
    tm_arruda_boyce_hex8_whole_hessian, tm_arruda_boyce_hex8_whole_gradient_hessian, tm_arruda_boyce_hex8_whole_stress, 2064, 5400, 36904,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_fbar_precompute, tm_arruda_boyce_hex8_fbar_energy, tm_arruda_boyce_hex8_fbar_gradient,
    tm_arruda_boyce_hex8_fbar_hessian, tm_arruda_boyce_hex8_fbar_gradient_hessian, tm_arruda_boyce_hex8_fbar_stress, 2496, 6120, 48712,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
    tm_arruda_boyce_prism15_whole_hessian, tm_arruda_boyce_prism15_whole_gradient_hessian, tm_arruda_boyce_prism15_whole_stress, 6912, 16686, 200970,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
@@ -1928,21 +2104,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_anp_precompute, tm_arruda_boyce_prism6_anp_energy, tm_arruda_boyce_prism6_anp_gradient,
    tm_arruda_boyce_prism6_anp_hessian, tm_arruda_boyce_prism6_anp_gradient_hessian, tm_arruda_boyce_prism6_anp_stress, 1656, 4158, 28326,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_arruda_boyce_prism6_anp_bulk},
+   tm_arruda_boyce_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
    tm_arruda_boyce_pyramid13_whole_hessian, tm_arruda_boyce_pyramid13_whole_gradient_hessian, tm_arruda_boyce_pyramid13_whole_stress, 9396, 23085, 241191,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
@@ -1950,14 +2129,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
    tm_arruda_boyce_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_fbar_precompute, tm_arruda_boyce_pyramid5_fbar_energy, tm_arruda_boyce_pyramid5_fbar_gradient,
    tm_arruda_boyce_pyramid5_fbar_hessian, tm_arruda_boyce_pyramid5_fbar_gradient_hessian, tm_arruda_boyce_pyramid5_fbar_stress, 2064, 5256, 32620,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
@@ -1965,14 +2146,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_fbar_precompute, tm_arruda_boyce_quad4_fbar_energy, tm_arruda_boyce_quad4_fbar_gradient,
    tm_arruda_boyce_quad4_fbar_hessian, tm_arruda_boyce_quad4_fbar_gradient_hessian, tm_arruda_boyce_quad4_fbar_stress, 556, 1160, 4540,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
@@ -1980,7 +2163,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_whole_precompute, tm_arruda_boyce_quad9_whole_energy, tm_arruda_boyce_quad9_whole_gradient,
@@ -1988,14 +2172,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad9_whole_gradient_batch, tm_arruda_boyce_quad9_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
    tm_arruda_boyce_tet10_whole_hessian, tm_arruda_boyce_tet10_whole_gradient_hessian, tm_arruda_boyce_tet10_whole_stress, 1176, 2988, 24500,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
@@ -2003,7 +2189,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
    tm_arruda_boyce_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_anp_precompute, tm_arruda_boyce_tet4_anp_energy, tm_arruda_boyce_tet4_anp_gradient,
@@ -2011,7 +2198,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_anp_gradient_batch, tm_arruda_boyce_tet4_anp_gradient_hessian_batch,
    tm_arruda_boyce_tet4_anp_stress_batch,
-   tm_arruda_boyce_tet4_anp_bulk},
+   tm_arruda_boyce_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
@@ -2019,7 +2207,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_anp_precompute, tm_arruda_boyce_tri3_anp_energy, tm_arruda_boyce_tri3_anp_gradient,
@@ -2027,7 +2216,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_anp_gradient_batch, tm_arruda_boyce_tri3_anp_gradient_hessian_batch,
    tm_arruda_boyce_tri3_anp_stress_batch,
-   tm_arruda_boyce_tri3_anp_bulk},
+   tm_arruda_boyce_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
@@ -2035,42 +2225,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
    tm_corotational_hex20_whole_hessian, tm_corotational_hex20_whole_gradient_hessian, tm_corotational_hex20_whole_stress, 24381, 34776, 502173,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_whole_precompute, tm_corotational_hex27_whole_energy, tm_corotational_hex27_whole_gradient,
    tm_corotational_hex27_whole_hessian, tm_corotational_hex27_whole_gradient_hessian, tm_corotational_hex27_whole_stress, 27783, 41580, 842373,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
    tm_corotational_hex8_whole_hessian, tm_corotational_hex8_whole_gradient_hessian, tm_corotational_hex8_whole_stress, 5496, 6848, 41656,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_fbar_precompute, tm_corotational_hex8_fbar_energy, tm_corotational_hex8_fbar_gradient,
    tm_corotational_hex8_fbar_hessian, tm_corotational_hex8_fbar_gradient_hessian, tm_corotational_hex8_fbar_stress, 5928, 7568, 53464,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
    tm_corotational_prism15_whole_hessian, tm_corotational_prism15_whole_gradient_hessian, tm_corotational_prism15_whole_stress, 14634, 19944, 211662,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
@@ -2078,14 +2274,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
    tm_corotational_pyramid13_whole_hessian, tm_corotational_pyramid13_whole_gradient_hessian, tm_corotational_pyramid13_whole_stress, 20979, 27972, 257229,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
@@ -2093,14 +2291,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_fbar_precompute, tm_corotational_pyramid5_fbar_energy, tm_corotational_pyramid5_fbar_gradient,
    tm_corotational_pyramid5_fbar_hessian, tm_corotational_pyramid5_fbar_gradient_hessian, tm_corotational_pyramid5_fbar_stress, 5496, 6704, 37372,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
@@ -2108,14 +2308,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_fbar_precompute, tm_corotational_quad4_fbar_energy, tm_corotational_quad4_fbar_gradient,
    tm_corotational_quad4_fbar_hessian, tm_corotational_quad4_fbar_gradient_hessian, tm_corotational_quad4_fbar_stress, 384, 612, 3340,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
@@ -2123,7 +2325,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
    tm_corotational_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_whole_precompute, tm_corotational_quad9_whole_energy, tm_corotational_quad9_whole_gradient,
@@ -2131,14 +2334,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_quad9_whole_gradient_batch, tm_corotational_quad9_whole_gradient_hessian_batch,
    tm_corotational_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
    tm_corotational_tet10_whole_hessian, tm_corotational_tet10_whole_gradient_hessian, tm_corotational_tet10_whole_stress, 2892, 3712, 26876,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
@@ -2146,7 +2351,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
    tm_corotational_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
@@ -2154,7 +2360,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
    tm_corotational_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
@@ -2162,42 +2369,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
    tm_corotational_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
    tm_gent_hex20_whole_hessian, tm_gent_hex20_whole_gradient_hessian, tm_gent_hex20_whole_stress, 11394, 25110, 478467,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kGentParameters, kGentLimits, tm_gent_hex27_whole_precompute, tm_gent_hex27_whole_energy, tm_gent_hex27_whole_gradient,
    tm_gent_hex27_whole_hessian, tm_gent_hex27_whole_gradient_hessian, tm_gent_hex27_whole_stress, 14796, 31914, 818667,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
    tm_gent_hex8_whole_hessian, tm_gent_hex8_whole_gradient_hessian, tm_gent_hex8_whole_stress, 1648, 3984, 34632,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_fbar_precompute, tm_gent_hex8_fbar_energy, tm_gent_hex8_fbar_gradient,
    tm_gent_hex8_fbar_hessian, tm_gent_hex8_fbar_gradient_hessian, tm_gent_hex8_fbar_stress, 2080, 4704, 46440,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
    tm_gent_prism15_whole_hessian, tm_gent_prism15_whole_gradient_hessian, tm_gent_prism15_whole_stress, 5976, 13500, 195858,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
@@ -2205,21 +2418,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_anp_precompute, tm_gent_prism6_anp_energy, tm_gent_prism6_anp_gradient,
    tm_gent_prism6_anp_hessian, tm_gent_prism6_anp_gradient_hessian, tm_gent_prism6_anp_stress, 1344, 3096, 26622,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_gent_prism6_anp_bulk},
+   tm_gent_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
    tm_gent_pyramid13_whole_hessian, tm_gent_pyramid13_whole_gradient_hessian, tm_gent_pyramid13_whole_stress, 7992, 18306, 233523,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
@@ -2227,14 +2443,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
    tm_gent_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_fbar_precompute, tm_gent_pyramid5_fbar_energy, tm_gent_pyramid5_fbar_gradient,
    tm_gent_pyramid5_fbar_hessian, tm_gent_pyramid5_fbar_gradient_hessian, tm_gent_pyramid5_fbar_stress, 1648, 3840, 30348,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
@@ -2242,14 +2460,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
    tm_gent_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_fbar_precompute, tm_gent_quad4_fbar_energy, tm_gent_quad4_fbar_gradient,
    tm_gent_quad4_fbar_hessian, tm_gent_quad4_fbar_gradient_hessian, tm_gent_quad4_fbar_stress, 348, 664, 3604,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
@@ -2257,7 +2477,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
    tm_gent_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kGentParameters, kGentLimits, tm_gent_quad9_whole_precompute, tm_gent_quad9_whole_energy, tm_gent_quad9_whole_gradient,
@@ -2265,14 +2486,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_quad9_whole_gradient_batch, tm_gent_quad9_whole_gradient_hessian_batch,
    tm_gent_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
    tm_gent_tet10_whole_hessian, tm_gent_tet10_whole_gradient_hessian, tm_gent_tet10_whole_stress, 968, 2280, 23364,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
@@ -2280,7 +2503,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
    tm_gent_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_anp_precompute, tm_gent_tet4_anp_energy, tm_gent_tet4_anp_gradient,
@@ -2288,7 +2512,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tet4_anp_gradient_batch, tm_gent_tet4_anp_gradient_hessian_batch,
    tm_gent_tet4_anp_stress_batch,
-   tm_gent_tet4_anp_bulk},
+   tm_gent_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
@@ -2296,7 +2521,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
    tm_gent_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"gent", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_anp_precompute, tm_gent_tri3_anp_energy, tm_gent_tri3_anp_gradient,
@@ -2304,7 +2530,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri3_anp_gradient_batch, tm_gent_tri3_anp_gradient_hessian_batch,
    tm_gent_tri3_anp_stress_batch,
-   tm_gent_tri3_anp_bulk},
+   tm_gent_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
@@ -2312,42 +2539,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
    tm_gent_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex20", "whole", 3, 20, 60, 27, 10, 10, 1657,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex20_whole_precompute, tm_holzapfel_gasser_ogden_hex20_whole_energy, tm_holzapfel_gasser_ogden_hex20_whole_gradient,
    tm_holzapfel_gasser_ogden_hex20_whole_hessian, tm_holzapfel_gasser_ogden_hex20_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex20_whole_stress, 13311, 33210, 492669,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex27", "whole", 3, 27, 81, 27, 10, 10, 2224,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex27_whole_precompute, tm_holzapfel_gasser_ogden_hex27_whole_energy, tm_holzapfel_gasser_ogden_hex27_whole_gradient,
    tm_holzapfel_gasser_ogden_hex27_whole_hessian, tm_holzapfel_gasser_ogden_hex27_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex27_whole_stress, 16713, 40014, 832869,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex8", "whole", 3, 8, 24, 8, 10, 10, 210,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_whole_precompute, tm_holzapfel_gasser_ogden_hex8_whole_energy, tm_holzapfel_gasser_ogden_hex8_whole_gradient,
    tm_holzapfel_gasser_ogden_hex8_whole_hessian, tm_holzapfel_gasser_ogden_hex8_whole_gradient_hessian, tm_holzapfel_gasser_ogden_hex8_whole_stress, 2216, 6384, 38840,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex8", "fbar", 3, 8, 24, 8, 10, 10, 210,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_fbar_precompute, tm_holzapfel_gasser_ogden_hex8_fbar_energy, tm_holzapfel_gasser_ogden_hex8_fbar_gradient,
    tm_holzapfel_gasser_ogden_hex8_fbar_hessian, tm_holzapfel_gasser_ogden_hex8_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_hex8_fbar_stress, 2648, 7104, 50648,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism15", "whole", 3, 15, 45, 18, 10, 10, 838,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism15_whole_precompute, tm_holzapfel_gasser_ogden_prism15_whole_energy, tm_holzapfel_gasser_ogden_prism15_whole_gradient,
    tm_holzapfel_gasser_ogden_prism15_whole_hessian, tm_holzapfel_gasser_ogden_prism15_whole_gradient_hessian, tm_holzapfel_gasser_ogden_prism15_whole_stress, 7254, 18900, 205326,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism6", "whole", 3, 6, 18, 6, 10, 10, 124,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_whole_precompute, tm_holzapfel_gasser_ogden_prism6_whole_energy, tm_holzapfel_gasser_ogden_prism6_whole_gradient,
@@ -2355,21 +2588,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_prism6_whole_gradient_batch, tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism6", "anp", 3, 6, 18, 6, 10, 10, 124,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_anp_precompute, tm_holzapfel_gasser_ogden_prism6_anp_energy, tm_holzapfel_gasser_ogden_prism6_anp_gradient,
    tm_holzapfel_gasser_ogden_prism6_anp_hessian, tm_holzapfel_gasser_ogden_prism6_anp_gradient_hessian, tm_holzapfel_gasser_ogden_prism6_anp_stress, 1770, 4896, 29778,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_holzapfel_gasser_ogden_prism6_anp_bulk},
+   tm_holzapfel_gasser_ogden_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid13", "whole", 3, 13, 39, 27, 10, 10, 1090,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid13_whole_precompute, tm_holzapfel_gasser_ogden_pyramid13_whole_energy, tm_holzapfel_gasser_ogden_pyramid13_whole_gradient,
    tm_holzapfel_gasser_ogden_pyramid13_whole_hessian, tm_holzapfel_gasser_ogden_pyramid13_whole_gradient_hessian, tm_holzapfel_gasser_ogden_pyramid13_whole_stress, 9909, 26406, 247725,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid5", "whole", 3, 5, 15, 8, 10, 10, 138,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_whole_precompute, tm_holzapfel_gasser_ogden_pyramid5_whole_energy, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient,
@@ -2377,14 +2613,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_batch, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid5", "fbar", 3, 5, 15, 8, 10, 10, 138,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_fbar_precompute, tm_holzapfel_gasser_ogden_pyramid5_fbar_energy, tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient,
    tm_holzapfel_gasser_ogden_pyramid5_fbar_hessian, tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_pyramid5_fbar_stress, 2216, 6240, 34556,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad4", "whole", 2, 4, 8, 4, 10, 10, 46,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_whole_precompute, tm_holzapfel_gasser_ogden_quad4_whole_energy, tm_holzapfel_gasser_ogden_quad4_whole_gradient,
@@ -2392,14 +2630,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad4_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad4", "fbar", 2, 4, 8, 4, 10, 10, 46,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_fbar_precompute, tm_holzapfel_gasser_ogden_quad4_fbar_energy, tm_holzapfel_gasser_ogden_quad4_fbar_gradient,
    tm_holzapfel_gasser_ogden_quad4_fbar_hessian, tm_holzapfel_gasser_ogden_quad4_fbar_gradient_hessian, tm_holzapfel_gasser_ogden_quad4_fbar_stress, 512, 1144, 4628,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad8", "whole", 2, 8, 16, 9, 10, 10, 163,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad8_whole_precompute, tm_holzapfel_gasser_ogden_quad8_whole_energy, tm_holzapfel_gasser_ogden_quad8_whole_gradient,
@@ -2407,7 +2647,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad8_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad9", "whole", 2, 9, 18, 9, 10, 10, 181,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad9_whole_precompute, tm_holzapfel_gasser_ogden_quad9_whole_energy, tm_holzapfel_gasser_ogden_quad9_whole_gradient,
@@ -2415,14 +2656,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad9_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet10", "whole", 3, 10, 30, 4, 10, 10, 134,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet10_whole_precompute, tm_holzapfel_gasser_ogden_tet10_whole_energy, tm_holzapfel_gasser_ogden_tet10_whole_gradient,
    tm_holzapfel_gasser_ogden_tet10_whole_hessian, tm_holzapfel_gasser_ogden_tet10_whole_gradient_hessian, tm_holzapfel_gasser_ogden_tet10_whole_stress, 1252, 3480, 25468,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet4", "whole", 3, 4, 12, 1, 10, 10, 23,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_whole_precompute, tm_holzapfel_gasser_ogden_tet4_whole_energy, tm_holzapfel_gasser_ogden_tet4_whole_gradient,
@@ -2430,7 +2673,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_whole_gradient_batch, tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet4", "anp", 3, 4, 12, 1, 10, 10, 23,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_anp_precompute, tm_holzapfel_gasser_ogden_tet4_anp_energy, tm_holzapfel_gasser_ogden_tet4_anp_gradient,
@@ -2438,7 +2682,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_anp_gradient_batch, tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tet4_anp_stress_batch,
-   tm_holzapfel_gasser_ogden_tet4_anp_bulk},
+   tm_holzapfel_gasser_ogden_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri3", "whole", 2, 3, 6, 1, 10, 10, 17,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_whole_precompute, tm_holzapfel_gasser_ogden_tri3_whole_energy, tm_holzapfel_gasser_ogden_tri3_whole_gradient,
@@ -2446,7 +2691,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri3", "anp", 2, 3, 6, 1, 10, 10, 17,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_anp_precompute, tm_holzapfel_gasser_ogden_tri3_anp_energy, tm_holzapfel_gasser_ogden_tri3_anp_gradient,
@@ -2454,7 +2700,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_anp_gradient_batch, tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri3_anp_stress_batch,
-   tm_holzapfel_gasser_ogden_tri3_anp_bulk},
+   tm_holzapfel_gasser_ogden_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri6", "whole", 2, 6, 12, 3, 10, 10, 49,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri6_whole_precompute, tm_holzapfel_gasser_ogden_tri6_whole_energy, tm_holzapfel_gasser_ogden_tri6_whole_gradient,
@@ -2462,49 +2709,56 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri6_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
    tm_hooke_hex20_whole_hessian, tm_hooke_hex20_whole_gradient_hessian, tm_hooke_hex20_whole_stress, 10341, 19818, 447606,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kHookeParameters, kHookeLimits, tm_hooke_hex27_whole_precompute, tm_hooke_hex27_whole_energy, tm_hooke_hex27_whole_gradient,
    tm_hooke_hex27_whole_hessian, tm_hooke_hex27_whole_gradient_hessian, tm_hooke_hex27_whole_stress, 13743, 26622, 787806,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
    tm_hooke_hex8_whole_hessian, tm_hooke_hex8_whole_gradient_hessian, tm_hooke_hex8_whole_stress, 1336, 2416, 25488,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
    tm_hooke_hex8_tensor_hessian, tm_hooke_hex8_tensor_gradient_hessian, tm_hooke_hex8_tensor_stress, 1200, 1152, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_fbar_precompute, tm_hooke_hex8_fbar_energy, tm_hooke_hex8_fbar_gradient,
    tm_hooke_hex8_fbar_hessian, tm_hooke_hex8_fbar_gradient_hessian, tm_hooke_hex8_fbar_stress, 1768, 3136, 37296,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kHookeParameters, kHookeLimits, tm_hooke_prism15_whole_precompute, tm_hooke_prism15_whole_energy, tm_hooke_prism15_whole_gradient,
    tm_hooke_prism15_whole_hessian, tm_hooke_prism15_whole_gradient_hessian, tm_hooke_prism15_whole_stress, 5274, 9972, 175284,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
@@ -2512,28 +2766,32 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
    tm_hooke_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
    tm_hooke_prism6_tensor_hessian, tm_hooke_prism6_tensor_gradient_hessian, tm_hooke_prism6_tensor_stress, 684, 648, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_anp_precompute, tm_hooke_prism6_anp_energy, tm_hooke_prism6_anp_gradient,
    tm_hooke_prism6_anp_hessian, tm_hooke_prism6_anp_gradient_hessian, tm_hooke_prism6_anp_stress, 1110, 1920, 19764,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   tm_hooke_prism6_anp_bulk},
+   tm_hooke_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid13_whole_precompute, tm_hooke_pyramid13_whole_energy, tm_hooke_pyramid13_whole_gradient,
    tm_hooke_pyramid13_whole_hessian, tm_hooke_pyramid13_whole_gradient_hessian, tm_hooke_pyramid13_whole_stress, 6939, 13014, 202662,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
@@ -2541,21 +2799,24 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
    tm_hooke_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
    tm_hooke_pyramid5_tensor_hessian, tm_hooke_pyramid5_tensor_gradient_hessian, tm_hooke_pyramid5_tensor_stress, 480, 450, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_fbar_precompute, tm_hooke_pyramid5_fbar_energy, tm_hooke_pyramid5_fbar_gradient,
    tm_hooke_pyramid5_fbar_hessian, tm_hooke_pyramid5_fbar_gradient_hessian, tm_hooke_pyramid5_fbar_stress, 1336, 2272, 21204,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
@@ -2563,21 +2824,24 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
    tm_hooke_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
    tm_hooke_quad4_tensor_hessian, tm_hooke_quad4_tensor_gradient_hessian, tm_hooke_quad4_tensor_stress, 144, 128, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_fbar_precompute, tm_hooke_quad4_fbar_energy, tm_hooke_quad4_fbar_gradient,
    tm_hooke_quad4_fbar_hessian, tm_hooke_quad4_fbar_gradient_hessian, tm_hooke_quad4_fbar_stress, 276, 456, 2552,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_whole_precompute, tm_hooke_quad8_whole_energy, tm_hooke_quad8_whole_gradient,
@@ -2585,7 +2849,8 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
    tm_hooke_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kHookeParameters, kHookeLimits, tm_hooke_quad9_whole_precompute, tm_hooke_quad9_whole_energy, tm_hooke_quad9_whole_gradient,
@@ -2593,14 +2858,16 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_quad9_whole_gradient_batch, tm_hooke_quad9_whole_gradient_hessian_batch,
    tm_hooke_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
    tm_hooke_tet10_whole_hessian, tm_hooke_tet10_whole_gradient_hessian, tm_hooke_tet10_whole_stress, 812, 1496, 18792,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
@@ -2608,14 +2875,16 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
    tm_hooke_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
    tm_hooke_tet4_tensor_hessian, tm_hooke_tet4_tensor_gradient_hessian, tm_hooke_tet4_tensor_stress, 312, 288, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_anp_precompute, tm_hooke_tet4_anp_energy, tm_hooke_tet4_anp_gradient,
@@ -2623,7 +2892,8 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_anp_gradient_batch, tm_hooke_tet4_anp_gradient_hessian_batch,
    tm_hooke_tet4_anp_stress_batch,
-   tm_hooke_tet4_anp_bulk},
+   tm_hooke_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"hooke", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_whole_precompute, tm_hooke_tri3_whole_energy, tm_hooke_tri3_whole_gradient,
@@ -2631,14 +2901,16 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
    tm_hooke_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
    tm_hooke_tri3_tensor_hessian, tm_hooke_tri3_tensor_gradient_hessian, tm_hooke_tri3_tensor_stress, 84, 72, 0,
    1, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"hooke", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_anp_precompute, tm_hooke_tri3_anp_energy, tm_hooke_tri3_anp_gradient,
@@ -2646,7 +2918,8 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_anp_gradient_batch, tm_hooke_tri3_anp_gradient_hessian_batch,
    tm_hooke_tri3_anp_stress_batch,
-   tm_hooke_tri3_anp_bulk},
+   tm_hooke_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"hooke", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kHookeParameters, kHookeLimits, tm_hooke_tri6_whole_precompute, tm_hooke_tri6_whole_energy, tm_hooke_tri6_whole_gradient,
@@ -2654,42 +2927,48 @@ const tm_kernel kKernels[] = {
    1, 0,
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
    tm_hooke_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
    tm_mooney_rivlin_hex20_whole_hessian, tm_mooney_rivlin_hex20_whole_gradient_hessian, tm_mooney_rivlin_hex20_whole_stress, 12366, 28863, 476118,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_whole_precompute, tm_mooney_rivlin_hex27_whole_energy, tm_mooney_rivlin_hex27_whole_gradient,
    tm_mooney_rivlin_hex27_whole_hessian, tm_mooney_rivlin_hex27_whole_gradient_hessian, tm_mooney_rivlin_hex27_whole_stress, 15768, 35667, 816318,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
    tm_mooney_rivlin_hex8_whole_hessian, tm_mooney_rivlin_hex8_whole_gradient_hessian, tm_mooney_rivlin_hex8_whole_stress, 1936, 5096, 33936,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_fbar_precompute, tm_mooney_rivlin_hex8_fbar_energy, tm_mooney_rivlin_hex8_fbar_gradient,
    tm_mooney_rivlin_hex8_fbar_hessian, tm_mooney_rivlin_hex8_fbar_gradient_hessian, tm_mooney_rivlin_hex8_fbar_stress, 2368, 5816, 45744,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
    tm_mooney_rivlin_prism15_whole_hessian, tm_mooney_rivlin_prism15_whole_gradient_hessian, tm_mooney_rivlin_prism15_whole_stress, 6624, 16002, 194292,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
@@ -2697,21 +2976,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_anp_precompute, tm_mooney_rivlin_prism6_anp_energy, tm_mooney_rivlin_prism6_anp_gradient,
    tm_mooney_rivlin_prism6_anp_hessian, tm_mooney_rivlin_prism6_anp_gradient_hessian, tm_mooney_rivlin_prism6_anp_stress, 1560, 3930, 26100,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_mooney_rivlin_prism6_anp_bulk},
+   tm_mooney_rivlin_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
    tm_mooney_rivlin_pyramid13_whole_hessian, tm_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_mooney_rivlin_pyramid13_whole_stress, 8964, 22059, 231174,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
@@ -2719,14 +3001,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_fbar_precompute, tm_mooney_rivlin_pyramid5_fbar_energy, tm_mooney_rivlin_pyramid5_fbar_gradient,
    tm_mooney_rivlin_pyramid5_fbar_hessian, tm_mooney_rivlin_pyramid5_fbar_gradient_hessian, tm_mooney_rivlin_pyramid5_fbar_stress, 1936, 4952, 29652,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
@@ -2734,14 +3018,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_fbar_precompute, tm_mooney_rivlin_quad4_fbar_energy, tm_mooney_rivlin_quad4_fbar_gradient,
    tm_mooney_rivlin_quad4_fbar_hessian, tm_mooney_rivlin_quad4_fbar_gradient_hessian, tm_mooney_rivlin_quad4_fbar_stress, 412, 880, 3696,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
@@ -2749,7 +3035,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_whole_precompute, tm_mooney_rivlin_quad9_whole_energy, tm_mooney_rivlin_quad9_whole_gradient,
@@ -2757,14 +3044,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad9_whole_gradient_batch, tm_mooney_rivlin_quad9_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
    tm_mooney_rivlin_tet10_whole_hessian, tm_mooney_rivlin_tet10_whole_gradient_hessian, tm_mooney_rivlin_tet10_whole_stress, 1112, 2836, 23016,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
@@ -2772,7 +3061,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_anp_precompute, tm_mooney_rivlin_tet4_anp_energy, tm_mooney_rivlin_tet4_anp_gradient,
@@ -2780,7 +3070,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_anp_gradient_batch, tm_mooney_rivlin_tet4_anp_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_anp_stress_batch,
-   tm_mooney_rivlin_tet4_anp_bulk},
+   tm_mooney_rivlin_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
@@ -2788,7 +3079,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_anp_precompute, tm_mooney_rivlin_tri3_anp_energy, tm_mooney_rivlin_tri3_anp_gradient,
@@ -2796,7 +3088,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_anp_gradient_batch, tm_mooney_rivlin_tri3_anp_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_anp_stress_batch,
-   tm_mooney_rivlin_tri3_anp_bulk},
+   tm_mooney_rivlin_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
@@ -2804,42 +3097,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
    tm_neohookean_hex20_whole_hessian, tm_neohookean_hex20_whole_gradient_hessian, tm_neohookean_hex20_whole_stress, 11178, 22761, 461187,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_whole_precompute, tm_neohookean_hex27_whole_energy, tm_neohookean_hex27_whole_gradient,
    tm_neohookean_hex27_whole_hessian, tm_neohookean_hex27_whole_gradient_hessian, tm_neohookean_hex27_whole_stress, 14580, 29565, 801387,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
    tm_neohookean_hex8_whole_hessian, tm_neohookean_hex8_whole_gradient_hessian, tm_neohookean_hex8_whole_stress, 1584, 3288, 29512,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_fbar_precompute, tm_neohookean_hex8_fbar_energy, tm_neohookean_hex8_fbar_gradient,
    tm_neohookean_hex8_fbar_hessian, tm_neohookean_hex8_fbar_gradient_hessian, tm_neohookean_hex8_fbar_stress, 2016, 4008, 41320,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
    tm_neohookean_prism15_whole_hessian, tm_neohookean_prism15_whole_gradient_hessian, tm_neohookean_prism15_whole_stress, 5832, 11934, 184338,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
@@ -2847,21 +3146,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_anp_precompute, tm_neohookean_prism6_anp_energy, tm_neohookean_prism6_anp_gradient,
    tm_neohookean_prism6_anp_hessian, tm_neohookean_prism6_anp_gradient_hessian, tm_neohookean_prism6_anp_stress, 1296, 2574, 22782,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_neohookean_prism6_anp_bulk},
+   tm_neohookean_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
    tm_neohookean_pyramid13_whole_hessian, tm_neohookean_pyramid13_whole_gradient_hessian, tm_neohookean_pyramid13_whole_stress, 7776, 15957, 216243,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
@@ -2869,14 +3171,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_fbar_precompute, tm_neohookean_pyramid5_fbar_energy, tm_neohookean_pyramid5_fbar_gradient,
    tm_neohookean_pyramid5_fbar_hessian, tm_neohookean_pyramid5_fbar_gradient_hessian, tm_neohookean_pyramid5_fbar_stress, 1584, 3144, 25228,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
@@ -2884,14 +3188,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_fbar_precompute, tm_neohookean_quad4_fbar_energy, tm_neohookean_quad4_fbar_gradient,
    tm_neohookean_quad4_fbar_hessian, tm_neohookean_quad4_fbar_gradient_hessian, tm_neohookean_quad4_fbar_stress, 312, 564, 3040,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
@@ -2899,7 +3205,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
    tm_neohookean_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_whole_precompute, tm_neohookean_quad9_whole_energy, tm_neohookean_quad9_whole_gradient,
@@ -2907,14 +3214,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_quad9_whole_gradient_batch, tm_neohookean_quad9_whole_gradient_hessian_batch,
    tm_neohookean_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
    tm_neohookean_tet10_whole_hessian, tm_neohookean_tet10_whole_gradient_hessian, tm_neohookean_tet10_whole_stress, 936, 1932, 20804,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
@@ -2922,7 +3231,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
    tm_neohookean_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_anp_precompute, tm_neohookean_tet4_anp_energy, tm_neohookean_tet4_anp_gradient,
@@ -2930,7 +3240,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_anp_gradient_batch, tm_neohookean_tet4_anp_gradient_hessian_batch,
    tm_neohookean_tet4_anp_stress_batch,
-   tm_neohookean_tet4_anp_bulk},
+   tm_neohookean_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
@@ -2938,7 +3249,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
    tm_neohookean_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_anp_precompute, tm_neohookean_tri3_anp_energy, tm_neohookean_tri3_anp_gradient,
@@ -2946,7 +3258,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_anp_gradient_batch, tm_neohookean_tri3_anp_gradient_hessian_batch,
    tm_neohookean_tri3_anp_stress_batch,
-   tm_neohookean_tri3_anp_bulk},
+   tm_neohookean_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
@@ -2954,42 +3267,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
    tm_neohookean_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
    tm_stable_neohookean_hex20_whole_hessian, tm_stable_neohookean_hex20_whole_gradient_hessian, tm_stable_neohookean_hex20_whole_stress, 12069, 24408, 460647,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_whole_precompute, tm_stable_neohookean_hex27_whole_energy, tm_stable_neohookean_hex27_whole_gradient,
    tm_stable_neohookean_hex27_whole_hessian, tm_stable_neohookean_hex27_whole_gradient_hessian, tm_stable_neohookean_hex27_whole_stress, 15471, 31212, 800847,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
    tm_stable_neohookean_hex8_whole_hessian, tm_stable_neohookean_hex8_whole_gradient_hessian, tm_stable_neohookean_hex8_whole_stress, 1848, 3776, 29352,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_fbar_precompute, tm_stable_neohookean_hex8_fbar_energy, tm_stable_neohookean_hex8_fbar_gradient,
    tm_stable_neohookean_hex8_fbar_hessian, tm_stable_neohookean_hex8_fbar_gradient_hessian, tm_stable_neohookean_hex8_fbar_stress, 2280, 4496, 41160,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
    tm_stable_neohookean_prism15_whole_hessian, tm_stable_neohookean_prism15_whole_gradient_hessian, tm_stable_neohookean_prism15_whole_stress, 6426, 13032, 183978,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
@@ -2997,21 +3316,24 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_anp_precompute, tm_stable_neohookean_prism6_anp_energy, tm_stable_neohookean_prism6_anp_gradient,
    tm_stable_neohookean_prism6_anp_hessian, tm_stable_neohookean_prism6_anp_gradient_hessian, tm_stable_neohookean_prism6_anp_stress, 1494, 2940, 22662,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_stable_neohookean_prism6_anp_bulk},
+   tm_stable_neohookean_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
    tm_stable_neohookean_pyramid13_whole_hessian, tm_stable_neohookean_pyramid13_whole_gradient_hessian, tm_stable_neohookean_pyramid13_whole_stress, 8667, 17604, 215703,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
@@ -3019,14 +3341,16 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_fbar_precompute, tm_stable_neohookean_pyramid5_fbar_energy, tm_stable_neohookean_pyramid5_fbar_gradient,
    tm_stable_neohookean_pyramid5_fbar_hessian, tm_stable_neohookean_pyramid5_fbar_gradient_hessian, tm_stable_neohookean_pyramid5_fbar_stress, 1848, 3632, 25068,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
@@ -3034,14 +3358,16 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_fbar_precompute, tm_stable_neohookean_quad4_fbar_energy, tm_stable_neohookean_quad4_fbar_gradient,
    tm_stable_neohookean_quad4_fbar_hessian, tm_stable_neohookean_quad4_fbar_gradient_hessian, tm_stable_neohookean_quad4_fbar_stress, 404, 672, 3048,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
@@ -3049,7 +3375,8 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_whole_precompute, tm_stable_neohookean_quad9_whole_energy, tm_stable_neohookean_quad9_whole_gradient,
@@ -3057,14 +3384,16 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad9_whole_gradient_batch, tm_stable_neohookean_quad9_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
    tm_stable_neohookean_tet10_whole_hessian, tm_stable_neohookean_tet10_whole_gradient_hessian, tm_stable_neohookean_tet10_whole_stress, 1068, 2176, 20724,
    0, 1,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
@@ -3072,7 +3401,8 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
    tm_stable_neohookean_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_anp_precompute, tm_stable_neohookean_tet4_anp_energy, tm_stable_neohookean_tet4_anp_gradient,
@@ -3080,7 +3410,8 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_anp_gradient_batch, tm_stable_neohookean_tet4_anp_gradient_hessian_batch,
    tm_stable_neohookean_tet4_anp_stress_batch,
-   tm_stable_neohookean_tet4_anp_bulk},
+   tm_stable_neohookean_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
@@ -3088,7 +3419,8 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_anp_precompute, tm_stable_neohookean_tri3_anp_energy, tm_stable_neohookean_tri3_anp_gradient,
@@ -3096,7 +3428,8 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_anp_gradient_batch, tm_stable_neohookean_tri3_anp_gradient_hessian_batch,
    tm_stable_neohookean_tri3_anp_stress_batch,
-   tm_stable_neohookean_tri3_anp_bulk},
+   tm_stable_neohookean_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
@@ -3104,49 +3437,56 @@ const tm_kernel kKernels[] = {
    0, 1,
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
    tm_stvk_hex20_whole_hessian, tm_stvk_hex20_whole_gradient_hessian, tm_stvk_hex20_whole_stress, 11502, 23301, 459864,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStvkParameters, kStvkLimits, tm_stvk_hex27_whole_precompute, tm_stvk_hex27_whole_energy, tm_stvk_hex27_whole_gradient,
    tm_stvk_hex27_whole_hessian, tm_stvk_hex27_whole_gradient_hessian, tm_stvk_hex27_whole_stress, 14904, 30105, 800064,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
    tm_stvk_hex8_whole_hessian, tm_stvk_hex8_whole_gradient_hessian, tm_stvk_hex8_whole_stress, 1680, 3448, 29120,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
    tm_stvk_hex8_tensor_hessian, tm_stvk_hex8_tensor_gradient_hessian, tm_stvk_hex8_tensor_stress, 5844, 9012, 57684,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_fbar_precompute, tm_stvk_hex8_fbar_energy, tm_stvk_hex8_fbar_gradient,
    tm_stvk_hex8_fbar_hessian, tm_stvk_hex8_fbar_gradient_hessian, tm_stvk_hex8_fbar_stress, 2112, 4168, 40928,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStvkParameters, kStvkLimits, tm_stvk_prism15_whole_precompute, tm_stvk_prism15_whole_energy, tm_stvk_prism15_whole_gradient,
    tm_stvk_prism15_whole_hessian, tm_stvk_prism15_whole_gradient_hessian, tm_stvk_prism15_whole_stress, 6048, 12294, 183456,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
@@ -3154,21 +3494,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
    tm_stvk_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
    tm_stvk_prism6_tensor_hessian, tm_stvk_prism6_tensor_gradient_hessian, tm_stvk_prism6_tensor_stress, 2511, 3957, 21723,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid13_whole_precompute, tm_stvk_pyramid13_whole_energy, tm_stvk_pyramid13_whole_gradient,
    tm_stvk_pyramid13_whole_hessian, tm_stvk_pyramid13_whole_gradient_hessian, tm_stvk_pyramid13_whole_stress, 8100, 16497, 214920,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
@@ -3176,21 +3519,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
    tm_stvk_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
    tm_stvk_pyramid5_tensor_hessian, tm_stvk_pyramid5_tensor_gradient_hessian, tm_stvk_pyramid5_tensor_stress, 1515, 2400, 11850,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_fbar_precompute, tm_stvk_pyramid5_fbar_energy, tm_stvk_pyramid5_fbar_gradient,
    tm_stvk_pyramid5_fbar_hessian, tm_stvk_pyramid5_fbar_gradient_hessian, tm_stvk_pyramid5_fbar_stress, 1680, 3304, 24836,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
@@ -3198,21 +3544,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
    tm_stvk_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
    tm_stvk_quad4_tensor_hessian, tm_stvk_quad4_tensor_gradient_hessian, tm_stvk_quad4_tensor_stress, 574, 886, 3078,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_fbar_precompute, tm_stvk_quad4_fbar_energy, tm_stvk_quad4_fbar_gradient,
    tm_stvk_quad4_fbar_hessian, tm_stvk_quad4_fbar_gradient_hessian, tm_stvk_quad4_fbar_stress, 344, 632, 3048,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_whole_precompute, tm_stvk_quad8_whole_energy, tm_stvk_quad8_whole_gradient,
@@ -3220,7 +3569,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
    tm_stvk_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStvkParameters, kStvkLimits, tm_stvk_quad9_whole_precompute, tm_stvk_quad9_whole_energy, tm_stvk_quad9_whole_gradient,
@@ -3228,14 +3578,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_quad9_whole_gradient_batch, tm_stvk_quad9_whole_gradient_hessian_batch,
    tm_stvk_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
    tm_stvk_tet10_whole_hessian, tm_stvk_tet10_whole_gradient_hessian, tm_stvk_tet10_whole_stress, 984, 2012, 20608,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
@@ -3243,14 +3595,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
    tm_stvk_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
    tm_stvk_tet4_tensor_hessian, tm_stvk_tet4_tensor_gradient_hessian, tm_stvk_tet4_tensor_stress, 842, 1330, 5722,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_whole_precompute, tm_stvk_tri3_whole_energy, tm_stvk_tri3_whole_gradient,
@@ -3258,14 +3612,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
    tm_stvk_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
    tm_stvk_tri3_tensor_hessian, tm_stvk_tri3_tensor_gradient_hessian, tm_stvk_tri3_tensor_stress, 270, 414, 1206,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"stvk", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStvkParameters, kStvkLimits, tm_stvk_tri6_whole_precompute, tm_stvk_tri6_whole_energy, tm_stvk_tri6_whole_gradient,
@@ -3273,42 +3629,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 7, 7, 1654,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex20_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex20_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_hex20_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex20_whole_stress, 13068, 32265, 484191,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 7, 7, 2221,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex27_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex27_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_hex27_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex27_whole_stress, 16470, 39069, 824391,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 7, 7, 207,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_hex8_whole_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_whole_stress, 2144, 6104, 36328,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 7, 7, 207,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_energy, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient,
    tm_transversely_isotropic_mooney_rivlin_hex8_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_stress, 2576, 6824, 48136,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 7, 7, 835,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism15_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism15_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_prism15_whole_hessian, tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_prism15_whole_stress, 7092, 18270, 199674,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 7, 7, 121,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient,
@@ -3316,21 +3678,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 7, 7, 121,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_anp_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_anp_energy, tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient,
    tm_transversely_isotropic_mooney_rivlin_prism6_anp_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_prism6_anp_stress, 1716, 4686, 27894,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_transversely_isotropic_mooney_rivlin_prism6_anp_bulk},
+   tm_transversely_isotropic_mooney_rivlin_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 7, 7, 1087,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_stress, 9666, 25461, 239247,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 7, 7, 135,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient,
@@ -3338,14 +3703,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 7, 7, 135,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient,
    tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_stress, 2144, 5960, 32044,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 7, 7, 43,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient,
@@ -3353,14 +3720,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 7, 7, 43,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_energy, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient,
    tm_transversely_isotropic_mooney_rivlin_quad4_fbar_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_stress, 480, 1080, 4152,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 7, 7, 160,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad8_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient,
@@ -3368,7 +3737,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 7, 7, 178,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad9_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad9_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient,
@@ -3376,14 +3746,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 7, 7, 131,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet10_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet10_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient,
    tm_transversely_isotropic_mooney_rivlin_tet10_whole_hessian, tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient_hessian, tm_transversely_isotropic_mooney_rivlin_tet10_whole_stress, 1216, 3340, 24212,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 7, 7, 20,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient,
@@ -3391,7 +3763,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 7, 7, 20,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_anp_energy, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient,
@@ -3399,7 +3772,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress_batch,
-   tm_transversely_isotropic_mooney_rivlin_tet4_anp_bulk},
+   tm_transversely_isotropic_mooney_rivlin_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 7, 7, 14,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient,
@@ -3407,7 +3781,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 7, 7, 14,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_anp_energy, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient,
@@ -3415,7 +3790,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress_batch,
-   tm_transversely_isotropic_mooney_rivlin_tri3_anp_bulk},
+   tm_transversely_isotropic_mooney_rivlin_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 7, 7, 46,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri6_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient,
@@ -3423,42 +3799,48 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
    tm_veronda_westmann_hex20_whole_hessian, tm_veronda_westmann_hex20_whole_gradient_hessian, tm_veronda_westmann_hex20_whole_stress, 12501, 29106, 490347,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_whole_precompute, tm_veronda_westmann_hex27_whole_energy, tm_veronda_westmann_hex27_whole_gradient,
    tm_veronda_westmann_hex27_whole_hessian, tm_veronda_westmann_hex27_whole_gradient_hessian, tm_veronda_westmann_hex27_whole_stress, 15903, 35910, 830547,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
    tm_veronda_westmann_hex8_whole_hessian, tm_veronda_westmann_hex8_whole_gradient_hessian, tm_veronda_westmann_hex8_whole_stress, 1976, 5168, 38152,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_fbar_precompute, tm_veronda_westmann_hex8_fbar_energy, tm_veronda_westmann_hex8_fbar_gradient,
    tm_veronda_westmann_hex8_fbar_hessian, tm_veronda_westmann_hex8_fbar_gradient_hessian, tm_veronda_westmann_hex8_fbar_stress, 2408, 5888, 49960,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
    tm_veronda_westmann_prism15_whole_hessian, tm_veronda_westmann_prism15_whole_gradient_hessian, tm_veronda_westmann_prism15_whole_stress, 6714, 16164, 203778,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
@@ -3466,21 +3848,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_anp_precompute, tm_veronda_westmann_prism6_anp_energy, tm_veronda_westmann_prism6_anp_gradient,
    tm_veronda_westmann_prism6_anp_hessian, tm_veronda_westmann_prism6_anp_gradient_hessian, tm_veronda_westmann_prism6_anp_stress, 1590, 3984, 29262,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_veronda_westmann_prism6_anp_bulk},
+   tm_veronda_westmann_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
    tm_veronda_westmann_pyramid13_whole_hessian, tm_veronda_westmann_pyramid13_whole_gradient_hessian, tm_veronda_westmann_pyramid13_whole_stress, 9099, 22302, 245403,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
@@ -3488,14 +3873,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
    tm_veronda_westmann_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_fbar_precompute, tm_veronda_westmann_pyramid5_fbar_energy, tm_veronda_westmann_pyramid5_fbar_gradient,
    tm_veronda_westmann_pyramid5_fbar_hessian, tm_veronda_westmann_pyramid5_fbar_gradient_hessian, tm_veronda_westmann_pyramid5_fbar_stress, 1976, 5024, 33868,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
@@ -3503,14 +3890,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_fbar_precompute, tm_veronda_westmann_quad4_fbar_energy, tm_veronda_westmann_quad4_fbar_gradient,
    tm_veronda_westmann_quad4_fbar_hessian, tm_veronda_westmann_quad4_fbar_gradient_hessian, tm_veronda_westmann_quad4_fbar_stress, 432, 932, 4088,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
@@ -3518,7 +3907,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_whole_precompute, tm_veronda_westmann_quad9_whole_energy, tm_veronda_westmann_quad9_whole_gradient,
@@ -3526,14 +3916,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad9_whole_gradient_batch, tm_veronda_westmann_quad9_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
    tm_veronda_westmann_tet10_whole_hessian, tm_veronda_westmann_tet10_whole_gradient_hessian, tm_veronda_westmann_tet10_whole_stress, 1132, 2872, 25124,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
@@ -3541,7 +3933,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
    tm_veronda_westmann_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_anp_precompute, tm_veronda_westmann_tet4_anp_energy, tm_veronda_westmann_tet4_anp_gradient,
@@ -3549,7 +3942,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_anp_gradient_batch, tm_veronda_westmann_tet4_anp_gradient_hessian_batch,
    tm_veronda_westmann_tet4_anp_stress_batch,
-   tm_veronda_westmann_tet4_anp_bulk},
+   tm_veronda_westmann_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
@@ -3557,7 +3951,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_anp_precompute, tm_veronda_westmann_tri3_anp_energy, tm_veronda_westmann_tri3_anp_gradient,
@@ -3565,7 +3960,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_anp_gradient_batch, tm_veronda_westmann_tri3_anp_gradient_hessian_batch,
    tm_veronda_westmann_tri3_anp_stress_batch,
-   tm_veronda_westmann_tri3_anp_bulk},
+   tm_veronda_westmann_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
@@ -3573,42 +3969,218 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
+
+  {"viscoelastic_neohookean", "hex20", "whole", 3, 20, 60, 27, 6, 2, 1649,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex20_whole_precompute, tm_viscoelastic_neohookean_hex20_whole_energy, tm_viscoelastic_neohookean_hex20_whole_gradient,
+   tm_viscoelastic_neohookean_hex20_whole_hessian, tm_viscoelastic_neohookean_hex20_whole_gradient_hessian, tm_viscoelastic_neohookean_hex20_whole_stress, 11259, 24921, 466965,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_hex20_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "hex27", "whole", 3, 27, 81, 27, 6, 2, 2216,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex27_whole_precompute, tm_viscoelastic_neohookean_hex27_whole_energy, tm_viscoelastic_neohookean_hex27_whole_gradient,
+   tm_viscoelastic_neohookean_hex27_whole_hessian, tm_viscoelastic_neohookean_hex27_whole_gradient_hessian, tm_viscoelastic_neohookean_hex27_whole_stress, 14661, 31725, 807165,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_hex27_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "hex8", "whole", 3, 8, 24, 8, 6, 2, 202,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex8_whole_precompute, tm_viscoelastic_neohookean_hex8_whole_energy, tm_viscoelastic_neohookean_hex8_whole_gradient,
+   tm_viscoelastic_neohookean_hex8_whole_hessian, tm_viscoelastic_neohookean_hex8_whole_gradient_hessian, tm_viscoelastic_neohookean_hex8_whole_stress, 1608, 3928, 31224,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_hex8_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "hex8", "fbar", 3, 8, 24, 8, 6, 2, 202,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex8_fbar_precompute, tm_viscoelastic_neohookean_hex8_fbar_energy, tm_viscoelastic_neohookean_hex8_fbar_gradient,
+   tm_viscoelastic_neohookean_hex8_fbar_hessian, tm_viscoelastic_neohookean_hex8_fbar_gradient_hessian, tm_viscoelastic_neohookean_hex8_fbar_stress, 2040, 4648, 43032,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "prism15", "whole", 3, 15, 45, 18, 6, 2, 830,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism15_whole_precompute, tm_viscoelastic_neohookean_prism15_whole_energy, tm_viscoelastic_neohookean_prism15_whole_gradient,
+   tm_viscoelastic_neohookean_prism15_whole_hessian, tm_viscoelastic_neohookean_prism15_whole_gradient_hessian, tm_viscoelastic_neohookean_prism15_whole_stress, 5886, 13374, 188190,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_prism15_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "prism6", "whole", 3, 6, 18, 6, 6, 2, 116,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism6_whole_precompute, tm_viscoelastic_neohookean_prism6_whole_energy, tm_viscoelastic_neohookean_prism6_whole_gradient,
+   tm_viscoelastic_neohookean_prism6_whole_hessian, tm_viscoelastic_neohookean_prism6_whole_gradient_hessian, tm_viscoelastic_neohookean_prism6_whole_stress, 990, 2514, 16074,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_prism6_whole_gradient_batch, tm_viscoelastic_neohookean_prism6_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_prism6_whole_stress_batch,
+   tm_viscoelastic_neohookean_prism6_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "prism6", "anp", 3, 6, 18, 6, 6, 2, 116,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism6_anp_precompute, tm_viscoelastic_neohookean_prism6_anp_energy, tm_viscoelastic_neohookean_prism6_anp_gradient,
+   tm_viscoelastic_neohookean_prism6_anp_hessian, tm_viscoelastic_neohookean_prism6_anp_gradient_hessian, tm_viscoelastic_neohookean_prism6_anp_stress, 1314, 3054, 24066,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_prism6_anp_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 6, 2, 1082,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid13_whole_precompute, tm_viscoelastic_neohookean_pyramid13_whole_energy, tm_viscoelastic_neohookean_pyramid13_whole_gradient,
+   tm_viscoelastic_neohookean_pyramid13_whole_hessian, tm_viscoelastic_neohookean_pyramid13_whole_gradient_hessian, tm_viscoelastic_neohookean_pyramid13_whole_stress, 7857, 18117, 222021,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_pyramid13_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 6, 2, 130,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid5_whole_precompute, tm_viscoelastic_neohookean_pyramid5_whole_energy, tm_viscoelastic_neohookean_pyramid5_whole_gradient,
+   tm_viscoelastic_neohookean_pyramid5_whole_hessian, tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian, tm_viscoelastic_neohookean_pyramid5_whole_stress, 1176, 3064, 17400,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_pyramid5_whole_gradient_batch, tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_pyramid5_whole_stress_batch,
+   tm_viscoelastic_neohookean_pyramid5_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 6, 2, 130,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid5_fbar_precompute, tm_viscoelastic_neohookean_pyramid5_fbar_energy, tm_viscoelastic_neohookean_pyramid5_fbar_gradient,
+   tm_viscoelastic_neohookean_pyramid5_fbar_hessian, tm_viscoelastic_neohookean_pyramid5_fbar_gradient_hessian, tm_viscoelastic_neohookean_pyramid5_fbar_stress, 1608, 3784, 26940,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "quad4", "whole", 2, 4, 8, 4, 6, 2, 38,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad4_whole_precompute, tm_viscoelastic_neohookean_quad4_whole_energy, tm_viscoelastic_neohookean_quad4_whole_gradient,
+   tm_viscoelastic_neohookean_quad4_whole_hessian, tm_viscoelastic_neohookean_quad4_whole_gradient_hessian, tm_viscoelastic_neohookean_quad4_whole_stress, 232, 476, 1860,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad4_whole_gradient_batch, tm_viscoelastic_neohookean_quad4_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_quad4_whole_stress_batch,
+   tm_viscoelastic_neohookean_quad4_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "quad4", "fbar", 2, 4, 8, 4, 6, 2, 38,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad4_fbar_precompute, tm_viscoelastic_neohookean_quad4_fbar_energy, tm_viscoelastic_neohookean_quad4_fbar_gradient,
+   tm_viscoelastic_neohookean_quad4_fbar_hessian, tm_viscoelastic_neohookean_quad4_fbar_gradient_hessian, tm_viscoelastic_neohookean_quad4_fbar_stress, 328, 636, 3172,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   nullptr,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "quad8", "whole", 2, 8, 16, 9, 6, 2, 155,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad8_whole_precompute, tm_viscoelastic_neohookean_quad8_whole_energy, tm_viscoelastic_neohookean_quad8_whole_gradient,
+   tm_viscoelastic_neohookean_quad8_whole_hessian, tm_viscoelastic_neohookean_quad8_whole_gradient_hessian, tm_viscoelastic_neohookean_quad8_whole_stress, 810, 1647, 10305,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad8_whole_gradient_batch, tm_viscoelastic_neohookean_quad8_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_quad8_whole_stress_batch,
+   tm_viscoelastic_neohookean_quad8_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "quad9", "whole", 2, 9, 18, 9, 6, 2, 173,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad9_whole_precompute, tm_viscoelastic_neohookean_quad9_whole_energy, tm_viscoelastic_neohookean_quad9_whole_gradient,
+   tm_viscoelastic_neohookean_quad9_whole_hessian, tm_viscoelastic_neohookean_quad9_whole_gradient_hessian, tm_viscoelastic_neohookean_quad9_whole_stress, 882, 1791, 12375,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad9_whole_gradient_batch, tm_viscoelastic_neohookean_quad9_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_quad9_whole_stress_batch,
+   tm_viscoelastic_neohookean_quad9_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tet10", "whole", 3, 10, 30, 4, 6, 2, 126,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet10_whole_precompute, tm_viscoelastic_neohookean_tet10_whole_energy, tm_viscoelastic_neohookean_tet10_whole_gradient,
+   tm_viscoelastic_neohookean_tet10_whole_hessian, tm_viscoelastic_neohookean_tet10_whole_gradient_hessian, tm_viscoelastic_neohookean_tet10_whole_stress, 948, 2252, 21660,
+   0, 0,
+   0, nullptr, nullptr, nullptr,
+   tm_viscoelastic_neohookean_tet10_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tet4", "whole", 3, 4, 12, 1, 6, 2, 15,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet4_whole_precompute, tm_viscoelastic_neohookean_tet4_whole_energy, tm_viscoelastic_neohookean_tet4_whole_gradient,
+   tm_viscoelastic_neohookean_tet4_whole_hessian, tm_viscoelastic_neohookean_tet4_whole_gradient_hessian, tm_viscoelastic_neohookean_tet4_whole_stress, 129, 347, 1743,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tet4_whole_gradient_batch, tm_viscoelastic_neohookean_tet4_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_tet4_whole_stress_batch,
+   tm_viscoelastic_neohookean_tet4_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tet4", "anp", 3, 4, 12, 1, 6, 2, 15,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet4_anp_precompute, tm_viscoelastic_neohookean_tet4_anp_energy, tm_viscoelastic_neohookean_tet4_anp_gradient,
+   tm_viscoelastic_neohookean_tet4_anp_hessian, tm_viscoelastic_neohookean_tet4_anp_gradient_hessian, tm_viscoelastic_neohookean_tet4_anp_stress, 129, 347, 1743,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tet4_anp_gradient_batch, tm_viscoelastic_neohookean_tet4_anp_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_tet4_anp_stress_batch,
+   tm_viscoelastic_neohookean_tet4_anp_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tri3", "whole", 2, 3, 6, 1, 6, 2, 9,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri3_whole_precompute, tm_viscoelastic_neohookean_tri3_whole_energy, tm_viscoelastic_neohookean_tri3_whole_gradient,
+   tm_viscoelastic_neohookean_tri3_whole_hessian, tm_viscoelastic_neohookean_tri3_whole_gradient_hessian, tm_viscoelastic_neohookean_tri3_whole_stress, 50, 103, 355,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri3_whole_gradient_batch, tm_viscoelastic_neohookean_tri3_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_tri3_whole_stress_batch,
+   tm_viscoelastic_neohookean_tri3_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tri3", "anp", 2, 3, 6, 1, 6, 2, 9,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri3_anp_precompute, tm_viscoelastic_neohookean_tri3_anp_energy, tm_viscoelastic_neohookean_tri3_anp_gradient,
+   tm_viscoelastic_neohookean_tri3_anp_hessian, tm_viscoelastic_neohookean_tri3_anp_gradient_hessian, tm_viscoelastic_neohookean_tri3_anp_stress, 50, 103, 355,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri3_anp_gradient_batch, tm_viscoelastic_neohookean_tri3_anp_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_tri3_anp_stress_batch,
+   tm_viscoelastic_neohookean_tri3_anp_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+
+  {"viscoelastic_neohookean", "tri6", "whole", 2, 6, 12, 3, 6, 2, 41,
+   kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri6_whole_precompute, tm_viscoelastic_neohookean_tri6_whole_energy, tm_viscoelastic_neohookean_tri6_whole_gradient,
+   tm_viscoelastic_neohookean_tri6_whole_hessian, tm_viscoelastic_neohookean_tri6_whole_gradient_hessian, tm_viscoelastic_neohookean_tri6_whole_stress, 222, 453, 2271,
+   0, 0,
+   tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri6_whole_gradient_batch, tm_viscoelastic_neohookean_tri6_whole_gradient_hessian_batch,
+   tm_viscoelastic_neohookean_tri6_whole_stress_batch,
+   tm_viscoelastic_neohookean_tri6_whole_bulk,
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
 
   {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
    tm_yeoh_hex20_whole_hessian, tm_yeoh_hex20_whole_gradient_hessian, tm_yeoh_hex20_whole_stress, 11421, 26649, 474579,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "hex27", "whole", 3, 27, 81, 27, 4, 4, 2218,
    kYeohParameters, kYeohLimits, tm_yeoh_hex27_whole_precompute, tm_yeoh_hex27_whole_energy, tm_yeoh_hex27_whole_gradient,
    tm_yeoh_hex27_whole_hessian, tm_yeoh_hex27_whole_gradient_hessian, tm_yeoh_hex27_whole_stress, 14823, 33453, 814779,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
    tm_yeoh_hex8_whole_hessian, tm_yeoh_hex8_whole_gradient_hessian, tm_yeoh_hex8_whole_stress, 1656, 4440, 33480,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "hex8", "fbar", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_fbar_precompute, tm_yeoh_hex8_fbar_energy, tm_yeoh_hex8_fbar_gradient,
    tm_yeoh_hex8_fbar_hessian, tm_yeoh_hex8_fbar_gradient_hessian, tm_yeoh_hex8_fbar_stress, 2088, 5160, 45288,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
    kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
    tm_yeoh_prism15_whole_hessian, tm_yeoh_prism15_whole_gradient_hessian, tm_yeoh_prism15_whole_stress, 5994, 14526, 193266,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
@@ -3616,21 +4188,24 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "prism6", "anp", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_anp_precompute, tm_yeoh_prism6_anp_energy, tm_yeoh_prism6_anp_gradient,
    tm_yeoh_prism6_anp_hessian, tm_yeoh_prism6_anp_gradient_hessian, tm_yeoh_prism6_anp_stress, 1350, 3438, 25758,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   tm_yeoh_prism6_anp_bulk},
+   tm_yeoh_prism6_anp_bulk,
+   0, nullptr, nullptr},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
    tm_yeoh_pyramid13_whole_hessian, tm_yeoh_pyramid13_whole_gradient_hessian, tm_yeoh_pyramid13_whole_stress, 8019, 19845, 229635,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
@@ -3638,14 +4213,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
    tm_yeoh_pyramid5_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "pyramid5", "fbar", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_fbar_precompute, tm_yeoh_pyramid5_fbar_energy, tm_yeoh_pyramid5_fbar_gradient,
    tm_yeoh_pyramid5_fbar_hessian, tm_yeoh_pyramid5_fbar_gradient_hessian, tm_yeoh_pyramid5_fbar_stress, 1656, 4296, 29196,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
@@ -3653,14 +4230,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
    tm_yeoh_quad4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "quad4", "fbar", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_fbar_precompute, tm_yeoh_quad4_fbar_energy, tm_yeoh_quad4_fbar_gradient,
    tm_yeoh_quad4_fbar_hessian, tm_yeoh_quad4_fbar_gradient_hessian, tm_yeoh_quad4_fbar_stress, 352, 772, 3764,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
@@ -3668,7 +4247,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
    tm_yeoh_quad8_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "quad9", "whole", 2, 9, 18, 9, 4, 4, 175,
    kYeohParameters, kYeohLimits, tm_yeoh_quad9_whole_precompute, tm_yeoh_quad9_whole_energy, tm_yeoh_quad9_whole_gradient,
@@ -3676,14 +4256,16 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_quad9_whole_gradient_batch, tm_yeoh_quad9_whole_gradient_hessian_batch,
    tm_yeoh_quad9_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
    tm_yeoh_tet10_whole_hessian, tm_yeoh_tet10_whole_gradient_hessian, tm_yeoh_tet10_whole_stress, 972, 2508, 22788,
    0, 0,
    0, nullptr, nullptr, nullptr,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
@@ -3691,7 +4273,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
    tm_yeoh_tet4_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "tet4", "anp", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_anp_precompute, tm_yeoh_tet4_anp_energy, tm_yeoh_tet4_anp_gradient,
@@ -3699,7 +4282,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_anp_gradient_batch, tm_yeoh_tet4_anp_gradient_hessian_batch,
    tm_yeoh_tet4_anp_stress_batch,
-   tm_yeoh_tet4_anp_bulk},
+   tm_yeoh_tet4_anp_bulk,
+   0, nullptr, nullptr},
 
   {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
@@ -3707,7 +4291,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
    tm_yeoh_tri3_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
   {"yeoh", "tri3", "anp", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_anp_precompute, tm_yeoh_tri3_anp_energy, tm_yeoh_tri3_anp_gradient,
@@ -3715,7 +4300,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_anp_gradient_batch, tm_yeoh_tri3_anp_gradient_hessian_batch,
    tm_yeoh_tri3_anp_stress_batch,
-   tm_yeoh_tri3_anp_bulk},
+   tm_yeoh_tri3_anp_bulk,
+   0, nullptr, nullptr},
 
   {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
@@ -3723,7 +4309,8 @@ const tm_kernel kKernels[] = {
    0, 0,
    tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
    tm_yeoh_tri6_whole_stress_batch,
-   nullptr},
+   nullptr,
+   0, nullptr, nullptr},
 
 };
 constexpr int kKernelCount = static_cast<int>(sizeof(kKernels) / sizeof(kKernels[0]));

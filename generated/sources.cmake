@@ -228,6 +228,26 @@ set(TENSORMASS_GENERATED_SOURCES
   kernels/veronda_westmann_tri3_anp.cpp
   kernels/veronda_westmann_tri3_whole.cpp
   kernels/veronda_westmann_tri6_whole.cpp
+  kernels/viscoelastic_neohookean_hex20_whole.cpp
+  kernels/viscoelastic_neohookean_hex27_whole.cpp
+  kernels/viscoelastic_neohookean_hex8_fbar.cpp
+  kernels/viscoelastic_neohookean_hex8_whole.cpp
+  kernels/viscoelastic_neohookean_prism15_whole.cpp
+  kernels/viscoelastic_neohookean_prism6_anp.cpp
+  kernels/viscoelastic_neohookean_prism6_whole.cpp
+  kernels/viscoelastic_neohookean_pyramid13_whole.cpp
+  kernels/viscoelastic_neohookean_pyramid5_fbar.cpp
+  kernels/viscoelastic_neohookean_pyramid5_whole.cpp
+  kernels/viscoelastic_neohookean_quad4_fbar.cpp
+  kernels/viscoelastic_neohookean_quad4_whole.cpp
+  kernels/viscoelastic_neohookean_quad8_whole.cpp
+  kernels/viscoelastic_neohookean_quad9_whole.cpp
+  kernels/viscoelastic_neohookean_tet10_whole.cpp
+  kernels/viscoelastic_neohookean_tet4_anp.cpp
+  kernels/viscoelastic_neohookean_tet4_whole.cpp
+  kernels/viscoelastic_neohookean_tri3_anp.cpp
+  kernels/viscoelastic_neohookean_tri3_whole.cpp
+  kernels/viscoelastic_neohookean_tri6_whole.cpp
   kernels/yeoh_hex20_whole.cpp
   kernels/yeoh_hex27_whole.cpp
   kernels/yeoh_hex8_fbar.cpp

@@ -111,6 +111,8 @@ def law_context(law: LawSpec) -> dict:
         "name": law.name,
         "parameters": list(law.parameters),
         "limits": [_limit_context(law.limit(p)) for p in law.parameters],
+        "prony_weights": [law.parameters.index(p) for p in law.prony_weights],
+        "prony_times": [law.parameters.index(p) for p in law.prony_times],
     }
 
 
@@ -170,6 +172,8 @@ def kernel_context(k: KernelIR) -> dict:
         "law_tangent": _printed_law_block(k.law_ir.tangent, names, k.element.dim),
         "law_tangent_only": _printed_law_block(k.law_ir.tangent_only, names, k.element.dim),
         "tangent_fill": _tangent_fill(k),
+        "bulk": [],
+        "prony_parameters": list(law.prony_weights + law.prony_times),
     }
     if isinstance(k.split_ir, TermsIR):
         context.update(_terms_context(k.split_ir, names))
@@ -178,6 +182,8 @@ def kernel_context(k: KernelIR) -> dict:
     if isinstance(k.split_ir, NodalPressureIR):
         context.update(bulk=[print_expr(expr) for expr in k.split_ir.bulk], bulk_text=law.bulk,
                        anp_base=k.split_ir.base)
+    elif k.viscous_bulk:
+        context.update(bulk=[print_expr(expr) for expr in k.viscous_bulk], bulk_text=law.bulk)
     return context
 
 
@@ -224,8 +230,8 @@ def kernel_row(k: KernelIR, sources: list[str]) -> dict:
             "dim": k.element.dim, "points": len(k.tables.weights), "params": len(k.law.parameters),
             "derived_params": len(k.law.constants), "consts": k.consts_size, "flops_energy": k.flops.energy,
             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
-            "invertible": k.invertible, "batched": _batched(k), "bulk": isinstance(k.split_ir, NodalPressureIR),
-            "sources": sources}
+            "invertible": k.invertible, "batched": _batched(k), "bulk": isinstance(k.split_ir, NodalPressureIR) or bool(k.viscous_bulk),
+            "prony_terms": len(k.law.prony_weights), "sources": sources}
 
 
 def row_order(row: dict) -> tuple:

@@ -143,6 +143,10 @@ class KernelIR:
     split_ir: SplitIR
     linear: bool  # force = K u with K constant (LawDerivatives.linear)
     invertible: bool = False  # the law is defined for det F <= 0 (LawSpec.invertible)
+    # (U, dU/dJ, d2U/dJ2) of the law's bulk part for a `whole` kernel of a
+    # viscoelastic law: the runtime's viscous part relaxes the rest of the
+    # stress. () otherwise (the anp split's NodalPressureIR has its own).
+    viscous_bulk: tuple[sympy.Expr, ...] = ()
 
     @property
     def prefix(self) -> str:

@@ -28,7 +28,9 @@ ELEMENT_REQUIRED = ELEMENT_KEYS - {"faces", "calculix"}
 RULE_KEYS = {"degree", "points", "weights"}
 FORMAT_KEYS = {"type", "node_order"}
 LAW_KEYS = {"name", "description", "parameters"}
-LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "bulk", "derived", "invertible", "limits", "rotation_invariant"}
+LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "bulk", "derived", "invertible", "limits", "rotation_invariant",
+                     "viscoelastic"}
+VISCOELASTIC_KEYS = {"weights", "times"}
 # One limit: `parameter op number`, op one of > >= < <=.
 _LIMIT = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|>|<)\s*([^<>=\s].*?)\s*$")
 
@@ -250,14 +252,46 @@ def _bulk_text(data: dict, volumetric: str, source: str) -> str:
     return data["bulk"]
 
 
+def _names_read(text: str) -> set[str]:
+    """The identifiers an expression reads (none when it does not parse: the symbolic stage reports that)."""
+    try:
+        tree = ast.parse(text.replace("^", "**"), mode="eval")
+    except SyntaxError:
+        return set()
+    return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
+
+
 def _fibre_families(energy: str, source: str) -> int:
     """How many fibre families the energy's invariants read (0, 1 or 2)."""
-    try:
-        tree = ast.parse(energy.replace("^", "**"), mode="eval")
-    except SyntaxError:
-        return 0  # the symbolic stage reports the syntax error with its key
-    names = {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
-    return max((FIBRE_INVARIANT_FAMILIES.get(name, 0) for name in names), default=0)
+    return max((FIBRE_INVARIANT_FAMILIES.get(name, 0) for name in _names_read(energy)), default=0)
+
+
+def _prony_series(data: Any, parameters: list[str], read: set[str], source: str) -> tuple[tuple[str, ...], ...]:
+    """(weights, times): the [viscoelastic] table's parameter names, term by term; ((), ()) without one.
+    The runtime alone reads them, so the energy and the derived parameters must not."""
+    if data is None:
+        return (), ()
+    if not isinstance(data, dict):
+        raise _fail(source, "viscoelastic", "expected a table with `weights` and `times`")
+    _check_keys(data, VISCOELASTIC_KEYS, VISCOELASTIC_KEYS, source, "viscoelastic.")
+    lists = []
+    for key in ("weights", "times"):
+        names = data[key]
+        if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
+            raise _fail(source, f"viscoelastic.{key}", "expected a non-empty list of parameter names")
+        for name in names:
+            if name not in parameters:
+                raise _fail(source, f"viscoelastic.{key}", f"'{name}' is not a parameter; parameters are {parameters}")
+            if name in read:
+                raise _fail(source, f"viscoelastic.{key}", f"'{name}' is read by the energy or a derived parameter; "
+                            "a Prony parameter is read by the runtime only")
+        lists.append(tuple(names))
+    weights, times = lists
+    if len(weights) != len(times):
+        raise _fail(source, "viscoelastic.times", f"{len(times)} times for {len(weights)} weights")
+    if len(set(weights + times)) != 2 * len(weights):
+        raise _fail(source, "viscoelastic", "a parameter is named twice")
+    return weights, times
 
 
 def load_law(path: Path) -> LawSpec:
@@ -298,6 +332,8 @@ def load_law(path: Path) -> LawSpec:
             raise _fail(source, key, f"unknown symbols {sorted(map(str, unknown))}; parameters are {parameters}")
         derived.append((name, expr))
     limits = _limits(data.get("limits", []), parameters, source)
+    read = _names_read(energy) | {str(symbol) for _, expr in derived for symbol in expr.free_symbols}
+    prony_weights, prony_times = _prony_series(data.get("viscoelastic"), parameters, read, source)
     fibres = tuple(name for family in FIBRE_PARAMETERS[:families] for name in family)
     return LawSpec(
         name=data["name"],
@@ -313,6 +349,8 @@ def load_law(path: Path) -> LawSpec:
         bulk=bulk,
         rotation_invariant=data.get("rotation_invariant", True),
         fibre_families=families,
+        prony_weights=prony_weights,
+        prony_times=prony_times,
     )
 
 

@@ -32,6 +32,7 @@ from .ir import KernelIR, LoweredIR, Refusal
 from .lower_element import lower_element
 from .model import ElementSpec, LawSpec, OptimisedIR
 from .splits import anp, fbar, tensor, terms, whole
+from .symbolic import law_bulk
 from .splits.common import SplitRefused, Triple, point_stride
 
 from .stale import SPLITS
@@ -70,7 +71,8 @@ def build_kernel_ir(optimised: OptimisedIR, law: LawSpec, element: ElementSpec, 
     return KernelIR(law=law, element=element, split=split, tables=tables, law_ir=law_ir, consts_size=consts,
                     flops=lowering.flops, symbol_names=tuple(names.items()), split_ir=lowering.split_ir,
                     linear=derivatives.linear, invertible=law.invertible and split != "fbar" and not (
-                        split == "anp" and lowering.split_ir.base == "fbar"))
+                        split == "anp" and lowering.split_ir.base == "fbar"),
+                    viscous_bulk=law_bulk(law) if law.viscoelastic and law.bulk and split == "whole" else ())
 
 
 def lower(optimised: OptimisedIR, tensor_limit: int = DEFAULT_TENSOR_LIMIT) -> LoweredIR:

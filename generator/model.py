@@ -136,6 +136,16 @@ class LawSpec:
     # Fibre families the energy reads (0, 1 or 2): their FIBRE_PARAMETERS end
     # `parameters` and their FIBRE_CONSTANTS end `constants`.
     fibre_families: int = 0
+    # The Prony series of a viscoelastic law (the file's [viscoelastic] table):
+    # the parameters holding the weights g_i and the relaxation times tau_i,
+    # term by term. The kernels never read them; the runtime's viscous part
+    # does (docs/viscoelasticity.md).
+    prony_weights: tuple[str, ...] = ()
+    prony_times: tuple[str, ...] = ()
+
+    @property
+    def viscoelastic(self) -> bool:
+        return bool(self.prony_weights)
 
     @property
     def constants(self) -> tuple[tuple[str, sympy.Expr], ...]:
@@ -143,7 +153,9 @@ class LawSpec:
         fibres = fibre_constants(self.fibre_families)
         if self.derived:
             return self.derived + fibres
-        return tuple((name, sympy.Symbol(name, real=True)) for name in self.own_parameters) + fibres
+        prony = set(self.prony_weights + self.prony_times)
+        return tuple((name, sympy.Symbol(name, real=True)) for name in self.own_parameters
+                     if name not in prony) + fibres
 
     @property
     def own_parameters(self) -> tuple[str, ...]:

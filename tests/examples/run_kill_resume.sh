@@ -6,7 +6,9 @@
 # the adaptive model (laws switching up and down with blends, the folded
 # linear part's sums, the counters), and for runs that refine their mesh
 # (dynamic with coarsening, and static; the mesh is replayed from the
-# checkpoint's history, the refinement events in summary.json match too).
+# checkpoint's history, the refinement events in summary.json match too),
+# and for a viscoelastic law (its history per quadrature point), implicit
+# and explicit.
 set -euo pipefail
 binary=$1
 work=$(mktemp -d)
@@ -41,6 +43,11 @@ write_scene refining "  {type: implicit, dt: 0.01, steps: 50, newton_iterations:
 write_scene refining_static "  {type: static, load_steps: 16, tolerance: 1.0e-10}" 4 3 \
   "adaptivity: {refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1}}"
 
+for solver in implicit explicit; do
+  sed 's/law: stvk, young: 1.0e7, poisson: 0.3/law: viscoelastic_neohookean, mu: 3.4e6, kappa: 8.0e6, g1: 0.3, tau1: 0.05, g2: 0.2, tau2: 0.5/; s/out-'"$solver"'/out-viscous_'"$solver"'/' \
+    "$solver.yaml" > "viscous_$solver.yaml"
+done
+
 kill_and_resume() {  # name, frame to wait for
   local name=$1 frame=$2
   "$binary" run "$name.yaml" --quiet --set output.directory=reference-$name
@@ -69,6 +76,8 @@ kill_and_resume implicit frame_000050.vtu
 kill_and_resume static frame_000020.vtu
 kill_and_resume explicit frame_001000.vtu
 kill_and_resume adaptive frame_000050.vtu
+kill_and_resume viscous_implicit frame_000050.vtu
+kill_and_resume viscous_explicit frame_001000.vtu
 grep -q '"switches": [1-9]' out-adaptive/summary.json || { echo "adaptive: no law switched"; exit 1; }
 for name in refining:frame_000020.vtu refining_static:frame_000008.vtu; do
   kill_and_resume "${name%%:*}" "${name#*:}"

@@ -202,3 +202,33 @@ def test_fibre_direction_names_are_reserved(tmp_path):
     path.write_text('name = "fibred"\ndescription = "d"\nenergy = "fibre_x*(I4 - 1)"\nparameters = ["fibre_x"]\n')
     with pytest.raises(GeneratorInputError, match=r"fibred.toml: key 'parameters': .*fibre directions"):
         load_law(path)
+
+
+_VISCOUS_LAW = ('name = "viscous"\ndescription = "d"\nisochoric = "c10*(I1bar - 3)"\n'
+                'volumetric = "kappa/2*(J - 1)**2"\nparameters = ["c10", "kappa", "g1", "tau1"]\n')
+
+
+def test_a_prony_series_names_its_parameters_term_by_term(tmp_path):
+    path = tmp_path / "viscous.toml"
+    path.write_text(_VISCOUS_LAW + '[viscoelastic]\nweights = ["g1"]\ntimes = ["tau1"]\n')
+    law = load_law(path)
+    assert law.viscoelastic and law.prony_weights == ("g1",) and law.prony_times == ("tau1",)
+    assert law.parameters == ("c10", "kappa", "g1", "tau1")
+    assert [name for name, _ in law.constants] == ["c10", "kappa"]  # the kernels never read g1, tau1
+
+
+@pytest.mark.parametrize("table, key, message", [
+    ('weights = ["g1"]\n', "viscoelastic.times", "missing"),
+    ('weights = ["g1"]\ntimes = ["tau1"]\nshift = 2\n', "viscoelastic.shift", "unknown key"),
+    ('weights = ["g1"]\ntimes = ["tau9"]\n', "viscoelastic.times", "'tau9' is not a parameter"),
+    ('weights = ["g1"]\ntimes = []\n', "viscoelastic.times", "non-empty list"),
+    ('weights = ["g1", "tau1"]\ntimes = ["tau1"]\n', "viscoelastic.times", "1 times for 2 weights"),
+    ('weights = ["c10"]\ntimes = ["tau1"]\n', "viscoelastic.weights", "read by the energy"),
+    ('weights = ["g1"]\ntimes = ["g1"]\n', "viscoelastic", "named twice"),
+])
+def test_prony_series_errors_name_file_and_key(tmp_path, table, key, message):
+    path = tmp_path / "viscous.toml"
+    path.write_text(_VISCOUS_LAW + "[viscoelastic]\n" + table)
+    with pytest.raises(GeneratorInputError) as error:
+        load_law(path)
+    assert str(path) in str(error.value) and f"'{key}'" in str(error.value) and message in str(error.value)

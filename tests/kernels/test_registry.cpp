@@ -66,7 +66,8 @@ TEST(Registry, HoldsEveryElementAndLawFile) {
 /// (the build's TENSORMASS_TERMS_SPLIT); tensor on first-order elements
 /// only, for hooke and stvk at least; fbar for every law on exactly the
 /// first-order elements with more than one quadrature point but prism6
-/// (which it does not free); nothing else.
+/// (which it does not free); nothing else. Prony series on the
+/// viscoelastic law only, its weights named g1, g2.
 TEST(Registry, OffersTheExpectedTriples) {
   const bool with_terms = registry().find("hooke", "tet4", "terms") != nullptr;
   int count = 0;
@@ -91,7 +92,11 @@ TEST(Registry, OffersTheExpectedTriples) {
           EXPECT_EQ(kernel != nullptr, anp_element && law != "stvk" && law != "corotational")
               << law << "/" << element->name << "/anp";
         if (kernel == nullptr) continue;
-        EXPECT_EQ(kernel->bulk != nullptr, split == "anp");
+        // The bulk part: in anp, and in whole for a viscoelastic law (its viscous part relaxes the rest).
+        EXPECT_EQ(kernel->bulk != nullptr, split == "anp" || (split == "whole" && kernel->prony_terms > 0));
+        EXPECT_EQ(kernel->prony_terms > 0, law == "viscoelastic_neohookean");
+        for (int i = 0; i < kernel->prony_terms; ++i)
+          EXPECT_EQ(std::string(kernel->param_names[kernel->prony_weights[i]]), "g" + std::to_string(i + 1));
         ++count;
         EXPECT_EQ(kernel->law, law);
         EXPECT_EQ(kernel->element, std::string(element->name));

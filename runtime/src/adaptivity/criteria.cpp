@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string_view>
@@ -523,11 +524,20 @@ class StressErrorCriterion final : public Criterion {
     return nullptr;
   }
 
-  /// The cell's constants fit both laws' kernels.
+  /// The cell's constants fit both laws' kernels: the same parameters
+  /// (so the leading constants mean the same) and the same layout.
   static bool fits(const tm_kernel& kernel, const LawPair& pair) {
+    const auto same_parameters = [&](const tm_kernel* other) {
+      if (other->params != kernel.params) return false;
+      if (other->param_names == kernel.param_names) return true;
+      for (int p = 0; p < kernel.params; ++p)
+        if (std::strcmp(other->param_names[p], kernel.param_names[p]) != 0) return false;
+      return true;
+    };
     const auto same_layout = [&](const tm_kernel* other) {
-      return other->derived_params == kernel.derived_params && other->quadrature_points == kernel.quadrature_points &&
-             other->consts <= kernel.consts && kernel.quadrature_points * kernel.dim * kernel.dim <= kMaxStress;
+      return same_parameters(other) && other->derived_params == kernel.derived_params &&
+             other->quadrature_points == kernel.quadrature_points && other->consts <= kernel.consts &&
+             kernel.quadrature_points * kernel.dim * kernel.dim <= kMaxStress;
     };
     return same_layout(pair.base) && same_layout(pair.target);
   }

@@ -102,7 +102,7 @@ double cell_energy(const Model& model, int cell, const double* u) {
 }  // namespace
 
 Assembler::Assembler(const Model& model, bool fold_linear_cells, const Distribution* distribution)
-    : model_(&model), nodal_(model), graph_(make_node_graph(model, &nodal_)) {
+    : model_(&model), nodal_(model), viscous_(model), graph_(make_node_graph(model, &nodal_)) {
   if (distribution) refuse_nodal_pressure_over_ranks();
   distribution_ = distribution;
   build_colours();
@@ -412,7 +412,8 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 
 bool Assembler::batches(int cell) const {
   const tm_kernel& kernel = model_->kernel(cell);
-  return batched_ && kernel.batch_width > 1 && kernel.batch_width <= KernelPlan::kMaxBatch && !model_->blend_from(cell);
+  return batched_ && kernel.batch_width > 1 && kernel.batch_width <= KernelPlan::kMaxBatch &&
+         !model_->blend_from(cell) && kernel.prony_terms == 0;
 }
 
 KernelPlan::Mode Assembler::plan_mode(int cell) const {
@@ -485,7 +486,9 @@ double Assembler::energy(std::span<const double> u) const {
     for (int cell = chunk * kChunkCells; cell < std::min(cells, (chunk + 1) * kChunkCells); ++cell) {
       if ((linear_ && linear_->folded(cell)) || (shared && !shared->owns_cell(cell))) continue;
       model.gather(cell, u, local);
-      sum += cell_energy(model, cell, local);
+      const double W = cell_energy(model, cell, local);
+      const int viscous = viscous_.index_of(cell);
+      sum += viscous < 0 ? W : viscous_.adjust_energy(viscous, local, W);
     }
     chunk_energy[chunk] = sum;
   }
@@ -506,6 +509,8 @@ void Assembler::assemble_cell(int cell, std::span<const double> u, std::span<dou
   } else {
     kernel.gradient(buffers.u, model.consts(cell), buffers.g);
   }
+  if (const int viscous = viscous_.index_of(cell); viscous >= 0)
+    viscous_.adjust(viscous, buffers.u, buffers.g, local_k);
   if (stiffness && project_hessians_) project_to_positive_semidefinite(local_k, kernel.dofs);
   scatter_cell(cell, buffers.g, local_k, gradient, stiffness);
 }

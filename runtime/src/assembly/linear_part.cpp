@@ -20,7 +20,7 @@ constexpr double kActiveShare = 0.9;
 /// The kernel a cell folds with now, or nullptr when it must run its kernel.
 const tm_kernel* foldable_kernel(const Model& model, int cell) {
   const tm_kernel& kernel = model.kernel(cell);
-  return kernel.linear && !model.blend_from(cell) ? &kernel : nullptr;
+  return kernel.linear && kernel.prony_terms == 0 && !model.blend_from(cell) ? &kernel : nullptr;
 }
 /// One node's row of multiply_blocks<3>, with its 3 x 3 sums held as three
 /// vectors: sums[a] lane b is sum[a][b] (lane 3 collects a spare product and

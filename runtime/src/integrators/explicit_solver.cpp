@@ -173,7 +173,10 @@ void ExplicitIntegrator::step(State& state, const StepObserver& observer) {
   const double t = state.time, t1 = t + dt;
   auto& u = state.displacement;
   auto& v = state.velocity;
+  // The viscous history steps from t - dt to t here, with the force at u(t).
+  run.assembler.begin_viscous_step(state.viscous_history, dt);
   detail::assemble(run, u, g_, nullptr);
+  if (!run.assembler.viscous_part().empty()) run.assembler.commit_viscous_step(u, state.viscous_history);
   // One pass over the free dofs (the step's vector work is a visible share
   // of a folded Hooke step): external force at t, velocity, position.
   const bool finite = advance_free_dofs(state, model.load_factor(t));

@@ -167,6 +167,7 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
   const std::vector<double> f = external_force(model, model.load_factor(t1));
   const detail::StateRows rows(run.assembler);
   const EulerStep step{run, u0, v0, f, rows, {}, {}};
+  run.assembler.begin_viscous_step(state.viscous_history, dt);
   std::vector<double> u = predict(step, t1);
   double reference = 0.0;
   int iterations = 0;
@@ -196,6 +197,7 @@ void ImplicitIntegrator::step(State& state, const StepObserver& observer) {
   detail::require_finite(rows, u, "the displacement " + where);
   if (!uninverted) detail::require_no_inversion(run.assembler, u, where);
   for (int d = 0; d < dofs; ++d) v_[d] = (u[d] - u0[d]) / dt;
+  if (!run.assembler.viscous_part().empty()) run.assembler.commit_viscous_step(u, state.viscous_history);
   state.displacement = std::move(u);
   state.velocity = v_;
   state.time = t1;

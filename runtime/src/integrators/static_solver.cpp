@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -272,6 +273,8 @@ void StaticIntegrator::step(State& state, const StepObserver& observer) {
   double carried_ms = 0;
   int carried_iterations = 0;
   const int step = state.step + 1;
+  // A static equilibrium is the long-term one: viscous stresses fully relaxed.
+  run.assembler.begin_viscous_step({}, std::numeric_limits<double>::infinity());
   for (bool repeating = false;; repeating = true) {
     const auto start = std::chrono::steady_clock::now();
     const double factor = static_cast<double>(step) / steps;

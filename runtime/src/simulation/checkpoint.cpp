@@ -25,7 +25,7 @@ namespace {
 constexpr char kMagic[] = "tensormass checkpoint";
 // 5: the payload's size and checksum in the header; 6: step series; 7: track
 // files and adaptivity records streamed, their marks kept
-constexpr std::uint64_t kVersion = 7;
+constexpr std::uint64_t kVersion = 8;
 
 /// FNV-1a, 64 bits.
 class Fingerprint {
@@ -188,7 +188,7 @@ class Reader {
 void put_state(Writer& w, const State& s) {
   w.put(s.time), w.put(static_cast<std::int64_t>(s.step));
   w.put(s.displacement), w.put(s.velocity), w.put(s.warm_start);
-  w.put(s.previous_displacement), w.put(s.earlier_displacement);
+  w.put(s.previous_displacement), w.put(s.earlier_displacement), w.put(s.viscous_history);
 }
 
 State get_state(Reader& r) {
@@ -200,6 +200,7 @@ State get_state(Reader& r) {
   s.warm_start = r.get_vector<double>();
   s.previous_displacement = r.get_vector<double>();
   s.earlier_displacement = r.get_vector<double>();
+  s.viscous_history = r.get_vector<double>();
   return s;
 }
 
@@ -378,7 +379,8 @@ void check_fields(const Checkpoint& c, const std::string& path) {
                                      {"state.velocity", &s.velocity},
                                      {"state.warm_start", &s.warm_start},
                                      {"state.previous_displacement", &s.previous_displacement},
-                                     {"state.earlier_displacement", &s.earlier_displacement}})
+                                     {"state.earlier_displacement", &s.earlier_displacement},
+                                     {"state.viscous_history", &s.viscous_history}})
     if (!finite(*values)) refuse(name, "holds a value that is not finite");
   static const std::regex frame_name("frame_[0-9]{6,9}\\.p?vtu");  // a step fits an int
   double previous = -1.0;

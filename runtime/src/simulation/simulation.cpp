@@ -54,6 +54,7 @@ struct Simulation::Impl {
   void restore_refinement(const SavedRefinement& saved);
   SavedRefinement save_refinement() const;
   void restore(const Checkpoint& checkpoint);
+  void refuse_what_viscous_cells_lack() const;
   void write_checkpoint_now(const State& state);
   void stream_adaptivity_record();
   std::string output_path(const std::string& name) const { return (fs::path(scene.output.directory) / name).string(); }
@@ -197,6 +198,7 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   if (checkpoint && refinement) replay_refinement(*checkpoint);
   if (parallel::world_size() > 1) share_among_ranks();
   mark_memory("shared");
+  refuse_what_viscous_cells_lack();
   disc->prepare(scene);
   if (scene.adaptivity.enabled) {
     AdaptivitySettings settings = scene.adaptivity;
@@ -241,6 +243,19 @@ Simulation::Impl::Impl(const Scene& scene_in, StartMesh start, const RunOptions&
   if (refinement) report.refinement.push_back(refinement_record(0, *refinement));
 }
 
+/// The viscous history (assembly/viscous_part.hpp) stays with the cells it
+/// was built on: law switches, refinement and MPI parts do not carry it yet.
+void Simulation::Impl::refuse_what_viscous_cells_lack() const {
+  if (disc->assembler.viscous_part().empty()) return;
+  const auto refuse = [&](const std::string& what) {
+    throw InputError(scene.path + ": a viscoelastic law (one with a Prony series) does not run " + what +
+                     " yet (docs/laws.md, Viscoelasticity)");
+  };
+  if (scene.adaptivity.enabled) refuse("with the adaptive model");
+  if (refinement) refuse("with refinement");
+  if (parallel::world_size() > 1) refuse("over MPI ranks");
+}
+
 /// Appends the adaptive model's latest evaluation to its record file, once.
 void Simulation::Impl::stream_adaptivity_record() {
   const long evaluations = adaptivity->records().evaluations;
@@ -272,6 +287,11 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   SolveStatistics& statistics = report.statistics;
   state = checkpoint.state;
   last_good = state;
+  const std::size_t history = disc->assembler.viscous_part().history_size();
+  if (!state.viscous_history.empty() && state.viscous_history.size() != history)
+    throw InputError("checkpoint " + checkpoint_path + ": state.viscous_history holds " +
+                     std::to_string(state.viscous_history.size()) + " doubles; this scene's viscoelastic cells carry " +
+                     std::to_string(history));
   if (adaptivity && !checkpoint.adaptive)
     throw InputError("checkpoint " + checkpoint_path + " holds no adaptive model's state");
   if (adaptivity) restore_laws(checkpoint.laws, disc->model, disc->assembler, *adaptivity);
@@ -646,6 +666,8 @@ void Simulation::set_law(const std::vector<int>& cells, const std::string& law) 
   const Discretisation& disc = *impl_->disc;
   Model& model = impl_->disc->model;
   const int whole = disc.whole_cell_count();
+  if (!disc.assembler.viscous_part().empty())
+    throw InputError("set_law: the model has viscoelastic cells, whose history does not follow a law switch yet");
   std::vector<int> held;
   for (int cell : cells) {  // all checked before any changes
     if (cell < 0 || cell >= whole)

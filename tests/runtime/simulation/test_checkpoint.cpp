@@ -31,7 +31,7 @@ Checkpoint sample() {
   Checkpoint c;
   c.mesh_fingerprint = 11;
   c.scene_fingerprint = 22;
-  c.state = {{0.1, -0.2, 1e-300}, {3.0, 4.0, 5.0}, 0.75, 9, {1.5}, {0.25, 0.5, 0.125}, {}};
+  c.state = {{0.1, -0.2, 1e-300}, {3.0, 4.0, 5.0}, 0.75, 9, {1.5}, {0.25, 0.5, 0.125}, {}, {-7.5, 2e-12}};
   c.linear_solver = {1.0, 2.0, 3.0};
   c.statistics.newton_iterations = 18;
   c.statistics.shortened_steps = 2;
@@ -71,6 +71,7 @@ TEST(Checkpoint, RoundTripsEveryField) {
   EXPECT_EQ(r.state.warm_start, c.state.warm_start);
   EXPECT_EQ(r.state.previous_displacement, c.state.previous_displacement);
   EXPECT_TRUE(r.state.earlier_displacement.empty());
+  EXPECT_EQ(r.state.viscous_history, c.state.viscous_history);
   EXPECT_EQ(r.linear_solver, c.linear_solver);
   EXPECT_EQ(r.statistics.newton_iterations, 18);
   EXPECT_EQ(r.statistics.shortened_steps, 2);

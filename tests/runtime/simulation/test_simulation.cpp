@@ -245,3 +245,41 @@ TEST_F(SteppedBeam, AdaptiveModelGoesOnFromLawsSetByScript) {
 
 }  // namespace
 }  // namespace tensormass
+
+namespace tensormass {
+namespace {
+
+/// The viscous history stays with the cells it was built on: what would
+/// move cells or their laws is refused with a message, before any step.
+class ViscousBeam : public SteppedBeam {
+ protected:
+  static Scene viscous(const std::string& name) {
+    Scene s = scene(name, "viscoelastic_neohookean", SolverType::implicit_euler);
+    s.model.materials[0].constants = {{"mu", 3e6},    {"kappa", 8e6}, {"g1", 0.3},
+                                      {"tau1", 0.05}, {"g2", 0.2},    {"tau2", 0.5}};
+    return s;
+  }
+};
+
+TEST_F(ViscousBeam, RunsAndRefusesTheAdaptiveModelAndLawSwitches) {
+  Simulation simulation(viscous("viscous-beam"), quiet());
+  EXPECT_EQ(step_through(simulation), 12);
+  EXPECT_FALSE(simulation.state().viscous_history.empty());
+  try {
+    simulation.set_law({0}, "neohookean");
+    FAIL() << "a law switch of a viscoelastic model was accepted";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"set_law", "viscoelastic"});
+  }
+  Scene adaptive = viscous("viscous-adaptive");
+  adaptive.adaptivity.enabled = true;
+  try {
+    Simulation refused(adaptive, quiet());
+    FAIL() << "the adaptive model was accepted on a viscoelastic law";
+  } catch (const InputError& e) {
+    expect_contains(e.what(), {"scene.yaml", "viscoelastic law", "adaptive model"});
+  }
+}
+
+}  // namespace
+}  // namespace tensormass

@@ -19,6 +19,8 @@
 ///
 /// Cells of the anp split add their nodal part (nodal_pressure.hpp) after
 /// the kernels; its patches widen the pattern to two rings of neighbours.
+/// Cells of a viscoelastic law turn their kernel's force and tangent into
+/// the current step's (viscous_part.hpp) before they are scattered.
 #ifndef TENSORMASS_ASSEMBLER_HPP
 #define TENSORMASS_ASSEMBLER_HPP
 
@@ -31,6 +33,7 @@
 #include "tensormass/assembly/nodal_pressure.hpp"
 #include "tensormass/assembly/node_graph.hpp"
 #include "tensormass/assembly/sparse_matrix.hpp"
+#include "tensormass/assembly/viscous_part.hpp"
 #include "tensormass/model/model.hpp"
 #include "tensormass/parallel/distribution.hpp"
 
@@ -102,6 +105,16 @@ class Assembler {
   /// the thread count. Blending cells always run per element.
   void set_batched(bool on) { batched_ = on; }
   bool batched() const { return batched_; }
+  /// The viscous part of the model's viscoelastic cells (empty() without any).
+  const ViscousPart& viscous_part() const { return viscous_; }
+  /// Sets up the time step of length dt from the viscous history at its
+  /// start (State::viscous_history; ViscousPart::begin_step): what
+  /// assemble() and energy() give until the next call. Not re-entrant.
+  void begin_viscous_step(std::span<const double> history, double dt) const { viscous_.begin_step(history, dt); }
+  /// Ends the step at u: the viscous history is updated to it (ViscousPart::commit).
+  void commit_viscous_step(std::span<const double> u, std::vector<double>& history) const {
+    viscous_.commit(u, history);
+  }
   /// The plan of the kernel cells as of the last assemble() (kernel_plan.hpp).
   const KernelPlan& kernel_plan() const { return plan_; }
   /// When on (the default), cell Hessians are added into the tangent by
@@ -155,6 +168,8 @@ class Assembler {
 
   const Model* model_;
   NodalPressure nodal_;  ///< the anp cells' bulk part at the nodes (empty without anp cells)
+  /// The viscoelastic cells' history terms; the step it is set up for changes between assemblies.
+  mutable ViscousPart viscous_;
   NodeGraph graph_;
   /// The tangent's layout below is built (require_tangent_layout).
   mutable bool tangent_layout_ = false;

@@ -34,6 +34,9 @@ struct State {
   /// static: the converged displacements of the two load steps before this
   /// one (the predictor's extrapolation); empty until there are any
   std::vector<double> previous_displacement, earlier_displacement;
+  /// The viscous history at `time` (Assembler::viscous_part(): its
+  /// history_size() doubles); empty for an elastic model or before the first step.
+  std::vector<double> viscous_history;
 };
 
 /// Wall-clock seconds per phase and iteration counts, accumulated.

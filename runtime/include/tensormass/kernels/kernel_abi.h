@@ -105,8 +105,17 @@ typedef struct tm_kernel {
   tm_gradient_batch_fn gradient_batch;
   tm_gradient_hessian_batch_fn gradient_hessian_batch;
   tm_stress_batch_fn stress_batch;
-  /// The anp split's bulk part (kernel_abi.h's tm_bulk_fn); NULL in the other splits.
+  /// The law's bulk part (tm_bulk_fn): in the anp split, and in the whole
+  /// split of a viscoelastic law that has one; NULL otherwise.
   tm_bulk_fn bulk;
+  /// A viscoelastic law's Prony series (docs/viscoelasticity.md): term i has
+  /// the weight params[prony_weights[i]] and the relaxation time
+  /// params[prony_times[i]]. 0 and NULL for an elastic law. The kernels
+  /// compute the instantaneous elastic response; the runtime's viscous part
+  /// (assembly/viscous_part.hpp) adds the history.
+  int prony_terms;
+  const int* prony_weights;
+  const int* prony_times;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).

@@ -64,7 +64,9 @@ class Registry {
 
 /// True for a kernel of the anp split: its law's bulk part is integrated at
 /// the nodes (assembly/nodal_pressure.hpp), not over the cell.
-inline bool nodal_pressure_split(const tm_kernel& kernel) { return kernel.bulk != nullptr; }
+inline bool nodal_pressure_split(const tm_kernel& kernel) {
+  return kernel.bulk != nullptr && std::string_view(kernel.split) == "anp";
+}
 /// True for the splits that keep a cell free of volumetric locking (fbar,
 /// anp): a law switch keeps them, the locking warning skips them.
 bool locking_free_split(const tm_kernel& kernel);

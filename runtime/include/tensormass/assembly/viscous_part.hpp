@@ -1,0 +1,92 @@
+/// \file viscous_part.hpp
+/// Finite-strain viscoelasticity (Simo 1987; Holzapfel 2000, section 6.10)
+/// for the cells whose law has a Prony series (tm_kernel::prony_terms).
+/// The law's kernel gives the instantaneous elastic response; at each
+/// quadrature point the part of its second Piola-Kirchhoff stress other
+/// than the bulk part U(J), S_d = S - J U'(J) C^-1 (the isochoric stress
+/// of a law written as isochoric + volumetric; the whole stress of a law
+/// with no bulk part), relaxes with
+///
+///   G(t) = g_inf + sum_i g_i exp(-t / tau_i),   g_inf = 1 - sum_i g_i,
+///   S(t) = S_U + g_inf S_d(t) + sum_i g_i H_i(t),
+///   H_i(t) = integral_0^t exp(-(t - s) / tau_i) dS_d/ds ds.
+///
+/// Over a step of length dt, with e_i = exp(-dt / tau_i) and
+/// c_i = (1 - e_i) tau_i / dt (the update is exact when S_d varies linearly
+/// over the step),
+///
+///   H_i(t + dt) = e_i H_i(t) + c_i (S_d(t + dt) - S_d(t)),
+///   S(t + dt)   = S_U + beta S_d + S_h,   beta = g_inf + sum_i g_i c_i,
+///   S_h         = sum_i g_i (e_i H_i(t) - c_i S_d(t))   (fixed over the step).
+///
+/// So a cell's force and tangent are its kernel's, g and K, turned into
+///   beta g + (1 - beta) g_U + g_h,   beta K + (1 - beta) K_U + K_h,
+/// with g_U, K_U those of the bulk part integrated at the cell's points and
+/// g_h, K_h those of the fixed stress S_h (a geometric stiffness); they
+/// derive from the step's energy beta W + (1 - beta) W_U + sum_q w_q S_h : E.
+/// A static solve has dt = infinity: the long-term response (beta = g_inf).
+///
+/// The history (H_i and S_d at each point of each viscous cell) is the
+/// integrators' State::viscous_history, so that checkpoints carry it and a
+/// resumed run goes on bit for bit. Cells of the whole split and the
+/// one-point anp split (tet4, tri3) only: their kernels' F is the plain
+/// deformation gradient at each point.
+#ifndef TENSORMASS_ASSEMBLY_VISCOUS_PART_HPP
+#define TENSORMASS_ASSEMBLY_VISCOUS_PART_HPP
+
+#include <span>
+#include <vector>
+
+#include "tensormass/model/model.hpp"
+
+namespace tensormass {
+
+class ViscousPart {
+ public:
+  /// Collects the model's cells whose kernel has a Prony series; InputError
+  /// naming the material when its weights sum to 1 or more, or when such a
+  /// cell runs a split other than whole or the one-point anp.
+  explicit ViscousPart(const Model& model);
+  ViscousPart(Model&&) = delete;  ///< keeps a reference to the model
+
+  bool empty() const { return cells_.empty(); }
+  int cell_count() const { return static_cast<int>(cells_.size()); }
+  /// Doubles of State::viscous_history: per viscous cell and point,
+  /// (terms + 1) d-by-d blocks: H_1 .. H_m, then S_d at the last commit.
+  std::size_t history_size() const { return history_start_.empty() ? 0 : history_start_.back(); }
+  /// The viscous index of mesh-wide cell `cell`, or -1 for an elastic cell.
+  int index_of(int cell) const { return cell_index_.empty() ? -1 : cell_index_[cell]; }
+
+  /// Sets up a step of length dt from `history` (history_size(), or empty:
+  /// the reference state). dt = infinity: the long-term (static) response;
+  /// dt = 0: the instantaneous one, as before any step.
+  void begin_step(std::span<const double> history, double dt);
+  /// Turns the kernel's force g (dofs) and Hessian k (dofs by dofs,
+  /// row-major, or null) of viscous cell `index` at its local displacements
+  /// `u` (nodes by dim) into the step's, in place.
+  void adjust(int index, const double* u, double* g, double* k) const;
+  /// The step's energy of viscous cell `index` from its kernel's energy W.
+  double adjust_energy(int index, const double* u, double W) const;
+  /// Ends the step at u (dof_count): history (history_size()) <- its update.
+  void commit(std::span<const double> u, std::vector<double>& history) const;
+
+ private:
+  struct Cell {
+    int cell;
+    double beta;  ///< of the current step
+  };
+  /// Per term: the weight g_i and the relaxation time tau_i of the cell's material.
+  std::vector<double> weight_, time_;
+  std::vector<int> term_start_;  ///< per viscous cell +1, into weight_/time_
+  std::vector<Cell> cells_;
+  std::vector<int> cell_index_;             ///< per mesh cell, or empty
+  std::vector<std::size_t> history_start_;  ///< per viscous cell +1
+  std::vector<std::size_t> point_start_;    ///< per viscous cell +1, into fixed_stress_
+  std::vector<double> fixed_stress_;        ///< S_h, d by d per point
+  std::vector<double> decay_, ramp_;        ///< e_i and c_i per term, of the current step
+  const Model* model_;
+};
+
+}  // namespace tensormass
+
+#endif

@@ -1,0 +1,256 @@
+#include "tensormass/assembly/viscous_part.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/registry.hpp"
+
+namespace tensormass {
+
+namespace {
+
+constexpr int kMaxPoints = 27;  // hex20's default rule has the most points
+
+/// The kinematics of one quadrature point: F, J = det F, its cofactor
+/// matrix (J F^-T) and F^-1, all d by d row-major.
+struct Point {
+  int d = 3, n = 0;
+  double weight = 0;  ///< w_q det J_q
+  const double* GT;   ///< d by n: dN_j/dX_c at GT[c*n + j]
+  double F[9], cof[9], Finv[9];
+  double J = 1;
+
+  Point(const tm_kernel& kernel, const double* consts, int q, const double* u) : d(kernel.dim), n(kernel.nodes) {
+    const double* point = consts + kernel.derived_params + q * (1 + d * n);
+    weight = point[0];
+    GT = point + 1;
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        double sum = a == c ? 1.0 : 0.0;
+        for (int j = 0; j < n; ++j) sum += u[j * d + a] * GT[c * n + j];
+        F[a * d + c] = sum;
+      }
+    if (d == 2) {
+      cof[0] = F[3], cof[1] = -F[2], cof[2] = -F[1], cof[3] = F[0];
+      J = F[0] * F[3] - F[1] * F[2];
+    } else {
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+          cof[i * 3 + j] = F[i1 * 3 + j1] * F[i2 * 3 + j2] - F[i1 * 3 + j2] * F[i2 * 3 + j1];
+        }
+      J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
+    }
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) Finv[a * d + b] = cof[b * d + a] / J;
+  }
+  double G(int j, int c) const { return GT[c * n + j]; }
+  /// dJ/du_(j a) = sum_c cof_ac G_jc.
+  double dJ(int j, int a) const {
+    double sum = 0.0;
+    for (int c = 0; c < d; ++c) sum += cof[a * d + c] * G(j, c);
+    return sum;
+  }
+  /// d2J/du_(j a) du_(k b).
+  double d2J(int j, int a, int k, int b) const {
+    if (a == b) return 0.0;
+    if (d == 2) return (a == 0 ? 1.0 : -1.0) * (G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0));
+    const int c = 3 - a - b;  // the third index; eps_abc = +1 for a cyclic (a, b, c)
+    const double sign = (b == (a + 1) % 3) ? 1.0 : -1.0;
+    const double cross[3] = {G(j, 1) * G(k, 2) - G(j, 2) * G(k, 1), G(j, 2) * G(k, 0) - G(j, 0) * G(k, 2),
+                             G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0)};
+    return sign * (F[c * 3] * cross[0] + F[c * 3 + 1] * cross[1] + F[c * 3 + 2] * cross[2]);
+  }
+};
+
+/// {U, U', U''} of the kernel's bulk part at J (zeros without one).
+void bulk(const tm_kernel& kernel, const double* consts, double J, double* out) {
+  out[0] = out[1] = out[2] = 0.0;
+  if (kernel.bulk) kernel.bulk(J, consts, out);
+}
+
+bool supported_split(const tm_kernel& kernel) {
+  const std::string_view split(kernel.split);
+  return split == "whole" || (split == "anp" && kernel.quadrature_points == 1);
+}
+
+}  // namespace
+
+ViscousPart::ViscousPart(const Model& model) : model_(&model) {
+  term_start_.assign(1, 0);
+  history_start_.assign(1, 0);
+  point_start_.assign(1, 0);
+  for (int cell = 0; cell < model.cell_count(); ++cell) {
+    const tm_kernel& kernel = model.kernel(cell);
+    if (kernel.prony_terms == 0) continue;
+    const MaterialLaws& material = model.material_laws(model.material(cell));
+    if (!supported_split(kernel))
+      throw InputError(material.owner() + ": law '" + kernel.law + "' is viscoelastic, and its " + kernel.element +
+                       " cells run the " + kernel.split +
+                       " split; viscoelastic cells take the whole split or, on tet4 and tri3, anp");
+    if (kernel.quadrature_points > kMaxPoints)
+      throw std::logic_error(std::string("ViscousPart: more than 27 quadrature points in ") + kernel.element);
+    if (cell_index_.empty()) cell_index_.assign(model.cell_count(), -1);
+    const std::vector<double>& params = material.parameters(kernel);
+    double sum = 0.0;
+    for (int i = 0; i < kernel.prony_terms; ++i) {
+      weight_.push_back(params[kernel.prony_weights[i]]);
+      time_.push_back(params[kernel.prony_times[i]]);
+      sum += weight_.back();
+    }
+    if (!(sum < 1.0))
+      throw InputError(material.owner() + ": the Prony weights of law '" + kernel.law + "' sum to " +
+                       std::to_string(sum) + "; they must sum to less than 1 (g_inf = 1 - sum > 0)");
+    cell_index_[cell] = cell_count();
+    cells_.push_back({cell, 1.0});
+    term_start_.push_back(static_cast<int>(weight_.size()));
+    const std::size_t block = static_cast<std::size_t>(kernel.dim) * kernel.dim;
+    history_start_.push_back(history_start_.back() + kernel.quadrature_points * (kernel.prony_terms + 1) * block);
+    point_start_.push_back(point_start_.back() + kernel.quadrature_points * block);
+  }
+  fixed_stress_.assign(point_start_.back(), 0.0);
+  decay_.assign(weight_.size(), 1.0);
+  ramp_.assign(weight_.size(), 1.0);
+}
+
+void ViscousPart::begin_step(std::span<const double> history, double dt) {
+  if (!history.empty() && history.size() != history_size())
+    throw std::invalid_argument("ViscousPart::begin_step: the history has " + std::to_string(history.size()) +
+                                " doubles, the model's viscous cells " + std::to_string(history_size()));
+  for (std::size_t i = 0; i < weight_.size(); ++i) {
+    const double x = dt / time_[i];
+    if (std::isinf(dt)) decay_[i] = 0.0, ramp_[i] = 0.0;
+    else if (x < 1e-8) decay_[i] = 1.0 - x, ramp_[i] = 1.0 - 0.5 * x;  // the limits, without 0/0
+    else decay_[i] = std::exp(-x), ramp_[i] = -std::expm1(-x) / x;
+  }
+  for (int v = 0; v < cell_count(); ++v) {
+    const tm_kernel& kernel = model_->kernel(cells_[v].cell);
+    const int block = kernel.dim * kernel.dim, terms = term_start_[v + 1] - term_start_[v];
+    double beta = 1.0;
+    for (int i = term_start_[v]; i < term_start_[v + 1]; ++i) beta -= weight_[i] * (1.0 - ramp_[i]);
+    cells_[v].beta = beta;
+    double* fixed = fixed_stress_.data() + point_start_[v];
+    std::fill(fixed, fixed + kernel.quadrature_points * block, 0.0);
+    if (history.empty()) continue;
+    for (int q = 0; q < kernel.quadrature_points; ++q) {
+      const double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
+      const double* last = point + terms * block;  // S_d at the step's start
+      for (int t = 0; t < terms; ++t) {
+        const int i = term_start_[v] + t;
+        for (int m = 0; m < block; ++m)
+          fixed[q * block + m] += weight_[i] * (decay_[i] * point[t * block + m] - ramp_[i] * last[m]);
+      }
+    }
+  }
+}
+
+void ViscousPart::adjust(int index, const double* u, double* g, double* k) const {
+  const int cell = cells_[index].cell;
+  const tm_kernel& kernel = model_->kernel(cell);
+  const double* consts = model_->consts(cell);
+  const double beta = cells_[index].beta, rest = 1.0 - beta;
+  const int d = kernel.dim, n = kernel.nodes, dofs = kernel.dofs;
+  for (int i = 0; i < dofs; ++i) g[i] *= beta;
+  if (k)
+    for (int i = 0; i < dofs * dofs; ++i) k[i] *= beta;
+  for (int q = 0; q < kernel.quadrature_points; ++q) {
+    const Point p(kernel, consts, q, u);
+    double U[3];
+    bulk(kernel, consts, p.J, U);
+    const double* S = fixed_stress_.data() + point_start_[index] + q * d * d;
+    double FS[9];  // F S_h
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        double sum = 0.0;
+        for (int c = 0; c < d; ++c) sum += p.F[a * d + c] * S[c * d + b];
+        FS[a * d + b] = sum;
+      }
+    double dJ[kMaxCellDofs];
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < d; ++a) {
+        dJ[j * d + a] = p.dJ(j, a);
+        double h = 0.0;
+        for (int b = 0; b < d; ++b) h += FS[a * d + b] * p.G(j, b);
+        g[j * d + a] += p.weight * (rest * U[1] * dJ[j * d + a] + h);
+      }
+    if (!k) continue;
+    for (int j = 0; j < n; ++j)
+      for (int l = 0; l < n; ++l) {
+        double geometric = 0.0;  // G_j . S_h G_l
+        for (int b = 0; b < d; ++b)
+          for (int c = 0; c < d; ++c) geometric += p.G(j, b) * S[b * d + c] * p.G(l, c);
+        for (int a = 0; a < d; ++a)
+          for (int b = 0; b < d; ++b) {
+            const double volumetric = U[2] * dJ[j * d + a] * dJ[l * d + b] + U[1] * p.d2J(j, a, l, b);
+            k[(j * d + a) * dofs + l * d + b] += p.weight * (rest * volumetric + (a == b ? geometric : 0.0));
+          }
+      }
+  }
+}
+
+double ViscousPart::adjust_energy(int index, const double* u, double W) const {
+  const int cell = cells_[index].cell;
+  const tm_kernel& kernel = model_->kernel(cell);
+  const double* consts = model_->consts(cell);
+  const double beta = cells_[index].beta;
+  const int d = kernel.dim;
+  double energy = beta * W;
+  for (int q = 0; q < kernel.quadrature_points; ++q) {
+    const Point p(kernel, consts, q, u);
+    double U[3];
+    bulk(kernel, consts, p.J, U);
+    const double* S = fixed_stress_.data() + point_start_[index] + q * d * d;
+    double SE = 0.0;  // S_h : E, E = (F^T F - I) / 2
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        double C = 0.0;
+        for (int c = 0; c < d; ++c) C += p.F[c * d + a] * p.F[c * d + b];
+        SE += S[a * d + b] * 0.5 * (C - (a == b ? 1.0 : 0.0));
+      }
+    energy += p.weight * ((1.0 - beta) * U[0] + SE);
+  }
+  return energy;
+}
+
+void ViscousPart::commit(std::span<const double> u, std::vector<double>& history) const {
+  history.resize(history_size(), 0.0);
+  double local[kMaxCellDofs], P[kMaxPoints * 9];
+  for (int v = 0; v < cell_count(); ++v) {
+    const int cell = cells_[v].cell;
+    const tm_kernel& kernel = model_->kernel(cell);
+    const double* consts = model_->consts(cell);
+    const int d = kernel.dim, block = d * d, terms = term_start_[v + 1] - term_start_[v];
+    model_->gather(cell, u, local);
+    kernel.stress(local, consts, P);
+    for (int q = 0; q < kernel.quadrature_points; ++q) {
+      const Point p(kernel, consts, q, local);
+      double U[3];
+      bulk(kernel, consts, p.J, U);
+      double Sd[9];  // F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) {
+          double S = 0.0, Cinv = 0.0;
+          for (int c = 0; c < d; ++c) {
+            S += p.Finv[a * d + c] * P[q * block + c * d + b];
+            Cinv += p.Finv[a * d + c] * p.Finv[b * d + c];
+          }
+          Sd[a * d + b] = S - p.J * U[1] * Cinv;
+        }
+      double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
+      double* last = point + terms * block;
+      for (int t = 0; t < terms; ++t) {
+        const int i = term_start_[v] + t;
+        for (int m = 0; m < block; ++m)
+          point[t * block + m] = decay_[i] * point[t * block + m] + ramp_[i] * (Sd[m] - last[m]);
+      }
+      std::copy(Sd, Sd + block, last);
+    }
+  }
+}
+
+}  // namespace tensormass
