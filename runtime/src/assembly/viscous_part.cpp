@@ -56,15 +56,21 @@ struct Point {
     for (int c = 0; c < d; ++c) sum += cof[a * d + c] * G(j, c);
     return sum;
   }
-  /// d2J/du_(j a) du_(k b).
-  double d2J(int j, int a, int k, int b) const {
-    if (a == b) return 0.0;
-    if (d == 2) return (a == 0 ? 1.0 : -1.0) * (G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0));
-    const int c = 3 - a - b;  // the third index; eps_abc = +1 for a cyclic (a, b, c)
-    const double sign = (b == (a + 1) % 3) ? 1.0 : -1.0;
+  /// The d by d block d2J/du_(j a) du_(k b): eps_ab (G_j x G_k) in 2D,
+  /// eps_abc (F (G_j x G_k))_c in 3D.
+  void d2J(int j, int k, double* M) const {
+    if (d == 2) {
+      const double s = G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0);
+      M[0] = 0.0, M[1] = s, M[2] = -s, M[3] = 0.0;
+      return;
+    }
     const double cross[3] = {G(j, 1) * G(k, 2) - G(j, 2) * G(k, 1), G(j, 2) * G(k, 0) - G(j, 0) * G(k, 2),
                              G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0)};
-    return sign * (F[c * 3] * cross[0] + F[c * 3 + 1] * cross[1] + F[c * 3 + 2] * cross[2]);
+    double v[3];
+    for (int c = 0; c < 3; ++c) v[c] = F[c * 3] * cross[0] + F[c * 3 + 1] * cross[1] + F[c * 3 + 2] * cross[2];
+    M[0] = 0.0, M[1] = v[2], M[2] = -v[1];
+    M[3] = -v[2], M[4] = 0.0, M[5] = v[0];
+    M[6] = v[1], M[7] = -v[0], M[8] = 0.0;
   }
 };
 
@@ -179,16 +185,25 @@ void ViscousPart::adjust(int index, const double* u, double* g, double* k) const
         g[j * d + a] += p.weight * (rest * U[1] * dJ[j * d + a] + h);
       }
     if (!k) continue;
+    double SG[kMaxCellDofs];  // S_h G_l, node-major
+    for (int l = 0; l < n; ++l)
+      for (int b = 0; b < d; ++b) {
+        double sum = 0.0;
+        for (int c = 0; c < d; ++c) sum += S[b * d + c] * p.G(l, c);
+        SG[l * d + b] = sum;
+      }
+    const double second = p.weight * rest * U[2], first = p.weight * rest * U[1];
+    double M[9];
     for (int j = 0; j < n; ++j)
       for (int l = 0; l < n; ++l) {
         double geometric = 0.0;  // G_j . S_h G_l
-        for (int b = 0; b < d; ++b)
-          for (int c = 0; c < d; ++c) geometric += p.G(j, b) * S[b * d + c] * p.G(l, c);
+        for (int b = 0; b < d; ++b) geometric += p.G(j, b) * SG[l * d + b];
+        p.d2J(j, l, M);
+        double* block = k + (j * d) * dofs + l * d;
         for (int a = 0; a < d; ++a)
-          for (int b = 0; b < d; ++b) {
-            const double volumetric = U[2] * dJ[j * d + a] * dJ[l * d + b] + U[1] * p.d2J(j, a, l, b);
-            k[(j * d + a) * dofs + l * d + b] += p.weight * (rest * volumetric + (a == b ? geometric : 0.0));
-          }
+          for (int b = 0; b < d; ++b)
+            block[a * dofs + b] +=
+                second * dJ[j * d + a] * dJ[l * d + b] + first * M[a * d + b] + (a == b ? p.weight * geometric : 0.0);
       }
   }
 }
@@ -219,8 +234,10 @@ double ViscousPart::adjust_energy(int index, const double* u, double W) const {
 
 void ViscousPart::commit(std::span<const double> u, std::vector<double>& history) const {
   history.resize(history_size(), 0.0);
-  double local[kMaxCellDofs], P[kMaxPoints * 9];
+  // Each cell writes its own range of the history: the same bits on any thread count.
+#pragma omp parallel for schedule(dynamic, 64) if (cell_count() >= 256)
   for (int v = 0; v < cell_count(); ++v) {
+    double local[kMaxCellDofs], P[kMaxPoints * 9];
     const int cell = cells_[v].cell;
     const tm_kernel& kernel = model_->kernel(cell);
     const double* consts = model_->consts(cell);
