@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -16,13 +17,13 @@ namespace {
 
 constexpr int kMaxPoints = 27;  // hex20's default rule has the most points
 
-/// The kinematics of one quadrature point: F, J = det F, its cofactor
-/// matrix (J F^-T) and F^-1, all d by d row-major.
+/// The kinematics of one quadrature point: F, J = det F and its cofactor
+/// matrix (J F^-T), d by d row-major.
 struct Point {
   int d = 3, n = 0;
   double weight = 0;  ///< w_q det J_q
   const double* GT;   ///< d by n: dN_j/dX_c at GT[c*n + j]
-  double F[9], cof[9], Finv[9];
+  double F[9], cof[9];
   double J = 1;
 
   Point(const tm_kernel& kernel, const double* consts, int q, const double* u) : d(kernel.dim), n(kernel.nodes) {
@@ -46,6 +47,9 @@ struct Point {
         }
       J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
     }
+  }
+  /// F^-1 (d by d) into Finv.
+  void inverse(double* Finv) const {
     for (int a = 0; a < d; ++a)
       for (int b = 0; b < d; ++b) Finv[a * d + b] = cof[b * d + a] / J;
   }
@@ -103,18 +107,16 @@ ViscousPart::ViscousPart(const Model& model) : model_(&model) {
       throw std::logic_error(std::string("ViscousPart: more than 27 quadrature points in ") + kernel.element);
     if (cell_index_.empty()) cell_index_.assign(model.cell_count(), -1);
     const std::vector<double>& params = material.parameters(kernel);
-    double sum = 0.0;
+    std::vector<double> weights, times;
     for (int i = 0; i < kernel.prony_terms; ++i) {
-      weight_.push_back(params[kernel.prony_weights[i]]);
-      time_.push_back(params[kernel.prony_times[i]]);
-      sum += weight_.back();
+      weights.push_back(params[kernel.prony_weights[i]]);
+      times.push_back(params[kernel.prony_times[i]]);
     }
-    if (!(sum < 1.0))
+    if (const double sum = std::accumulate(weights.begin(), weights.end(), 0.0); !(sum < 1.0))
       throw InputError(material.owner() + ": the Prony weights of law '" + kernel.law + "' sum to " +
                        std::to_string(sum) + "; they must sum to less than 1 (g_inf = 1 - sum > 0)");
     cell_index_[cell] = cell_count();
-    cells_.push_back({cell, 1.0});
-    term_start_.push_back(static_cast<int>(weight_.size()));
+    cells_.push_back({cell, series_of(weights, times)});
     const std::size_t block = static_cast<std::size_t>(kernel.dim) * kernel.dim;
     history_start_.push_back(history_start_.back() + kernel.quadrature_points * (kernel.prony_terms + 1) * block);
     point_start_.push_back(point_start_.back() + kernel.quadrature_points * block);
@@ -122,6 +124,19 @@ ViscousPart::ViscousPart(const Model& model) : model_(&model) {
   fixed_stress_.assign(point_start_.back(), 0.0);
   decay_.assign(weight_.size(), 1.0);
   ramp_.assign(weight_.size(), 1.0);
+  beta_.assign(term_start_.size() - 1, 1.0);
+}
+
+int ViscousPart::series_of(const std::vector<double>& weights, const std::vector<double>& times) {
+  for (std::size_t s = 0; s + 1 < term_start_.size(); ++s)
+    if (std::equal(weights.begin(), weights.end(), weight_.begin() + term_start_[s],
+                   weight_.begin() + term_start_[s + 1]) &&
+        std::equal(times.begin(), times.end(), time_.begin() + term_start_[s], time_.begin() + term_start_[s + 1]))
+      return static_cast<int>(s);
+  weight_.insert(weight_.end(), weights.begin(), weights.end());
+  time_.insert(time_.end(), times.begin(), times.end());
+  term_start_.push_back(static_cast<int>(weight_.size()));
+  return static_cast<int>(term_start_.size()) - 2;
 }
 
 void ViscousPart::begin_step(std::span<const double> history, double dt) {
@@ -134,12 +149,15 @@ void ViscousPart::begin_step(std::span<const double> history, double dt) {
     else if (x < 1e-8) decay_[i] = 1.0 - x, ramp_[i] = 1.0 - 0.5 * x;  // the limits, without 0/0
     else decay_[i] = std::exp(-x), ramp_[i] = -std::expm1(-x) / x;
   }
+  for (std::size_t s = 0; s < beta_.size(); ++s) {
+    beta_[s] = 1.0;
+    for (int i = term_start_[s]; i < term_start_[s + 1]; ++i) beta_[s] -= weight_[i] * (1.0 - ramp_[i]);
+  }
+#pragma omp parallel for schedule(dynamic, 256) if (cell_count() >= 1024)
   for (int v = 0; v < cell_count(); ++v) {
     const tm_kernel& kernel = model_->kernel(cells_[v].cell);
-    const int block = kernel.dim * kernel.dim, terms = term_start_[v + 1] - term_start_[v];
-    double beta = 1.0;
-    for (int i = term_start_[v]; i < term_start_[v + 1]; ++i) beta -= weight_[i] * (1.0 - ramp_[i]);
-    cells_[v].beta = beta;
+    const int series = cells_[v].series, first = term_start_[series], terms = term_start_[series + 1] - first;
+    const int block = kernel.dim * kernel.dim;
     double* fixed = fixed_stress_.data() + point_start_[v];
     std::fill(fixed, fixed + kernel.quadrature_points * block, 0.0);
     if (history.empty()) continue;
@@ -147,7 +165,7 @@ void ViscousPart::begin_step(std::span<const double> history, double dt) {
       const double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
       const double* last = point + terms * block;  // S_d at the step's start
       for (int t = 0; t < terms; ++t) {
-        const int i = term_start_[v] + t;
+        const int i = first + t;
         for (int m = 0; m < block; ++m)
           fixed[q * block + m] += weight_[i] * (decay_[i] * point[t * block + m] - ramp_[i] * last[m]);
       }
@@ -159,7 +177,7 @@ void ViscousPart::adjust(int index, const double* u, double* g, double* k) const
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
-  const double beta = cells_[index].beta, rest = 1.0 - beta;
+  const double beta = beta_[cells_[index].series], rest = 1.0 - beta;
   const int d = kernel.dim, n = kernel.nodes, dofs = kernel.dofs;
   for (int i = 0; i < dofs; ++i) g[i] *= beta;
   if (k)
@@ -212,7 +230,7 @@ double ViscousPart::adjust_energy(int index, const double* u, double W) const {
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
-  const double beta = cells_[index].beta;
+  const double beta = beta_[cells_[index].series];
   const int d = kernel.dim;
   double energy = beta * W;
   for (int q = 0; q < kernel.quadrature_points; ++q) {
@@ -241,27 +259,29 @@ void ViscousPart::commit(std::span<const double> u, std::vector<double>& history
     const int cell = cells_[v].cell;
     const tm_kernel& kernel = model_->kernel(cell);
     const double* consts = model_->consts(cell);
-    const int d = kernel.dim, block = d * d, terms = term_start_[v + 1] - term_start_[v];
+    const int series = cells_[v].series, first = term_start_[series], terms = term_start_[series + 1] - first;
+    const int d = kernel.dim, block = d * d;
     model_->gather(cell, u, local);
     kernel.stress(local, consts, P);
     for (int q = 0; q < kernel.quadrature_points; ++q) {
       const Point p(kernel, consts, q, local);
       double U[3];
       bulk(kernel, consts, p.J, U);
-      double Sd[9];  // F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
+      double Finv[9], Sd[9];  // S_d = F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
+      p.inverse(Finv);
       for (int a = 0; a < d; ++a)
         for (int b = 0; b < d; ++b) {
           double S = 0.0, Cinv = 0.0;
           for (int c = 0; c < d; ++c) {
-            S += p.Finv[a * d + c] * P[q * block + c * d + b];
-            Cinv += p.Finv[a * d + c] * p.Finv[b * d + c];
+            S += Finv[a * d + c] * P[q * block + c * d + b];
+            Cinv += Finv[a * d + c] * Finv[b * d + c];
           }
           Sd[a * d + b] = S - p.J * U[1] * Cinv;
         }
       double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
       double* last = point + terms * block;
       for (int t = 0; t < terms; ++t) {
-        const int i = term_start_[v] + t;
+        const int i = first + t;
         for (int m = 0; m < block; ++m)
           point[t * block + m] = decay_[i] * point[t * block + m] + ramp_[i] * (Sd[m] - last[m]);
       }

@@ -308,7 +308,7 @@ void StaticIntegrator::step(State& state, const StepObserver& observer) {
     run.statistics.step_ms.push_back(carried_ms + 1e3 * detail::seconds_since(start));
     // The history the next load step extrapolates from travels with the
     // state the observer sees (a checkpoint of it resumes bit for bit).
-    State next{u, state.velocity, factor, step, {}, state.displacement, previous};
+    State next{u, state.velocity, factor, step, {}, state.displacement, previous, state.viscous_history};
     const bool repeat = observer && observer(next);
     if (repeat) next.previous_displacement = previous, next.earlier_displacement = before_previous;
     state = std::move(next);

@@ -73,11 +73,15 @@ class ViscousPart {
  private:
   struct Cell {
     int cell;
-    double beta;  ///< of the current step
+    int series;  ///< its Prony series, into term_start_
   };
-  /// Per term: the weight g_i and the relaxation time tau_i of the cell's material.
+  /// The index of the series (weights, times), added when new.
+  int series_of(const std::vector<double>& weights, const std::vector<double>& times);
+  /// Per term of each distinct series (cells of one material share theirs):
+  /// the weight g_i and the relaxation time tau_i.
   std::vector<double> weight_, time_;
-  std::vector<int> term_start_;  ///< per viscous cell +1, into weight_/time_
+  std::vector<int> term_start_;  ///< per series +1, into weight_/time_
+  std::vector<double> beta_;     ///< per series, of the current step
   std::vector<Cell> cells_;
   std::vector<int> cell_index_;             ///< per mesh cell, or empty
   std::vector<std::size_t> history_start_;  ///< per viscous cell +1
