@@ -18,15 +18,17 @@ namespace {
 constexpr int kMaxPoints = 27;  // hex20's default rule has the most points
 
 /// The kinematics of one quadrature point: F, J = det F and its cofactor
-/// matrix (J F^-T), d by d row-major.
+/// matrix (J F^-T), D by D row-major.
+template <int D>
 struct Point {
-  int d = 3, n = 0;
+  static constexpr int d = D;
+  int n = 0;
   double weight = 0;  ///< w_q det J_q
   const double* GT;   ///< d by n: dN_j/dX_c at GT[c*n + j]
   double F[9], cof[9];
   double J = 1;
 
-  Point(const tm_kernel& kernel, const double* consts, int q, const double* u) : d(kernel.dim), n(kernel.nodes) {
+  Point(const tm_kernel& kernel, const double* consts, int q, const double* u) : n(kernel.nodes) {
     const double* point = consts + kernel.derived_params + q * (1 + d * n);
     weight = point[0];
     GT = point + 1;
@@ -36,7 +38,7 @@ struct Point {
         for (int j = 0; j < n; ++j) sum += u[j * d + a] * GT[c * n + j];
         F[a * d + c] = sum;
       }
-    if (d == 2) {
+    if constexpr (D == 2) {
       cof[0] = F[3], cof[1] = -F[2], cof[2] = -F[1], cof[3] = F[0];
       J = F[0] * F[3] - F[1] * F[2];
     } else {
@@ -63,7 +65,7 @@ struct Point {
   /// The d by d block d2J/du_(j a) du_(k b): eps_ab (G_j x G_k) in 2D,
   /// eps_abc (F (G_j x G_k))_c in 3D.
   void d2J(int j, int k, double* M) const {
-    if (d == 2) {
+    if constexpr (D == 2) {
       const double s = G(j, 0) * G(k, 1) - G(j, 1) * G(k, 0);
       M[0] = 0.0, M[1] = s, M[2] = -s, M[3] = 0.0;
       return;
@@ -174,16 +176,23 @@ void ViscousPart::begin_step(std::span<const double> history, double dt) {
 }
 
 void ViscousPart::adjust(int index, const double* u, double* g, double* k) const {
+  if (model_->kernel(cells_[index].cell).dim == 2) adjust_cell<2>(index, u, g, k);
+  else adjust_cell<3>(index, u, g, k);
+}
+
+template <int D>
+void ViscousPart::adjust_cell(int index, const double* u, double* g, double* k) const {
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
   const double beta = beta_[cells_[index].series], rest = 1.0 - beta;
-  const int d = kernel.dim, n = kernel.nodes, dofs = kernel.dofs;
+  constexpr int d = D;
+  const int n = kernel.nodes, dofs = kernel.dofs;
   for (int i = 0; i < dofs; ++i) g[i] *= beta;
   if (k)
     for (int i = 0; i < dofs * dofs; ++i) k[i] *= beta;
   for (int q = 0; q < kernel.quadrature_points; ++q) {
-    const Point p(kernel, consts, q, u);
+    const Point<D> p(kernel, consts, q, u);
     double U[3];
     bulk(kernel, consts, p.J, U);
     const double* S = fixed_stress_.data() + point_start_[index] + q * d * d;
@@ -227,14 +236,19 @@ void ViscousPart::adjust(int index, const double* u, double* g, double* k) const
 }
 
 double ViscousPart::adjust_energy(int index, const double* u, double W) const {
+  return model_->kernel(cells_[index].cell).dim == 2 ? energy_cell<2>(index, u, W) : energy_cell<3>(index, u, W);
+}
+
+template <int D>
+double ViscousPart::energy_cell(int index, const double* u, double W) const {
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
   const double beta = beta_[cells_[index].series];
-  const int d = kernel.dim;
+  constexpr int d = D;
   double energy = beta * W;
   for (int q = 0; q < kernel.quadrature_points; ++q) {
-    const Point p(kernel, consts, q, u);
+    const Point<D> p(kernel, consts, q, u);
     double U[3];
     bulk(kernel, consts, p.J, U);
     const double* S = fixed_stress_.data() + point_start_[index] + q * d * d;
@@ -255,38 +269,44 @@ void ViscousPart::commit(std::span<const double> u, std::vector<double>& history
   // Each cell writes its own range of the history: the same bits on any thread count.
 #pragma omp parallel for schedule(dynamic, 64) if (cell_count() >= 256)
   for (int v = 0; v < cell_count(); ++v) {
-    double local[kMaxCellDofs], P[kMaxPoints * 9];
-    const int cell = cells_[v].cell;
-    const tm_kernel& kernel = model_->kernel(cell);
-    const double* consts = model_->consts(cell);
-    const int series = cells_[v].series, first = term_start_[series], terms = term_start_[series + 1] - first;
-    const int d = kernel.dim, block = d * d;
-    model_->gather(cell, u, local);
-    kernel.stress(local, consts, P);
-    for (int q = 0; q < kernel.quadrature_points; ++q) {
-      const Point p(kernel, consts, q, local);
-      double U[3];
-      bulk(kernel, consts, p.J, U);
-      double Finv[9], Sd[9];  // S_d = F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
-      p.inverse(Finv);
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) {
-          double S = 0.0, Cinv = 0.0;
-          for (int c = 0; c < d; ++c) {
-            S += Finv[a * d + c] * P[q * block + c * d + b];
-            Cinv += Finv[a * d + c] * Finv[b * d + c];
-          }
-          Sd[a * d + b] = S - p.J * U[1] * Cinv;
+    if (model_->kernel(cells_[v].cell).dim == 2) commit_cell<2>(v, u, history);
+    else commit_cell<3>(v, u, history);
+  }
+}
+
+template <int D>
+void ViscousPart::commit_cell(int v, std::span<const double> u, std::vector<double>& history) const {
+  double local[kMaxCellDofs], P[kMaxPoints * 9];
+  const int cell = cells_[v].cell;
+  const tm_kernel& kernel = model_->kernel(cell);
+  const double* consts = model_->consts(cell);
+  const int series = cells_[v].series, first = term_start_[series], terms = term_start_[series + 1] - first;
+  constexpr int d = D, block = D * D;
+  model_->gather(cell, u, local);
+  kernel.stress(local, consts, P);
+  for (int q = 0; q < kernel.quadrature_points; ++q) {
+    const Point<D> p(kernel, consts, q, local);
+    double U[3];
+    bulk(kernel, consts, p.J, U);
+    double Finv[9], Sd[9];  // S_d = F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
+    p.inverse(Finv);
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        double S = 0.0, Cinv = 0.0;
+        for (int c = 0; c < d; ++c) {
+          S += Finv[a * d + c] * P[q * block + c * d + b];
+          Cinv += Finv[a * d + c] * Finv[b * d + c];
         }
-      double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
-      double* last = point + terms * block;
-      for (int t = 0; t < terms; ++t) {
-        const int i = first + t;
-        for (int m = 0; m < block; ++m)
-          point[t * block + m] = decay_[i] * point[t * block + m] + ramp_[i] * (Sd[m] - last[m]);
+        Sd[a * d + b] = S - p.J * U[1] * Cinv;
       }
-      std::copy(Sd, Sd + block, last);
+    double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
+    double* last = point + terms * block;
+    for (int t = 0; t < terms; ++t) {
+      const int i = first + t;
+      for (int m = 0; m < block; ++m)
+        point[t * block + m] = decay_[i] * point[t * block + m] + ramp_[i] * (Sd[m] - last[m]);
     }
+    std::copy(Sd, Sd + block, last);
   }
 }
 

@@ -75,6 +75,13 @@ class ViscousPart {
     int cell;
     int series;  ///< its Prony series, into term_start_
   };
+  /// adjust, adjust_energy and commit for one cell of dimension D.
+  template <int D>
+  void adjust_cell(int index, const double* u, double* g, double* k) const;
+  template <int D>
+  double energy_cell(int index, const double* u, double W) const;
+  template <int D>
+  void commit_cell(int v, std::span<const double> u, std::vector<double>& history) const;
   /// The index of the series (weights, times), added when new.
   int series_of(const std::vector<double>& weights, const std::vector<double>& times);
   /// Per term of each distinct series (cells of one material share theirs):
