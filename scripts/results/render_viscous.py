@@ -29,6 +29,13 @@ Measured on {machine} ({threads} threads) on {date}, tensormass
 | element | solver | cells | steps | elastic step (ms) | viscoelastic step (ms) | ratio |
 |---|---|---:|---:|---:|---:|---:|
 {rows}
+
+An implicit step is mostly the linear solve, which the viscous part does
+not change. An explicit step of a cheap law is mostly the viscous part's
+own passes over the cells: setting up the step's history stress, the
+correction of each cell's force (F, J and the bulk part at each point)
+and, after the step, the history update with one stress evaluation per
+cell. They run in the runtime, apart from the generated kernels.
 """
 
 
