@@ -30,7 +30,7 @@ CASES = [("tet4", "tet6", (40, 10, 10), (8, 2, 2)), ("hex8", "hex8", (60, 20, 20
 SOLVERS = {"implicit": "{type: implicit, dt: 0.01, steps: 10}", "explicit": "{type: explicit, dt: 2.0e-4, steps: 200}"}
 LAWS = {"elastic": f"law: mooney_rivlin, c10: {MU / 2}, c01: 0, kappa: {KAPPA}",
         "viscoelastic": f"law: viscoelastic_neohookean, mu: {MU}, kappa: {KAPPA}, g1: 0.3, tau1: 0.05, g2: 0.2, "
-                        "tau2: 0.5"}
+                        "tau2: 0.5, k1: 0, k2: 0"}
 SCENE = """mesh: {mesh}
 materials: [{{region: all, {law}, density: 1000}}]
 fixed: [clamp]

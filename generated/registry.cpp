@@ -2050,10 +2050,11 @@ const char* const kTransversely_isotropic_mooney_rivlinParameters[] = { "c10", "
 const tm_param_limit kTransversely_isotropic_mooney_rivlinLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 } };
 const char* const kVeronda_westmannParameters[] = { "c1", "c2", "kappa" };
 const tm_param_limit kVeronda_westmannLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
-const char* const kViscoelastic_neohookeanParameters[] = { "mu", "kappa", "g1", "tau1", "g2", "tau2" };
-const tm_param_limit kViscoelastic_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
+const char* const kViscoelastic_neohookeanParameters[] = { "mu", "kappa", "g1", "tau1", "g2", "tau2", "k1", "k2" };
+const tm_param_limit kViscoelastic_neohookeanLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 }, { 0.0, 1.0, 1, 0 }, { 0.0, 1.0, 1, 0 } };
 const int kViscoelastic_neohookeanPronyWeights[] = { 2, 4 };
 const int kViscoelastic_neohookeanPronyTimes[] = { 3, 5 };
+const int kViscoelastic_neohookeanPronyVolumetricWeights[] = { 6, 7 };
 const char* const kYeohParameters[] = { "c10", "c20", "c30", "kappa" };
 const tm_param_limit kYeohLimits[] = { { 0.0, HUGE_VAL, 0, 0 }, { -HUGE_VAL, HUGE_VAL, 0, 0 }, { 0.0, HUGE_VAL, 1, 0 }, { 0.0, HUGE_VAL, 0, 0 } };
 
@@ -2064,7 +2065,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex27_whole_precompute, tm_arruda_boyce_hex27_whole_energy, tm_arruda_boyce_hex27_whole_gradient,
@@ -2072,7 +2073,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_whole_precompute, tm_arruda_boyce_hex8_whole_energy, tm_arruda_boyce_hex8_whole_gradient,
@@ -2080,7 +2081,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_hex8_fbar_precompute, tm_arruda_boyce_hex8_fbar_energy, tm_arruda_boyce_hex8_fbar_gradient,
@@ -2088,7 +2089,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism15_whole_precompute, tm_arruda_boyce_prism15_whole_energy, tm_arruda_boyce_prism15_whole_gradient,
@@ -2096,7 +2097,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_whole_precompute, tm_arruda_boyce_prism6_whole_energy, tm_arruda_boyce_prism6_whole_gradient,
@@ -2105,7 +2106,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_prism6_whole_gradient_batch, tm_arruda_boyce_prism6_whole_gradient_hessian_batch,
    tm_arruda_boyce_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_prism6_anp_precompute, tm_arruda_boyce_prism6_anp_energy, tm_arruda_boyce_prism6_anp_gradient,
@@ -2113,7 +2114,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_arruda_boyce_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid13_whole_precompute, tm_arruda_boyce_pyramid13_whole_energy, tm_arruda_boyce_pyramid13_whole_gradient,
@@ -2121,7 +2122,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_whole_precompute, tm_arruda_boyce_pyramid5_whole_energy, tm_arruda_boyce_pyramid5_whole_gradient,
@@ -2130,7 +2131,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_pyramid5_whole_gradient_batch, tm_arruda_boyce_pyramid5_whole_gradient_hessian_batch,
    tm_arruda_boyce_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_pyramid5_fbar_precompute, tm_arruda_boyce_pyramid5_fbar_energy, tm_arruda_boyce_pyramid5_fbar_gradient,
@@ -2138,7 +2139,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_whole_precompute, tm_arruda_boyce_quad4_whole_energy, tm_arruda_boyce_quad4_whole_gradient,
@@ -2147,7 +2148,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad4_whole_gradient_batch, tm_arruda_boyce_quad4_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad4_fbar_precompute, tm_arruda_boyce_quad4_fbar_energy, tm_arruda_boyce_quad4_fbar_gradient,
@@ -2155,7 +2156,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad8_whole_precompute, tm_arruda_boyce_quad8_whole_energy, tm_arruda_boyce_quad8_whole_gradient,
@@ -2164,7 +2165,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad8_whole_gradient_batch, tm_arruda_boyce_quad8_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_quad9_whole_precompute, tm_arruda_boyce_quad9_whole_energy, tm_arruda_boyce_quad9_whole_gradient,
@@ -2173,7 +2174,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_quad9_whole_gradient_batch, tm_arruda_boyce_quad9_whole_gradient_hessian_batch,
    tm_arruda_boyce_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet10_whole_precompute, tm_arruda_boyce_tet10_whole_energy, tm_arruda_boyce_tet10_whole_gradient,
@@ -2181,7 +2182,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_whole_precompute, tm_arruda_boyce_tet4_whole_energy, tm_arruda_boyce_tet4_whole_gradient,
@@ -2190,7 +2191,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_whole_gradient_batch, tm_arruda_boyce_tet4_whole_gradient_hessian_batch,
    tm_arruda_boyce_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tet4_anp_precompute, tm_arruda_boyce_tet4_anp_energy, tm_arruda_boyce_tet4_anp_gradient,
@@ -2199,7 +2200,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tet4_anp_gradient_batch, tm_arruda_boyce_tet4_anp_gradient_hessian_batch,
    tm_arruda_boyce_tet4_anp_stress_batch,
    tm_arruda_boyce_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_whole_precompute, tm_arruda_boyce_tri3_whole_energy, tm_arruda_boyce_tri3_whole_gradient,
@@ -2208,7 +2209,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_whole_gradient_batch, tm_arruda_boyce_tri3_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri3_anp_precompute, tm_arruda_boyce_tri3_anp_energy, tm_arruda_boyce_tri3_anp_gradient,
@@ -2217,7 +2218,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri3_anp_gradient_batch, tm_arruda_boyce_tri3_anp_gradient_hessian_batch,
    tm_arruda_boyce_tri3_anp_stress_batch,
    tm_arruda_boyce_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"arruda_boyce", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kArruda_boyceParameters, kArruda_boyceLimits, tm_arruda_boyce_tri6_whole_precompute, tm_arruda_boyce_tri6_whole_energy, tm_arruda_boyce_tri6_whole_gradient,
@@ -2226,7 +2227,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_arruda_boyce_tri6_whole_gradient_batch, tm_arruda_boyce_tri6_whole_gradient_hessian_batch,
    tm_arruda_boyce_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex20_whole_precompute, tm_corotational_hex20_whole_energy, tm_corotational_hex20_whole_gradient,
@@ -2234,7 +2235,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex27_whole_precompute, tm_corotational_hex27_whole_energy, tm_corotational_hex27_whole_gradient,
@@ -2242,7 +2243,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_whole_precompute, tm_corotational_hex8_whole_energy, tm_corotational_hex8_whole_gradient,
@@ -2250,7 +2251,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_hex8_fbar_precompute, tm_corotational_hex8_fbar_energy, tm_corotational_hex8_fbar_gradient,
@@ -2258,7 +2259,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism15_whole_precompute, tm_corotational_prism15_whole_energy, tm_corotational_prism15_whole_gradient,
@@ -2266,7 +2267,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_prism6_whole_precompute, tm_corotational_prism6_whole_energy, tm_corotational_prism6_whole_gradient,
@@ -2275,7 +2276,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_prism6_whole_gradient_batch, tm_corotational_prism6_whole_gradient_hessian_batch,
    tm_corotational_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid13_whole_precompute, tm_corotational_pyramid13_whole_energy, tm_corotational_pyramid13_whole_gradient,
@@ -2283,7 +2284,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_whole_precompute, tm_corotational_pyramid5_whole_energy, tm_corotational_pyramid5_whole_gradient,
@@ -2292,7 +2293,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_pyramid5_whole_gradient_batch, tm_corotational_pyramid5_whole_gradient_hessian_batch,
    tm_corotational_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_pyramid5_fbar_precompute, tm_corotational_pyramid5_fbar_energy, tm_corotational_pyramid5_fbar_gradient,
@@ -2300,7 +2301,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_whole_precompute, tm_corotational_quad4_whole_energy, tm_corotational_quad4_whole_gradient,
@@ -2309,7 +2310,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad4_whole_gradient_batch, tm_corotational_quad4_whole_gradient_hessian_batch,
    tm_corotational_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad4_fbar_precompute, tm_corotational_quad4_fbar_energy, tm_corotational_quad4_fbar_gradient,
@@ -2317,7 +2318,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad8_whole_precompute, tm_corotational_quad8_whole_energy, tm_corotational_quad8_whole_gradient,
@@ -2326,7 +2327,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad8_whole_gradient_batch, tm_corotational_quad8_whole_gradient_hessian_batch,
    tm_corotational_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_quad9_whole_precompute, tm_corotational_quad9_whole_energy, tm_corotational_quad9_whole_gradient,
@@ -2335,7 +2336,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_quad9_whole_gradient_batch, tm_corotational_quad9_whole_gradient_hessian_batch,
    tm_corotational_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet10_whole_precompute, tm_corotational_tet10_whole_energy, tm_corotational_tet10_whole_gradient,
@@ -2343,7 +2344,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tet4_whole_precompute, tm_corotational_tet4_whole_energy, tm_corotational_tet4_whole_gradient,
@@ -2352,7 +2353,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tet4_whole_gradient_batch, tm_corotational_tet4_whole_gradient_hessian_batch,
    tm_corotational_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri3_whole_precompute, tm_corotational_tri3_whole_energy, tm_corotational_tri3_whole_gradient,
@@ -2361,7 +2362,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tri3_whole_gradient_batch, tm_corotational_tri3_whole_gradient_hessian_batch,
    tm_corotational_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"corotational", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kCorotationalParameters, kCorotationalLimits, tm_corotational_tri6_whole_precompute, tm_corotational_tri6_whole_energy, tm_corotational_tri6_whole_gradient,
@@ -2370,7 +2371,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_corotational_tri6_whole_gradient_batch, tm_corotational_tri6_whole_gradient_hessian_batch,
    tm_corotational_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kGentParameters, kGentLimits, tm_gent_hex20_whole_precompute, tm_gent_hex20_whole_energy, tm_gent_hex20_whole_gradient,
@@ -2378,7 +2379,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kGentParameters, kGentLimits, tm_gent_hex27_whole_precompute, tm_gent_hex27_whole_energy, tm_gent_hex27_whole_gradient,
@@ -2386,7 +2387,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_whole_precompute, tm_gent_hex8_whole_energy, tm_gent_hex8_whole_gradient,
@@ -2394,7 +2395,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kGentParameters, kGentLimits, tm_gent_hex8_fbar_precompute, tm_gent_hex8_fbar_energy, tm_gent_hex8_fbar_gradient,
@@ -2402,7 +2403,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kGentParameters, kGentLimits, tm_gent_prism15_whole_precompute, tm_gent_prism15_whole_energy, tm_gent_prism15_whole_gradient,
@@ -2410,7 +2411,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_whole_precompute, tm_gent_prism6_whole_energy, tm_gent_prism6_whole_gradient,
@@ -2419,7 +2420,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_prism6_whole_gradient_batch, tm_gent_prism6_whole_gradient_hessian_batch,
    tm_gent_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kGentParameters, kGentLimits, tm_gent_prism6_anp_precompute, tm_gent_prism6_anp_energy, tm_gent_prism6_anp_gradient,
@@ -2427,7 +2428,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_gent_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kGentParameters, kGentLimits, tm_gent_pyramid13_whole_precompute, tm_gent_pyramid13_whole_energy, tm_gent_pyramid13_whole_gradient,
@@ -2435,7 +2436,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_whole_precompute, tm_gent_pyramid5_whole_energy, tm_gent_pyramid5_whole_gradient,
@@ -2444,7 +2445,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_pyramid5_whole_gradient_batch, tm_gent_pyramid5_whole_gradient_hessian_batch,
    tm_gent_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kGentParameters, kGentLimits, tm_gent_pyramid5_fbar_precompute, tm_gent_pyramid5_fbar_energy, tm_gent_pyramid5_fbar_gradient,
@@ -2452,7 +2453,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_whole_precompute, tm_gent_quad4_whole_energy, tm_gent_quad4_whole_gradient,
@@ -2461,7 +2462,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad4_whole_gradient_batch, tm_gent_quad4_whole_gradient_hessian_batch,
    tm_gent_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kGentParameters, kGentLimits, tm_gent_quad4_fbar_precompute, tm_gent_quad4_fbar_energy, tm_gent_quad4_fbar_gradient,
@@ -2469,7 +2470,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kGentParameters, kGentLimits, tm_gent_quad8_whole_precompute, tm_gent_quad8_whole_energy, tm_gent_quad8_whole_gradient,
@@ -2478,7 +2479,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad8_whole_gradient_batch, tm_gent_quad8_whole_gradient_hessian_batch,
    tm_gent_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kGentParameters, kGentLimits, tm_gent_quad9_whole_precompute, tm_gent_quad9_whole_energy, tm_gent_quad9_whole_gradient,
@@ -2487,7 +2488,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_quad9_whole_gradient_batch, tm_gent_quad9_whole_gradient_hessian_batch,
    tm_gent_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kGentParameters, kGentLimits, tm_gent_tet10_whole_precompute, tm_gent_tet10_whole_energy, tm_gent_tet10_whole_gradient,
@@ -2495,7 +2496,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_whole_precompute, tm_gent_tet4_whole_energy, tm_gent_tet4_whole_gradient,
@@ -2504,7 +2505,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tet4_whole_gradient_batch, tm_gent_tet4_whole_gradient_hessian_batch,
    tm_gent_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kGentParameters, kGentLimits, tm_gent_tet4_anp_precompute, tm_gent_tet4_anp_energy, tm_gent_tet4_anp_gradient,
@@ -2513,7 +2514,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tet4_anp_gradient_batch, tm_gent_tet4_anp_gradient_hessian_batch,
    tm_gent_tet4_anp_stress_batch,
    tm_gent_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_whole_precompute, tm_gent_tri3_whole_energy, tm_gent_tri3_whole_gradient,
@@ -2522,7 +2523,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri3_whole_gradient_batch, tm_gent_tri3_whole_gradient_hessian_batch,
    tm_gent_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kGentParameters, kGentLimits, tm_gent_tri3_anp_precompute, tm_gent_tri3_anp_energy, tm_gent_tri3_anp_gradient,
@@ -2531,7 +2532,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri3_anp_gradient_batch, tm_gent_tri3_anp_gradient_hessian_batch,
    tm_gent_tri3_anp_stress_batch,
    tm_gent_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"gent", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kGentParameters, kGentLimits, tm_gent_tri6_whole_precompute, tm_gent_tri6_whole_energy, tm_gent_tri6_whole_gradient,
@@ -2540,7 +2541,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_gent_tri6_whole_gradient_batch, tm_gent_tri6_whole_gradient_hessian_batch,
    tm_gent_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex20", "whole", 3, 20, 60, 27, 10, 10, 1657,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex20_whole_precompute, tm_holzapfel_gasser_ogden_hex20_whole_energy, tm_holzapfel_gasser_ogden_hex20_whole_gradient,
@@ -2548,7 +2549,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex27", "whole", 3, 27, 81, 27, 10, 10, 2224,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex27_whole_precompute, tm_holzapfel_gasser_ogden_hex27_whole_energy, tm_holzapfel_gasser_ogden_hex27_whole_gradient,
@@ -2556,7 +2557,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex8", "whole", 3, 8, 24, 8, 10, 10, 210,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_whole_precompute, tm_holzapfel_gasser_ogden_hex8_whole_energy, tm_holzapfel_gasser_ogden_hex8_whole_gradient,
@@ -2564,7 +2565,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "hex8", "fbar", 3, 8, 24, 8, 10, 10, 210,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_hex8_fbar_precompute, tm_holzapfel_gasser_ogden_hex8_fbar_energy, tm_holzapfel_gasser_ogden_hex8_fbar_gradient,
@@ -2572,7 +2573,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism15", "whole", 3, 15, 45, 18, 10, 10, 838,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism15_whole_precompute, tm_holzapfel_gasser_ogden_prism15_whole_energy, tm_holzapfel_gasser_ogden_prism15_whole_gradient,
@@ -2580,7 +2581,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism6", "whole", 3, 6, 18, 6, 10, 10, 124,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_whole_precompute, tm_holzapfel_gasser_ogden_prism6_whole_energy, tm_holzapfel_gasser_ogden_prism6_whole_gradient,
@@ -2589,7 +2590,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_prism6_whole_gradient_batch, tm_holzapfel_gasser_ogden_prism6_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "prism6", "anp", 3, 6, 18, 6, 10, 10, 124,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_prism6_anp_precompute, tm_holzapfel_gasser_ogden_prism6_anp_energy, tm_holzapfel_gasser_ogden_prism6_anp_gradient,
@@ -2597,7 +2598,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_holzapfel_gasser_ogden_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid13", "whole", 3, 13, 39, 27, 10, 10, 1090,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid13_whole_precompute, tm_holzapfel_gasser_ogden_pyramid13_whole_energy, tm_holzapfel_gasser_ogden_pyramid13_whole_gradient,
@@ -2605,7 +2606,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid5", "whole", 3, 5, 15, 8, 10, 10, 138,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_whole_precompute, tm_holzapfel_gasser_ogden_pyramid5_whole_energy, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient,
@@ -2614,7 +2615,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_batch, tm_holzapfel_gasser_ogden_pyramid5_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "pyramid5", "fbar", 3, 5, 15, 8, 10, 10, 138,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_pyramid5_fbar_precompute, tm_holzapfel_gasser_ogden_pyramid5_fbar_energy, tm_holzapfel_gasser_ogden_pyramid5_fbar_gradient,
@@ -2622,7 +2623,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad4", "whole", 2, 4, 8, 4, 10, 10, 46,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_whole_precompute, tm_holzapfel_gasser_ogden_quad4_whole_energy, tm_holzapfel_gasser_ogden_quad4_whole_gradient,
@@ -2631,7 +2632,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad4_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad4_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad4", "fbar", 2, 4, 8, 4, 10, 10, 46,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad4_fbar_precompute, tm_holzapfel_gasser_ogden_quad4_fbar_energy, tm_holzapfel_gasser_ogden_quad4_fbar_gradient,
@@ -2639,7 +2640,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad8", "whole", 2, 8, 16, 9, 10, 10, 163,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad8_whole_precompute, tm_holzapfel_gasser_ogden_quad8_whole_energy, tm_holzapfel_gasser_ogden_quad8_whole_gradient,
@@ -2648,7 +2649,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad8_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad8_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "quad9", "whole", 2, 9, 18, 9, 10, 10, 181,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_quad9_whole_precompute, tm_holzapfel_gasser_ogden_quad9_whole_energy, tm_holzapfel_gasser_ogden_quad9_whole_gradient,
@@ -2657,7 +2658,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_quad9_whole_gradient_batch, tm_holzapfel_gasser_ogden_quad9_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet10", "whole", 3, 10, 30, 4, 10, 10, 134,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet10_whole_precompute, tm_holzapfel_gasser_ogden_tet10_whole_energy, tm_holzapfel_gasser_ogden_tet10_whole_gradient,
@@ -2665,7 +2666,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet4", "whole", 3, 4, 12, 1, 10, 10, 23,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_whole_precompute, tm_holzapfel_gasser_ogden_tet4_whole_energy, tm_holzapfel_gasser_ogden_tet4_whole_gradient,
@@ -2674,7 +2675,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_whole_gradient_batch, tm_holzapfel_gasser_ogden_tet4_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tet4", "anp", 3, 4, 12, 1, 10, 10, 23,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tet4_anp_precompute, tm_holzapfel_gasser_ogden_tet4_anp_energy, tm_holzapfel_gasser_ogden_tet4_anp_gradient,
@@ -2683,7 +2684,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tet4_anp_gradient_batch, tm_holzapfel_gasser_ogden_tet4_anp_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tet4_anp_stress_batch,
    tm_holzapfel_gasser_ogden_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri3", "whole", 2, 3, 6, 1, 10, 10, 17,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_whole_precompute, tm_holzapfel_gasser_ogden_tri3_whole_energy, tm_holzapfel_gasser_ogden_tri3_whole_gradient,
@@ -2692,7 +2693,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri3_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri3", "anp", 2, 3, 6, 1, 10, 10, 17,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri3_anp_precompute, tm_holzapfel_gasser_ogden_tri3_anp_energy, tm_holzapfel_gasser_ogden_tri3_anp_gradient,
@@ -2701,7 +2702,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri3_anp_gradient_batch, tm_holzapfel_gasser_ogden_tri3_anp_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri3_anp_stress_batch,
    tm_holzapfel_gasser_ogden_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"holzapfel_gasser_ogden", "tri6", "whole", 2, 6, 12, 3, 10, 10, 49,
    kHolzapfel_gasser_ogdenParameters, kHolzapfel_gasser_ogdenLimits, tm_holzapfel_gasser_ogden_tri6_whole_precompute, tm_holzapfel_gasser_ogden_tri6_whole_energy, tm_holzapfel_gasser_ogden_tri6_whole_gradient,
@@ -2710,7 +2711,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_holzapfel_gasser_ogden_tri6_whole_gradient_batch, tm_holzapfel_gasser_ogden_tri6_whole_gradient_hessian_batch,
    tm_holzapfel_gasser_ogden_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kHookeParameters, kHookeLimits, tm_hooke_hex20_whole_precompute, tm_hooke_hex20_whole_energy, tm_hooke_hex20_whole_gradient,
@@ -2718,7 +2719,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kHookeParameters, kHookeLimits, tm_hooke_hex27_whole_precompute, tm_hooke_hex27_whole_energy, tm_hooke_hex27_whole_gradient,
@@ -2726,7 +2727,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_whole_precompute, tm_hooke_hex8_whole_energy, tm_hooke_hex8_whole_gradient,
@@ -2734,7 +2735,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 778,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_tensor_precompute, tm_hooke_hex8_tensor_energy, tm_hooke_hex8_tensor_gradient,
@@ -2742,7 +2743,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kHookeParameters, kHookeLimits, tm_hooke_hex8_fbar_precompute, tm_hooke_hex8_fbar_energy, tm_hooke_hex8_fbar_gradient,
@@ -2750,7 +2751,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kHookeParameters, kHookeLimits, tm_hooke_prism15_whole_precompute, tm_hooke_prism15_whole_energy, tm_hooke_prism15_whole_gradient,
@@ -2758,7 +2759,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_whole_precompute, tm_hooke_prism6_whole_energy, tm_hooke_prism6_whole_gradient,
@@ -2767,7 +2768,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_prism6_whole_gradient_batch, tm_hooke_prism6_whole_gradient_hessian_batch,
    tm_hooke_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 440,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_tensor_precompute, tm_hooke_prism6_tensor_energy, tm_hooke_prism6_tensor_gradient,
@@ -2775,7 +2776,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kHookeParameters, kHookeLimits, tm_hooke_prism6_anp_precompute, tm_hooke_prism6_anp_energy, tm_hooke_prism6_anp_gradient,
@@ -2783,7 +2784,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    tm_hooke_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid13_whole_precompute, tm_hooke_pyramid13_whole_energy, tm_hooke_pyramid13_whole_gradient,
@@ -2791,7 +2792,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_whole_precompute, tm_hooke_pyramid5_whole_energy, tm_hooke_pyramid5_whole_gradient,
@@ -2800,7 +2801,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_pyramid5_whole_gradient_batch, tm_hooke_pyramid5_whole_gradient_hessian_batch,
    tm_hooke_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 355,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_tensor_precompute, tm_hooke_pyramid5_tensor_energy, tm_hooke_pyramid5_tensor_gradient,
@@ -2808,7 +2809,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kHookeParameters, kHookeLimits, tm_hooke_pyramid5_fbar_precompute, tm_hooke_pyramid5_fbar_energy, tm_hooke_pyramid5_fbar_gradient,
@@ -2816,7 +2817,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_whole_precompute, tm_hooke_quad4_whole_energy, tm_hooke_quad4_whole_gradient,
@@ -2825,7 +2826,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad4_whole_gradient_batch, tm_hooke_quad4_whole_gradient_hessian_batch,
    tm_hooke_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 102,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_tensor_precompute, tm_hooke_quad4_tensor_energy, tm_hooke_quad4_tensor_gradient,
@@ -2833,7 +2834,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kHookeParameters, kHookeLimits, tm_hooke_quad4_fbar_precompute, tm_hooke_quad4_fbar_energy, tm_hooke_quad4_fbar_gradient,
@@ -2841,7 +2842,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kHookeParameters, kHookeLimits, tm_hooke_quad8_whole_precompute, tm_hooke_quad8_whole_energy, tm_hooke_quad8_whole_gradient,
@@ -2850,7 +2851,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad8_whole_gradient_batch, tm_hooke_quad8_whole_gradient_hessian_batch,
    tm_hooke_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kHookeParameters, kHookeLimits, tm_hooke_quad9_whole_precompute, tm_hooke_quad9_whole_energy, tm_hooke_quad9_whole_gradient,
@@ -2859,7 +2860,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_quad9_whole_gradient_batch, tm_hooke_quad9_whole_gradient_hessian_batch,
    tm_hooke_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kHookeParameters, kHookeLimits, tm_hooke_tet10_whole_precompute, tm_hooke_tet10_whole_energy, tm_hooke_tet10_whole_gradient,
@@ -2867,7 +2868,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_whole_precompute, tm_hooke_tet4_whole_energy, tm_hooke_tet4_whole_gradient,
@@ -2876,7 +2877,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_whole_gradient_batch, tm_hooke_tet4_whole_gradient_hessian_batch,
    tm_hooke_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 159,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_tensor_precompute, tm_hooke_tet4_tensor_energy, tm_hooke_tet4_tensor_gradient,
@@ -2884,7 +2885,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kHookeParameters, kHookeLimits, tm_hooke_tet4_anp_precompute, tm_hooke_tet4_anp_energy, tm_hooke_tet4_anp_gradient,
@@ -2893,7 +2894,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tet4_anp_gradient_batch, tm_hooke_tet4_anp_gradient_hessian_batch,
    tm_hooke_tet4_anp_stress_batch,
    tm_hooke_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_whole_precompute, tm_hooke_tri3_whole_energy, tm_hooke_tri3_whole_gradient,
@@ -2902,7 +2903,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_whole_gradient_batch, tm_hooke_tri3_whole_gradient_hessian_batch,
    tm_hooke_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 45,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_tensor_precompute, tm_hooke_tri3_tensor_energy, tm_hooke_tri3_tensor_gradient,
@@ -2910,7 +2911,7 @@ const tm_kernel kKernels[] = {
    1, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kHookeParameters, kHookeLimits, tm_hooke_tri3_anp_precompute, tm_hooke_tri3_anp_energy, tm_hooke_tri3_anp_gradient,
@@ -2919,7 +2920,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri3_anp_gradient_batch, tm_hooke_tri3_anp_gradient_hessian_batch,
    tm_hooke_tri3_anp_stress_batch,
    tm_hooke_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"hooke", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kHookeParameters, kHookeLimits, tm_hooke_tri6_whole_precompute, tm_hooke_tri6_whole_energy, tm_hooke_tri6_whole_gradient,
@@ -2928,7 +2929,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_hooke_tri6_whole_gradient_batch, tm_hooke_tri6_whole_gradient_hessian_batch,
    tm_hooke_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex20_whole_precompute, tm_mooney_rivlin_hex20_whole_energy, tm_mooney_rivlin_hex20_whole_gradient,
@@ -2936,7 +2937,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex27_whole_precompute, tm_mooney_rivlin_hex27_whole_energy, tm_mooney_rivlin_hex27_whole_gradient,
@@ -2944,7 +2945,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_whole_precompute, tm_mooney_rivlin_hex8_whole_energy, tm_mooney_rivlin_hex8_whole_gradient,
@@ -2952,7 +2953,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_hex8_fbar_precompute, tm_mooney_rivlin_hex8_fbar_energy, tm_mooney_rivlin_hex8_fbar_gradient,
@@ -2960,7 +2961,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism15_whole_precompute, tm_mooney_rivlin_prism15_whole_energy, tm_mooney_rivlin_prism15_whole_gradient,
@@ -2968,7 +2969,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_whole_precompute, tm_mooney_rivlin_prism6_whole_energy, tm_mooney_rivlin_prism6_whole_gradient,
@@ -2977,7 +2978,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_prism6_whole_gradient_batch, tm_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_prism6_anp_precompute, tm_mooney_rivlin_prism6_anp_energy, tm_mooney_rivlin_prism6_anp_gradient,
@@ -2985,7 +2986,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_mooney_rivlin_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid13_whole_precompute, tm_mooney_rivlin_pyramid13_whole_energy, tm_mooney_rivlin_pyramid13_whole_gradient,
@@ -2993,7 +2994,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_whole_precompute, tm_mooney_rivlin_pyramid5_whole_energy, tm_mooney_rivlin_pyramid5_whole_gradient,
@@ -3002,7 +3003,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_pyramid5_whole_gradient_batch, tm_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_mooney_rivlin_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_pyramid5_fbar_precompute, tm_mooney_rivlin_pyramid5_fbar_energy, tm_mooney_rivlin_pyramid5_fbar_gradient,
@@ -3010,7 +3011,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_whole_precompute, tm_mooney_rivlin_quad4_whole_energy, tm_mooney_rivlin_quad4_whole_gradient,
@@ -3019,7 +3020,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad4_whole_gradient_batch, tm_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad4_fbar_precompute, tm_mooney_rivlin_quad4_fbar_energy, tm_mooney_rivlin_quad4_fbar_gradient,
@@ -3027,7 +3028,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad8_whole_precompute, tm_mooney_rivlin_quad8_whole_energy, tm_mooney_rivlin_quad8_whole_gradient,
@@ -3036,7 +3037,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad8_whole_gradient_batch, tm_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_quad9_whole_precompute, tm_mooney_rivlin_quad9_whole_energy, tm_mooney_rivlin_quad9_whole_gradient,
@@ -3045,7 +3046,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_quad9_whole_gradient_batch, tm_mooney_rivlin_quad9_whole_gradient_hessian_batch,
    tm_mooney_rivlin_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet10_whole_precompute, tm_mooney_rivlin_tet10_whole_energy, tm_mooney_rivlin_tet10_whole_gradient,
@@ -3053,7 +3054,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_whole_precompute, tm_mooney_rivlin_tet4_whole_energy, tm_mooney_rivlin_tet4_whole_gradient,
@@ -3062,7 +3063,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_whole_gradient_batch, tm_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tet4_anp_precompute, tm_mooney_rivlin_tet4_anp_energy, tm_mooney_rivlin_tet4_anp_gradient,
@@ -3071,7 +3072,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tet4_anp_gradient_batch, tm_mooney_rivlin_tet4_anp_gradient_hessian_batch,
    tm_mooney_rivlin_tet4_anp_stress_batch,
    tm_mooney_rivlin_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_whole_precompute, tm_mooney_rivlin_tri3_whole_energy, tm_mooney_rivlin_tri3_whole_gradient,
@@ -3080,7 +3081,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_whole_gradient_batch, tm_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri3_anp_precompute, tm_mooney_rivlin_tri3_anp_energy, tm_mooney_rivlin_tri3_anp_gradient,
@@ -3089,7 +3090,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri3_anp_gradient_batch, tm_mooney_rivlin_tri3_anp_gradient_hessian_batch,
    tm_mooney_rivlin_tri3_anp_stress_batch,
    tm_mooney_rivlin_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kMooney_rivlinParameters, kMooney_rivlinLimits, tm_mooney_rivlin_tri6_whole_precompute, tm_mooney_rivlin_tri6_whole_energy, tm_mooney_rivlin_tri6_whole_gradient,
@@ -3098,7 +3099,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_mooney_rivlin_tri6_whole_gradient_batch, tm_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_mooney_rivlin_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex20_whole_precompute, tm_neohookean_hex20_whole_energy, tm_neohookean_hex20_whole_gradient,
@@ -3106,7 +3107,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex27_whole_precompute, tm_neohookean_hex27_whole_energy, tm_neohookean_hex27_whole_gradient,
@@ -3114,7 +3115,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_whole_precompute, tm_neohookean_hex8_whole_energy, tm_neohookean_hex8_whole_gradient,
@@ -3122,7 +3123,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_hex8_fbar_precompute, tm_neohookean_hex8_fbar_energy, tm_neohookean_hex8_fbar_gradient,
@@ -3130,7 +3131,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism15_whole_precompute, tm_neohookean_prism15_whole_energy, tm_neohookean_prism15_whole_gradient,
@@ -3138,7 +3139,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_whole_precompute, tm_neohookean_prism6_whole_energy, tm_neohookean_prism6_whole_gradient,
@@ -3147,7 +3148,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_prism6_whole_gradient_batch, tm_neohookean_prism6_whole_gradient_hessian_batch,
    tm_neohookean_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_prism6_anp_precompute, tm_neohookean_prism6_anp_energy, tm_neohookean_prism6_anp_gradient,
@@ -3155,7 +3156,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_neohookean_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid13_whole_precompute, tm_neohookean_pyramid13_whole_energy, tm_neohookean_pyramid13_whole_gradient,
@@ -3163,7 +3164,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_whole_precompute, tm_neohookean_pyramid5_whole_energy, tm_neohookean_pyramid5_whole_gradient,
@@ -3172,7 +3173,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_pyramid5_whole_gradient_batch, tm_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_neohookean_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_pyramid5_fbar_precompute, tm_neohookean_pyramid5_fbar_energy, tm_neohookean_pyramid5_fbar_gradient,
@@ -3180,7 +3181,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_whole_precompute, tm_neohookean_quad4_whole_energy, tm_neohookean_quad4_whole_gradient,
@@ -3189,7 +3190,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad4_whole_gradient_batch, tm_neohookean_quad4_whole_gradient_hessian_batch,
    tm_neohookean_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad4_fbar_precompute, tm_neohookean_quad4_fbar_energy, tm_neohookean_quad4_fbar_gradient,
@@ -3197,7 +3198,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad8_whole_precompute, tm_neohookean_quad8_whole_energy, tm_neohookean_quad8_whole_gradient,
@@ -3206,7 +3207,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad8_whole_gradient_batch, tm_neohookean_quad8_whole_gradient_hessian_batch,
    tm_neohookean_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_quad9_whole_precompute, tm_neohookean_quad9_whole_energy, tm_neohookean_quad9_whole_gradient,
@@ -3215,7 +3216,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_quad9_whole_gradient_batch, tm_neohookean_quad9_whole_gradient_hessian_batch,
    tm_neohookean_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet10_whole_precompute, tm_neohookean_tet10_whole_energy, tm_neohookean_tet10_whole_gradient,
@@ -3223,7 +3224,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_whole_precompute, tm_neohookean_tet4_whole_energy, tm_neohookean_tet4_whole_gradient,
@@ -3232,7 +3233,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_whole_gradient_batch, tm_neohookean_tet4_whole_gradient_hessian_batch,
    tm_neohookean_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tet4_anp_precompute, tm_neohookean_tet4_anp_energy, tm_neohookean_tet4_anp_gradient,
@@ -3241,7 +3242,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tet4_anp_gradient_batch, tm_neohookean_tet4_anp_gradient_hessian_batch,
    tm_neohookean_tet4_anp_stress_batch,
    tm_neohookean_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_whole_precompute, tm_neohookean_tri3_whole_energy, tm_neohookean_tri3_whole_gradient,
@@ -3250,7 +3251,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_whole_gradient_batch, tm_neohookean_tri3_whole_gradient_hessian_batch,
    tm_neohookean_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri3_anp_precompute, tm_neohookean_tri3_anp_energy, tm_neohookean_tri3_anp_gradient,
@@ -3259,7 +3260,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri3_anp_gradient_batch, tm_neohookean_tri3_anp_gradient_hessian_batch,
    tm_neohookean_tri3_anp_stress_batch,
    tm_neohookean_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kNeohookeanParameters, kNeohookeanLimits, tm_neohookean_tri6_whole_precompute, tm_neohookean_tri6_whole_energy, tm_neohookean_tri6_whole_gradient,
@@ -3268,7 +3269,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_neohookean_tri6_whole_gradient_batch, tm_neohookean_tri6_whole_gradient_hessian_batch,
    tm_neohookean_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex20_whole_precompute, tm_stable_neohookean_hex20_whole_energy, tm_stable_neohookean_hex20_whole_gradient,
@@ -3276,7 +3277,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex27_whole_precompute, tm_stable_neohookean_hex27_whole_energy, tm_stable_neohookean_hex27_whole_gradient,
@@ -3284,7 +3285,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_whole_precompute, tm_stable_neohookean_hex8_whole_energy, tm_stable_neohookean_hex8_whole_gradient,
@@ -3292,7 +3293,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_hex8_fbar_precompute, tm_stable_neohookean_hex8_fbar_energy, tm_stable_neohookean_hex8_fbar_gradient,
@@ -3300,7 +3301,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism15_whole_precompute, tm_stable_neohookean_prism15_whole_energy, tm_stable_neohookean_prism15_whole_gradient,
@@ -3308,7 +3309,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_whole_precompute, tm_stable_neohookean_prism6_whole_energy, tm_stable_neohookean_prism6_whole_gradient,
@@ -3317,7 +3318,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_prism6_whole_gradient_batch, tm_stable_neohookean_prism6_whole_gradient_hessian_batch,
    tm_stable_neohookean_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "prism6", "anp", 3, 6, 18, 6, 2, 2, 116,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_prism6_anp_precompute, tm_stable_neohookean_prism6_anp_energy, tm_stable_neohookean_prism6_anp_gradient,
@@ -3325,7 +3326,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_stable_neohookean_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid13_whole_precompute, tm_stable_neohookean_pyramid13_whole_energy, tm_stable_neohookean_pyramid13_whole_gradient,
@@ -3333,7 +3334,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_whole_precompute, tm_stable_neohookean_pyramid5_whole_energy, tm_stable_neohookean_pyramid5_whole_gradient,
@@ -3342,7 +3343,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_pyramid5_whole_gradient_batch, tm_stable_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_stable_neohookean_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_pyramid5_fbar_precompute, tm_stable_neohookean_pyramid5_fbar_energy, tm_stable_neohookean_pyramid5_fbar_gradient,
@@ -3350,7 +3351,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_whole_precompute, tm_stable_neohookean_quad4_whole_energy, tm_stable_neohookean_quad4_whole_gradient,
@@ -3359,7 +3360,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad4_whole_gradient_batch, tm_stable_neohookean_quad4_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad4_fbar_precompute, tm_stable_neohookean_quad4_fbar_energy, tm_stable_neohookean_quad4_fbar_gradient,
@@ -3367,7 +3368,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad8_whole_precompute, tm_stable_neohookean_quad8_whole_energy, tm_stable_neohookean_quad8_whole_gradient,
@@ -3376,7 +3377,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad8_whole_gradient_batch, tm_stable_neohookean_quad8_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_quad9_whole_precompute, tm_stable_neohookean_quad9_whole_energy, tm_stable_neohookean_quad9_whole_gradient,
@@ -3385,7 +3386,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_quad9_whole_gradient_batch, tm_stable_neohookean_quad9_whole_gradient_hessian_batch,
    tm_stable_neohookean_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet10_whole_precompute, tm_stable_neohookean_tet10_whole_energy, tm_stable_neohookean_tet10_whole_gradient,
@@ -3393,7 +3394,7 @@ const tm_kernel kKernels[] = {
    0, 1,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_whole_precompute, tm_stable_neohookean_tet4_whole_energy, tm_stable_neohookean_tet4_whole_gradient,
@@ -3402,7 +3403,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_whole_gradient_batch, tm_stable_neohookean_tet4_whole_gradient_hessian_batch,
    tm_stable_neohookean_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tet4", "anp", 3, 4, 12, 1, 2, 2, 15,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tet4_anp_precompute, tm_stable_neohookean_tet4_anp_energy, tm_stable_neohookean_tet4_anp_gradient,
@@ -3411,7 +3412,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tet4_anp_gradient_batch, tm_stable_neohookean_tet4_anp_gradient_hessian_batch,
    tm_stable_neohookean_tet4_anp_stress_batch,
    tm_stable_neohookean_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_whole_precompute, tm_stable_neohookean_tri3_whole_energy, tm_stable_neohookean_tri3_whole_gradient,
@@ -3420,7 +3421,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_whole_gradient_batch, tm_stable_neohookean_tri3_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tri3", "anp", 2, 3, 6, 1, 2, 2, 9,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri3_anp_precompute, tm_stable_neohookean_tri3_anp_energy, tm_stable_neohookean_tri3_anp_gradient,
@@ -3429,7 +3430,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri3_anp_gradient_batch, tm_stable_neohookean_tri3_anp_gradient_hessian_batch,
    tm_stable_neohookean_tri3_anp_stress_batch,
    tm_stable_neohookean_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stable_neohookean", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStable_neohookeanParameters, kStable_neohookeanLimits, tm_stable_neohookean_tri6_whole_precompute, tm_stable_neohookean_tri6_whole_energy, tm_stable_neohookean_tri6_whole_gradient,
@@ -3438,7 +3439,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stable_neohookean_tri6_whole_gradient_batch, tm_stable_neohookean_tri6_whole_gradient_hessian_batch,
    tm_stable_neohookean_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex20", "whole", 3, 20, 60, 27, 2, 2, 1649,
    kStvkParameters, kStvkLimits, tm_stvk_hex20_whole_precompute, tm_stvk_hex20_whole_energy, tm_stvk_hex20_whole_gradient,
@@ -3446,7 +3447,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex27", "whole", 3, 27, 81, 27, 2, 2, 2216,
    kStvkParameters, kStvkLimits, tm_stvk_hex27_whole_precompute, tm_stvk_hex27_whole_energy, tm_stvk_hex27_whole_gradient,
@@ -3454,7 +3455,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "whole", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_whole_precompute, tm_stvk_hex8_whole_energy, tm_stvk_hex8_whole_gradient,
@@ -3462,7 +3463,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "tensor", 3, 8, 24, 8, 2, 2, 2938,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_tensor_precompute, tm_stvk_hex8_tensor_energy, tm_stvk_hex8_tensor_gradient,
@@ -3470,7 +3471,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "hex8", "fbar", 3, 8, 24, 8, 2, 2, 202,
    kStvkParameters, kStvkLimits, tm_stvk_hex8_fbar_precompute, tm_stvk_hex8_fbar_energy, tm_stvk_hex8_fbar_gradient,
@@ -3478,7 +3479,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "prism15", "whole", 3, 15, 45, 18, 2, 2, 830,
    kStvkParameters, kStvkLimits, tm_stvk_prism15_whole_precompute, tm_stvk_prism15_whole_energy, tm_stvk_prism15_whole_gradient,
@@ -3486,7 +3487,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "prism6", "whole", 3, 6, 18, 6, 2, 2, 116,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_whole_precompute, tm_stvk_prism6_whole_energy, tm_stvk_prism6_whole_gradient,
@@ -3495,7 +3496,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_prism6_whole_gradient_batch, tm_stvk_prism6_whole_gradient_hessian_batch,
    tm_stvk_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "prism6", "tensor", 3, 6, 18, 6, 2, 2, 1259,
    kStvkParameters, kStvkLimits, tm_stvk_prism6_tensor_precompute, tm_stvk_prism6_tensor_energy, tm_stvk_prism6_tensor_gradient,
@@ -3503,7 +3504,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid13", "whole", 3, 13, 39, 27, 2, 2, 1082,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid13_whole_precompute, tm_stvk_pyramid13_whole_energy, tm_stvk_pyramid13_whole_gradient,
@@ -3511,7 +3512,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid5", "whole", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_whole_precompute, tm_stvk_pyramid5_whole_energy, tm_stvk_pyramid5_whole_gradient,
@@ -3520,7 +3521,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_pyramid5_whole_gradient_batch, tm_stvk_pyramid5_whole_gradient_hessian_batch,
    tm_stvk_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid5", "tensor", 3, 5, 15, 8, 2, 2, 805,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_tensor_precompute, tm_stvk_pyramid5_tensor_energy, tm_stvk_pyramid5_tensor_gradient,
@@ -3528,7 +3529,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "pyramid5", "fbar", 3, 5, 15, 8, 2, 2, 130,
    kStvkParameters, kStvkLimits, tm_stvk_pyramid5_fbar_precompute, tm_stvk_pyramid5_fbar_energy, tm_stvk_pyramid5_fbar_gradient,
@@ -3536,7 +3537,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad4", "whole", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_whole_precompute, tm_stvk_quad4_whole_energy, tm_stvk_quad4_whole_gradient,
@@ -3545,7 +3546,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad4_whole_gradient_batch, tm_stvk_quad4_whole_gradient_hessian_batch,
    tm_stvk_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad4", "tensor", 2, 4, 8, 4, 2, 2, 282,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_tensor_precompute, tm_stvk_quad4_tensor_energy, tm_stvk_quad4_tensor_gradient,
@@ -3553,7 +3554,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad4", "fbar", 2, 4, 8, 4, 2, 2, 38,
    kStvkParameters, kStvkLimits, tm_stvk_quad4_fbar_precompute, tm_stvk_quad4_fbar_energy, tm_stvk_quad4_fbar_gradient,
@@ -3561,7 +3562,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad8", "whole", 2, 8, 16, 9, 2, 2, 155,
    kStvkParameters, kStvkLimits, tm_stvk_quad8_whole_precompute, tm_stvk_quad8_whole_energy, tm_stvk_quad8_whole_gradient,
@@ -3570,7 +3571,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad8_whole_gradient_batch, tm_stvk_quad8_whole_gradient_hessian_batch,
    tm_stvk_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "quad9", "whole", 2, 9, 18, 9, 2, 2, 173,
    kStvkParameters, kStvkLimits, tm_stvk_quad9_whole_precompute, tm_stvk_quad9_whole_energy, tm_stvk_quad9_whole_gradient,
@@ -3579,7 +3580,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_quad9_whole_gradient_batch, tm_stvk_quad9_whole_gradient_hessian_batch,
    tm_stvk_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet10", "whole", 3, 10, 30, 4, 2, 2, 126,
    kStvkParameters, kStvkLimits, tm_stvk_tet10_whole_precompute, tm_stvk_tet10_whole_energy, tm_stvk_tet10_whole_gradient,
@@ -3587,7 +3588,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet4", "whole", 3, 4, 12, 1, 2, 2, 15,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_whole_precompute, tm_stvk_tet4_whole_energy, tm_stvk_tet4_whole_gradient,
@@ -3596,7 +3597,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tet4_whole_gradient_batch, tm_stvk_tet4_whole_gradient_hessian_batch,
    tm_stvk_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tet4", "tensor", 3, 4, 12, 1, 2, 2, 379,
    kStvkParameters, kStvkLimits, tm_stvk_tet4_tensor_precompute, tm_stvk_tet4_tensor_energy, tm_stvk_tet4_tensor_gradient,
@@ -3604,7 +3605,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri3", "whole", 2, 3, 6, 1, 2, 2, 9,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_whole_precompute, tm_stvk_tri3_whole_energy, tm_stvk_tri3_whole_gradient,
@@ -3613,7 +3614,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri3_whole_gradient_batch, tm_stvk_tri3_whole_gradient_hessian_batch,
    tm_stvk_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri3", "tensor", 2, 3, 6, 1, 2, 2, 117,
    kStvkParameters, kStvkLimits, tm_stvk_tri3_tensor_precompute, tm_stvk_tri3_tensor_energy, tm_stvk_tri3_tensor_gradient,
@@ -3621,7 +3622,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"stvk", "tri6", "whole", 2, 6, 12, 3, 2, 2, 41,
    kStvkParameters, kStvkLimits, tm_stvk_tri6_whole_precompute, tm_stvk_tri6_whole_energy, tm_stvk_tri6_whole_gradient,
@@ -3630,7 +3631,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_stvk_tri6_whole_gradient_batch, tm_stvk_tri6_whole_gradient_hessian_batch,
    tm_stvk_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex20", "whole", 3, 20, 60, 27, 7, 7, 1654,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex20_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex20_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex20_whole_gradient,
@@ -3638,7 +3639,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex27", "whole", 3, 27, 81, 27, 7, 7, 2221,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex27_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex27_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex27_whole_gradient,
@@ -3646,7 +3647,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex8", "whole", 3, 8, 24, 8, 7, 7, 207,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_whole_energy, tm_transversely_isotropic_mooney_rivlin_hex8_whole_gradient,
@@ -3654,7 +3655,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "hex8", "fbar", 3, 8, 24, 8, 7, 7, 207,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_energy, tm_transversely_isotropic_mooney_rivlin_hex8_fbar_gradient,
@@ -3662,7 +3663,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism15", "whole", 3, 15, 45, 18, 7, 7, 835,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism15_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism15_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism15_whole_gradient,
@@ -3670,7 +3671,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism6", "whole", 3, 6, 18, 6, 7, 7, 121,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_whole_energy, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient,
@@ -3679,7 +3680,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_prism6_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "prism6", "anp", 3, 6, 18, 6, 7, 7, 121,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_prism6_anp_precompute, tm_transversely_isotropic_mooney_rivlin_prism6_anp_energy, tm_transversely_isotropic_mooney_rivlin_prism6_anp_gradient,
@@ -3687,7 +3688,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_transversely_isotropic_mooney_rivlin_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid13", "whole", 3, 13, 39, 27, 7, 7, 1087,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid13_whole_gradient,
@@ -3695,7 +3696,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid5", "whole", 3, 5, 15, 8, 7, 7, 135,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient,
@@ -3704,7 +3705,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "pyramid5", "fbar", 3, 5, 15, 8, 7, 7, 135,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_energy, tm_transversely_isotropic_mooney_rivlin_pyramid5_fbar_gradient,
@@ -3712,7 +3713,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad4", "whole", 2, 4, 8, 4, 7, 7, 43,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient,
@@ -3721,7 +3722,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad4_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad4", "fbar", 2, 4, 8, 4, 7, 7, 43,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_precompute, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_energy, tm_transversely_isotropic_mooney_rivlin_quad4_fbar_gradient,
@@ -3729,7 +3730,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad8", "whole", 2, 8, 16, 9, 7, 7, 160,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad8_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad8_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient,
@@ -3738,7 +3739,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad8_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "quad9", "whole", 2, 9, 18, 9, 7, 7, 178,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_quad9_whole_precompute, tm_transversely_isotropic_mooney_rivlin_quad9_whole_energy, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient,
@@ -3747,7 +3748,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_quad9_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet10", "whole", 3, 10, 30, 4, 7, 7, 131,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet10_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet10_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet10_whole_gradient,
@@ -3755,7 +3756,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet4", "whole", 3, 4, 12, 1, 7, 7, 20,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_whole_energy, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient,
@@ -3764,7 +3765,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tet4", "anp", 3, 4, 12, 1, 7, 7, 20,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tet4_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tet4_anp_energy, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient,
@@ -3773,7 +3774,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tet4_anp_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tet4_anp_stress_batch,
    tm_transversely_isotropic_mooney_rivlin_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri3", "whole", 2, 3, 6, 1, 7, 7, 14,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient,
@@ -3782,7 +3783,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri3", "anp", 2, 3, 6, 1, 7, 7, 14,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri3_anp_precompute, tm_transversely_isotropic_mooney_rivlin_tri3_anp_energy, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient,
@@ -3791,7 +3792,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri3_anp_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri3_anp_stress_batch,
    tm_transversely_isotropic_mooney_rivlin_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"transversely_isotropic_mooney_rivlin", "tri6", "whole", 2, 6, 12, 3, 7, 7, 46,
    kTransversely_isotropic_mooney_rivlinParameters, kTransversely_isotropic_mooney_rivlinLimits, tm_transversely_isotropic_mooney_rivlin_tri6_whole_precompute, tm_transversely_isotropic_mooney_rivlin_tri6_whole_energy, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient,
@@ -3800,7 +3801,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_batch, tm_transversely_isotropic_mooney_rivlin_tri6_whole_gradient_hessian_batch,
    tm_transversely_isotropic_mooney_rivlin_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "hex20", "whole", 3, 20, 60, 27, 3, 3, 1650,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex20_whole_precompute, tm_veronda_westmann_hex20_whole_energy, tm_veronda_westmann_hex20_whole_gradient,
@@ -3808,7 +3809,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "hex27", "whole", 3, 27, 81, 27, 3, 3, 2217,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex27_whole_precompute, tm_veronda_westmann_hex27_whole_energy, tm_veronda_westmann_hex27_whole_gradient,
@@ -3816,7 +3817,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "hex8", "whole", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_whole_precompute, tm_veronda_westmann_hex8_whole_energy, tm_veronda_westmann_hex8_whole_gradient,
@@ -3824,7 +3825,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "hex8", "fbar", 3, 8, 24, 8, 3, 3, 203,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_hex8_fbar_precompute, tm_veronda_westmann_hex8_fbar_energy, tm_veronda_westmann_hex8_fbar_gradient,
@@ -3832,7 +3833,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "prism15", "whole", 3, 15, 45, 18, 3, 3, 831,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism15_whole_precompute, tm_veronda_westmann_prism15_whole_energy, tm_veronda_westmann_prism15_whole_gradient,
@@ -3840,7 +3841,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "prism6", "whole", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_whole_precompute, tm_veronda_westmann_prism6_whole_energy, tm_veronda_westmann_prism6_whole_gradient,
@@ -3849,7 +3850,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_prism6_whole_gradient_batch, tm_veronda_westmann_prism6_whole_gradient_hessian_batch,
    tm_veronda_westmann_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "prism6", "anp", 3, 6, 18, 6, 3, 3, 117,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_prism6_anp_precompute, tm_veronda_westmann_prism6_anp_energy, tm_veronda_westmann_prism6_anp_gradient,
@@ -3857,7 +3858,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_veronda_westmann_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid13", "whole", 3, 13, 39, 27, 3, 3, 1083,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid13_whole_precompute, tm_veronda_westmann_pyramid13_whole_energy, tm_veronda_westmann_pyramid13_whole_gradient,
@@ -3865,7 +3866,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid5", "whole", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_whole_precompute, tm_veronda_westmann_pyramid5_whole_energy, tm_veronda_westmann_pyramid5_whole_gradient,
@@ -3874,7 +3875,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_pyramid5_whole_gradient_batch, tm_veronda_westmann_pyramid5_whole_gradient_hessian_batch,
    tm_veronda_westmann_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "pyramid5", "fbar", 3, 5, 15, 8, 3, 3, 131,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_pyramid5_fbar_precompute, tm_veronda_westmann_pyramid5_fbar_energy, tm_veronda_westmann_pyramid5_fbar_gradient,
@@ -3882,7 +3883,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "quad4", "whole", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_whole_precompute, tm_veronda_westmann_quad4_whole_energy, tm_veronda_westmann_quad4_whole_gradient,
@@ -3891,7 +3892,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad4_whole_gradient_batch, tm_veronda_westmann_quad4_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "quad4", "fbar", 2, 4, 8, 4, 3, 3, 39,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad4_fbar_precompute, tm_veronda_westmann_quad4_fbar_energy, tm_veronda_westmann_quad4_fbar_gradient,
@@ -3899,7 +3900,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "quad8", "whole", 2, 8, 16, 9, 3, 3, 156,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad8_whole_precompute, tm_veronda_westmann_quad8_whole_energy, tm_veronda_westmann_quad8_whole_gradient,
@@ -3908,7 +3909,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad8_whole_gradient_batch, tm_veronda_westmann_quad8_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "quad9", "whole", 2, 9, 18, 9, 3, 3, 174,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_quad9_whole_precompute, tm_veronda_westmann_quad9_whole_energy, tm_veronda_westmann_quad9_whole_gradient,
@@ -3917,7 +3918,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_quad9_whole_gradient_batch, tm_veronda_westmann_quad9_whole_gradient_hessian_batch,
    tm_veronda_westmann_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tet10", "whole", 3, 10, 30, 4, 3, 3, 127,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet10_whole_precompute, tm_veronda_westmann_tet10_whole_energy, tm_veronda_westmann_tet10_whole_gradient,
@@ -3925,7 +3926,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tet4", "whole", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_whole_precompute, tm_veronda_westmann_tet4_whole_energy, tm_veronda_westmann_tet4_whole_gradient,
@@ -3934,7 +3935,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_whole_gradient_batch, tm_veronda_westmann_tet4_whole_gradient_hessian_batch,
    tm_veronda_westmann_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tet4", "anp", 3, 4, 12, 1, 3, 3, 16,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tet4_anp_precompute, tm_veronda_westmann_tet4_anp_energy, tm_veronda_westmann_tet4_anp_gradient,
@@ -3943,7 +3944,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tet4_anp_gradient_batch, tm_veronda_westmann_tet4_anp_gradient_hessian_batch,
    tm_veronda_westmann_tet4_anp_stress_batch,
    tm_veronda_westmann_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tri3", "whole", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_whole_precompute, tm_veronda_westmann_tri3_whole_energy, tm_veronda_westmann_tri3_whole_gradient,
@@ -3952,7 +3953,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_whole_gradient_batch, tm_veronda_westmann_tri3_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tri3", "anp", 2, 3, 6, 1, 3, 3, 10,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri3_anp_precompute, tm_veronda_westmann_tri3_anp_energy, tm_veronda_westmann_tri3_anp_gradient,
@@ -3961,7 +3962,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri3_anp_gradient_batch, tm_veronda_westmann_tri3_anp_gradient_hessian_batch,
    tm_veronda_westmann_tri3_anp_stress_batch,
    tm_veronda_westmann_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"veronda_westmann", "tri6", "whole", 2, 6, 12, 3, 3, 3, 42,
    kVeronda_westmannParameters, kVeronda_westmannLimits, tm_veronda_westmann_tri6_whole_precompute, tm_veronda_westmann_tri6_whole_energy, tm_veronda_westmann_tri6_whole_gradient,
@@ -3970,177 +3971,197 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_veronda_westmann_tri6_whole_gradient_batch, tm_veronda_westmann_tri6_whole_gradient_hessian_batch,
    tm_veronda_westmann_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
-  {"viscoelastic_neohookean", "hex20", "whole", 3, 20, 60, 27, 6, 2, 1649,
+  {"viscoelastic_neohookean", "hex20", "whole", 3, 20, 60, 27, 8, 2, 1649,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex20_whole_precompute, tm_viscoelastic_neohookean_hex20_whole_energy, tm_viscoelastic_neohookean_hex20_whole_gradient,
    tm_viscoelastic_neohookean_hex20_whole_hessian, tm_viscoelastic_neohookean_hex20_whole_gradient_hessian, tm_viscoelastic_neohookean_hex20_whole_stress, 11259, 24921, 466965,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_hex20_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "hex27", "whole", 3, 27, 81, 27, 6, 2, 2216,
+  {"viscoelastic_neohookean", "hex27", "whole", 3, 27, 81, 27, 8, 2, 2216,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex27_whole_precompute, tm_viscoelastic_neohookean_hex27_whole_energy, tm_viscoelastic_neohookean_hex27_whole_gradient,
    tm_viscoelastic_neohookean_hex27_whole_hessian, tm_viscoelastic_neohookean_hex27_whole_gradient_hessian, tm_viscoelastic_neohookean_hex27_whole_stress, 14661, 31725, 807165,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_hex27_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "hex8", "whole", 3, 8, 24, 8, 6, 2, 202,
+  {"viscoelastic_neohookean", "hex8", "whole", 3, 8, 24, 8, 8, 2, 202,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex8_whole_precompute, tm_viscoelastic_neohookean_hex8_whole_energy, tm_viscoelastic_neohookean_hex8_whole_gradient,
    tm_viscoelastic_neohookean_hex8_whole_hessian, tm_viscoelastic_neohookean_hex8_whole_gradient_hessian, tm_viscoelastic_neohookean_hex8_whole_stress, 1608, 3928, 31224,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_hex8_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "hex8", "fbar", 3, 8, 24, 8, 6, 2, 202,
+  {"viscoelastic_neohookean", "hex8", "fbar", 3, 8, 24, 8, 8, 2, 202,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_hex8_fbar_precompute, tm_viscoelastic_neohookean_hex8_fbar_energy, tm_viscoelastic_neohookean_hex8_fbar_gradient,
    tm_viscoelastic_neohookean_hex8_fbar_hessian, tm_viscoelastic_neohookean_hex8_fbar_gradient_hessian, tm_viscoelastic_neohookean_hex8_fbar_stress, 2040, 4648, 43032,
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "prism15", "whole", 3, 15, 45, 18, 6, 2, 830,
+  {"viscoelastic_neohookean", "prism15", "whole", 3, 15, 45, 18, 8, 2, 830,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism15_whole_precompute, tm_viscoelastic_neohookean_prism15_whole_energy, tm_viscoelastic_neohookean_prism15_whole_gradient,
    tm_viscoelastic_neohookean_prism15_whole_hessian, tm_viscoelastic_neohookean_prism15_whole_gradient_hessian, tm_viscoelastic_neohookean_prism15_whole_stress, 5886, 13374, 188190,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_prism15_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "prism6", "whole", 3, 6, 18, 6, 6, 2, 116,
+  {"viscoelastic_neohookean", "prism6", "whole", 3, 6, 18, 6, 8, 2, 116,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism6_whole_precompute, tm_viscoelastic_neohookean_prism6_whole_energy, tm_viscoelastic_neohookean_prism6_whole_gradient,
    tm_viscoelastic_neohookean_prism6_whole_hessian, tm_viscoelastic_neohookean_prism6_whole_gradient_hessian, tm_viscoelastic_neohookean_prism6_whole_stress, 990, 2514, 16074,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_prism6_whole_gradient_batch, tm_viscoelastic_neohookean_prism6_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_prism6_whole_stress_batch,
    tm_viscoelastic_neohookean_prism6_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "prism6", "anp", 3, 6, 18, 6, 6, 2, 116,
+  {"viscoelastic_neohookean", "prism6", "anp", 3, 6, 18, 6, 8, 2, 116,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_prism6_anp_precompute, tm_viscoelastic_neohookean_prism6_anp_energy, tm_viscoelastic_neohookean_prism6_anp_gradient,
    tm_viscoelastic_neohookean_prism6_anp_hessian, tm_viscoelastic_neohookean_prism6_anp_gradient_hessian, tm_viscoelastic_neohookean_prism6_anp_stress, 1314, 3054, 24066,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_prism6_anp_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 6, 2, 1082,
+  {"viscoelastic_neohookean", "pyramid13", "whole", 3, 13, 39, 27, 8, 2, 1082,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid13_whole_precompute, tm_viscoelastic_neohookean_pyramid13_whole_energy, tm_viscoelastic_neohookean_pyramid13_whole_gradient,
    tm_viscoelastic_neohookean_pyramid13_whole_hessian, tm_viscoelastic_neohookean_pyramid13_whole_gradient_hessian, tm_viscoelastic_neohookean_pyramid13_whole_stress, 7857, 18117, 222021,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_pyramid13_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 6, 2, 130,
+  {"viscoelastic_neohookean", "pyramid5", "whole", 3, 5, 15, 8, 8, 2, 130,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid5_whole_precompute, tm_viscoelastic_neohookean_pyramid5_whole_energy, tm_viscoelastic_neohookean_pyramid5_whole_gradient,
    tm_viscoelastic_neohookean_pyramid5_whole_hessian, tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian, tm_viscoelastic_neohookean_pyramid5_whole_stress, 1176, 3064, 17400,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_pyramid5_whole_gradient_batch, tm_viscoelastic_neohookean_pyramid5_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_pyramid5_whole_stress_batch,
    tm_viscoelastic_neohookean_pyramid5_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 6, 2, 130,
+  {"viscoelastic_neohookean", "pyramid5", "fbar", 3, 5, 15, 8, 8, 2, 130,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_pyramid5_fbar_precompute, tm_viscoelastic_neohookean_pyramid5_fbar_energy, tm_viscoelastic_neohookean_pyramid5_fbar_gradient,
    tm_viscoelastic_neohookean_pyramid5_fbar_hessian, tm_viscoelastic_neohookean_pyramid5_fbar_gradient_hessian, tm_viscoelastic_neohookean_pyramid5_fbar_stress, 1608, 3784, 26940,
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "quad4", "whole", 2, 4, 8, 4, 6, 2, 38,
+  {"viscoelastic_neohookean", "quad4", "whole", 2, 4, 8, 4, 8, 2, 38,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad4_whole_precompute, tm_viscoelastic_neohookean_quad4_whole_energy, tm_viscoelastic_neohookean_quad4_whole_gradient,
    tm_viscoelastic_neohookean_quad4_whole_hessian, tm_viscoelastic_neohookean_quad4_whole_gradient_hessian, tm_viscoelastic_neohookean_quad4_whole_stress, 232, 476, 1860,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad4_whole_gradient_batch, tm_viscoelastic_neohookean_quad4_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_quad4_whole_stress_batch,
    tm_viscoelastic_neohookean_quad4_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "quad4", "fbar", 2, 4, 8, 4, 6, 2, 38,
+  {"viscoelastic_neohookean", "quad4", "fbar", 2, 4, 8, 4, 8, 2, 38,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad4_fbar_precompute, tm_viscoelastic_neohookean_quad4_fbar_energy, tm_viscoelastic_neohookean_quad4_fbar_gradient,
    tm_viscoelastic_neohookean_quad4_fbar_hessian, tm_viscoelastic_neohookean_quad4_fbar_gradient_hessian, tm_viscoelastic_neohookean_quad4_fbar_stress, 328, 636, 3172,
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "quad8", "whole", 2, 8, 16, 9, 6, 2, 155,
+  {"viscoelastic_neohookean", "quad8", "whole", 2, 8, 16, 9, 8, 2, 155,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad8_whole_precompute, tm_viscoelastic_neohookean_quad8_whole_energy, tm_viscoelastic_neohookean_quad8_whole_gradient,
    tm_viscoelastic_neohookean_quad8_whole_hessian, tm_viscoelastic_neohookean_quad8_whole_gradient_hessian, tm_viscoelastic_neohookean_quad8_whole_stress, 810, 1647, 10305,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad8_whole_gradient_batch, tm_viscoelastic_neohookean_quad8_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_quad8_whole_stress_batch,
    tm_viscoelastic_neohookean_quad8_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "quad9", "whole", 2, 9, 18, 9, 6, 2, 173,
+  {"viscoelastic_neohookean", "quad9", "whole", 2, 9, 18, 9, 8, 2, 173,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_quad9_whole_precompute, tm_viscoelastic_neohookean_quad9_whole_energy, tm_viscoelastic_neohookean_quad9_whole_gradient,
    tm_viscoelastic_neohookean_quad9_whole_hessian, tm_viscoelastic_neohookean_quad9_whole_gradient_hessian, tm_viscoelastic_neohookean_quad9_whole_stress, 882, 1791, 12375,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_quad9_whole_gradient_batch, tm_viscoelastic_neohookean_quad9_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_quad9_whole_stress_batch,
    tm_viscoelastic_neohookean_quad9_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tet10", "whole", 3, 10, 30, 4, 6, 2, 126,
+  {"viscoelastic_neohookean", "tet10", "whole", 3, 10, 30, 4, 8, 2, 126,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet10_whole_precompute, tm_viscoelastic_neohookean_tet10_whole_energy, tm_viscoelastic_neohookean_tet10_whole_gradient,
    tm_viscoelastic_neohookean_tet10_whole_hessian, tm_viscoelastic_neohookean_tet10_whole_gradient_hessian, tm_viscoelastic_neohookean_tet10_whole_stress, 948, 2252, 21660,
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_viscoelastic_neohookean_tet10_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tet4", "whole", 3, 4, 12, 1, 6, 2, 15,
+  {"viscoelastic_neohookean", "tet4", "whole", 3, 4, 12, 1, 8, 2, 15,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet4_whole_precompute, tm_viscoelastic_neohookean_tet4_whole_energy, tm_viscoelastic_neohookean_tet4_whole_gradient,
    tm_viscoelastic_neohookean_tet4_whole_hessian, tm_viscoelastic_neohookean_tet4_whole_gradient_hessian, tm_viscoelastic_neohookean_tet4_whole_stress, 129, 347, 1743,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tet4_whole_gradient_batch, tm_viscoelastic_neohookean_tet4_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_tet4_whole_stress_batch,
    tm_viscoelastic_neohookean_tet4_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tet4", "anp", 3, 4, 12, 1, 6, 2, 15,
+  {"viscoelastic_neohookean", "tet4", "anp", 3, 4, 12, 1, 8, 2, 15,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tet4_anp_precompute, tm_viscoelastic_neohookean_tet4_anp_energy, tm_viscoelastic_neohookean_tet4_anp_gradient,
    tm_viscoelastic_neohookean_tet4_anp_hessian, tm_viscoelastic_neohookean_tet4_anp_gradient_hessian, tm_viscoelastic_neohookean_tet4_anp_stress, 129, 347, 1743,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tet4_anp_gradient_batch, tm_viscoelastic_neohookean_tet4_anp_gradient_hessian_batch,
    tm_viscoelastic_neohookean_tet4_anp_stress_batch,
    tm_viscoelastic_neohookean_tet4_anp_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tri3", "whole", 2, 3, 6, 1, 6, 2, 9,
+  {"viscoelastic_neohookean", "tri3", "whole", 2, 3, 6, 1, 8, 2, 9,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri3_whole_precompute, tm_viscoelastic_neohookean_tri3_whole_energy, tm_viscoelastic_neohookean_tri3_whole_gradient,
    tm_viscoelastic_neohookean_tri3_whole_hessian, tm_viscoelastic_neohookean_tri3_whole_gradient_hessian, tm_viscoelastic_neohookean_tri3_whole_stress, 50, 103, 355,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri3_whole_gradient_batch, tm_viscoelastic_neohookean_tri3_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_tri3_whole_stress_batch,
    tm_viscoelastic_neohookean_tri3_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tri3", "anp", 2, 3, 6, 1, 6, 2, 9,
+  {"viscoelastic_neohookean", "tri3", "anp", 2, 3, 6, 1, 8, 2, 9,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri3_anp_precompute, tm_viscoelastic_neohookean_tri3_anp_energy, tm_viscoelastic_neohookean_tri3_anp_gradient,
    tm_viscoelastic_neohookean_tri3_anp_hessian, tm_viscoelastic_neohookean_tri3_anp_gradient_hessian, tm_viscoelastic_neohookean_tri3_anp_stress, 50, 103, 355,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri3_anp_gradient_batch, tm_viscoelastic_neohookean_tri3_anp_gradient_hessian_batch,
    tm_viscoelastic_neohookean_tri3_anp_stress_batch,
    tm_viscoelastic_neohookean_tri3_anp_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
-  {"viscoelastic_neohookean", "tri6", "whole", 2, 6, 12, 3, 6, 2, 41,
+  {"viscoelastic_neohookean", "tri6", "whole", 2, 6, 12, 3, 8, 2, 41,
    kViscoelastic_neohookeanParameters, kViscoelastic_neohookeanLimits, tm_viscoelastic_neohookean_tri6_whole_precompute, tm_viscoelastic_neohookean_tri6_whole_energy, tm_viscoelastic_neohookean_tri6_whole_gradient,
    tm_viscoelastic_neohookean_tri6_whole_hessian, tm_viscoelastic_neohookean_tri6_whole_gradient_hessian, tm_viscoelastic_neohookean_tri6_whole_stress, 222, 453, 2271,
    0, 0,
    tensormass::kernel::kBatchWidth, tm_viscoelastic_neohookean_tri6_whole_gradient_batch, tm_viscoelastic_neohookean_tri6_whole_gradient_hessian_batch,
    tm_viscoelastic_neohookean_tri6_whole_stress_batch,
    tm_viscoelastic_neohookean_tri6_whole_bulk,
-   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes},
+   2, kViscoelastic_neohookeanPronyWeights, kViscoelastic_neohookeanPronyTimes,
+   kViscoelastic_neohookeanPronyVolumetricWeights},
 
   {"yeoh", "hex20", "whole", 3, 20, 60, 27, 4, 4, 1651,
    kYeohParameters, kYeohLimits, tm_yeoh_hex20_whole_precompute, tm_yeoh_hex20_whole_energy, tm_yeoh_hex20_whole_gradient,
@@ -4148,7 +4169,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "hex27", "whole", 3, 27, 81, 27, 4, 4, 2218,
    kYeohParameters, kYeohLimits, tm_yeoh_hex27_whole_precompute, tm_yeoh_hex27_whole_energy, tm_yeoh_hex27_whole_gradient,
@@ -4156,7 +4177,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "hex8", "whole", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_whole_precompute, tm_yeoh_hex8_whole_energy, tm_yeoh_hex8_whole_gradient,
@@ -4164,7 +4185,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "hex8", "fbar", 3, 8, 24, 8, 4, 4, 204,
    kYeohParameters, kYeohLimits, tm_yeoh_hex8_fbar_precompute, tm_yeoh_hex8_fbar_energy, tm_yeoh_hex8_fbar_gradient,
@@ -4172,7 +4193,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "prism15", "whole", 3, 15, 45, 18, 4, 4, 832,
    kYeohParameters, kYeohLimits, tm_yeoh_prism15_whole_precompute, tm_yeoh_prism15_whole_energy, tm_yeoh_prism15_whole_gradient,
@@ -4180,7 +4201,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "prism6", "whole", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_whole_precompute, tm_yeoh_prism6_whole_energy, tm_yeoh_prism6_whole_gradient,
@@ -4189,7 +4210,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_prism6_whole_gradient_batch, tm_yeoh_prism6_whole_gradient_hessian_batch,
    tm_yeoh_prism6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "prism6", "anp", 3, 6, 18, 6, 4, 4, 118,
    kYeohParameters, kYeohLimits, tm_yeoh_prism6_anp_precompute, tm_yeoh_prism6_anp_energy, tm_yeoh_prism6_anp_gradient,
@@ -4197,7 +4218,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    tm_yeoh_prism6_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "pyramid13", "whole", 3, 13, 39, 27, 4, 4, 1084,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid13_whole_precompute, tm_yeoh_pyramid13_whole_energy, tm_yeoh_pyramid13_whole_gradient,
@@ -4205,7 +4226,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "pyramid5", "whole", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_whole_precompute, tm_yeoh_pyramid5_whole_energy, tm_yeoh_pyramid5_whole_gradient,
@@ -4214,7 +4235,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_pyramid5_whole_gradient_batch, tm_yeoh_pyramid5_whole_gradient_hessian_batch,
    tm_yeoh_pyramid5_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "pyramid5", "fbar", 3, 5, 15, 8, 4, 4, 132,
    kYeohParameters, kYeohLimits, tm_yeoh_pyramid5_fbar_precompute, tm_yeoh_pyramid5_fbar_energy, tm_yeoh_pyramid5_fbar_gradient,
@@ -4222,7 +4243,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "quad4", "whole", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_whole_precompute, tm_yeoh_quad4_whole_energy, tm_yeoh_quad4_whole_gradient,
@@ -4231,7 +4252,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad4_whole_gradient_batch, tm_yeoh_quad4_whole_gradient_hessian_batch,
    tm_yeoh_quad4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "quad4", "fbar", 2, 4, 8, 4, 4, 4, 40,
    kYeohParameters, kYeohLimits, tm_yeoh_quad4_fbar_precompute, tm_yeoh_quad4_fbar_energy, tm_yeoh_quad4_fbar_gradient,
@@ -4239,7 +4260,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "quad8", "whole", 2, 8, 16, 9, 4, 4, 157,
    kYeohParameters, kYeohLimits, tm_yeoh_quad8_whole_precompute, tm_yeoh_quad8_whole_energy, tm_yeoh_quad8_whole_gradient,
@@ -4248,7 +4269,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad8_whole_gradient_batch, tm_yeoh_quad8_whole_gradient_hessian_batch,
    tm_yeoh_quad8_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "quad9", "whole", 2, 9, 18, 9, 4, 4, 175,
    kYeohParameters, kYeohLimits, tm_yeoh_quad9_whole_precompute, tm_yeoh_quad9_whole_energy, tm_yeoh_quad9_whole_gradient,
@@ -4257,7 +4278,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_quad9_whole_gradient_batch, tm_yeoh_quad9_whole_gradient_hessian_batch,
    tm_yeoh_quad9_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tet10", "whole", 3, 10, 30, 4, 4, 4, 128,
    kYeohParameters, kYeohLimits, tm_yeoh_tet10_whole_precompute, tm_yeoh_tet10_whole_energy, tm_yeoh_tet10_whole_gradient,
@@ -4265,7 +4286,7 @@ const tm_kernel kKernels[] = {
    0, 0,
    0, nullptr, nullptr, nullptr,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tet4", "whole", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_whole_precompute, tm_yeoh_tet4_whole_energy, tm_yeoh_tet4_whole_gradient,
@@ -4274,7 +4295,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_whole_gradient_batch, tm_yeoh_tet4_whole_gradient_hessian_batch,
    tm_yeoh_tet4_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tet4", "anp", 3, 4, 12, 1, 4, 4, 17,
    kYeohParameters, kYeohLimits, tm_yeoh_tet4_anp_precompute, tm_yeoh_tet4_anp_energy, tm_yeoh_tet4_anp_gradient,
@@ -4283,7 +4304,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tet4_anp_gradient_batch, tm_yeoh_tet4_anp_gradient_hessian_batch,
    tm_yeoh_tet4_anp_stress_batch,
    tm_yeoh_tet4_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tri3", "whole", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_whole_precompute, tm_yeoh_tri3_whole_energy, tm_yeoh_tri3_whole_gradient,
@@ -4292,7 +4313,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_whole_gradient_batch, tm_yeoh_tri3_whole_gradient_hessian_batch,
    tm_yeoh_tri3_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tri3", "anp", 2, 3, 6, 1, 4, 4, 11,
    kYeohParameters, kYeohLimits, tm_yeoh_tri3_anp_precompute, tm_yeoh_tri3_anp_energy, tm_yeoh_tri3_anp_gradient,
@@ -4301,7 +4322,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri3_anp_gradient_batch, tm_yeoh_tri3_anp_gradient_hessian_batch,
    tm_yeoh_tri3_anp_stress_batch,
    tm_yeoh_tri3_anp_bulk,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
   {"yeoh", "tri6", "whole", 2, 6, 12, 3, 4, 4, 43,
    kYeohParameters, kYeohLimits, tm_yeoh_tri6_whole_precompute, tm_yeoh_tri6_whole_energy, tm_yeoh_tri6_whole_gradient,
@@ -4310,7 +4331,7 @@ const tm_kernel kKernels[] = {
    tensormass::kernel::kBatchWidth, tm_yeoh_tri6_whole_gradient_batch, tm_yeoh_tri6_whole_gradient_hessian_batch,
    tm_yeoh_tri6_whole_stress_batch,
    nullptr,
-   0, nullptr, nullptr},
+   0, nullptr, nullptr, nullptr},
 
 };
 constexpr int kKernelCount = static_cast<int>(sizeof(kKernels) / sizeof(kKernels[0]));

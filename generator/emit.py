@@ -113,6 +113,7 @@ def law_context(law: LawSpec) -> dict:
         "limits": [_limit_context(law.limit(p)) for p in law.parameters],
         "prony_weights": [law.parameters.index(p) for p in law.prony_weights],
         "prony_times": [law.parameters.index(p) for p in law.prony_times],
+        "prony_volumetric_weights": [law.parameters.index(p) for p in law.prony_volumetric_weights],
     }
 
 
@@ -173,7 +174,7 @@ def kernel_context(k: KernelIR) -> dict:
         "law_tangent_only": _printed_law_block(k.law_ir.tangent_only, names, k.element.dim),
         "tangent_fill": _tangent_fill(k),
         "bulk": [],
-        "prony_parameters": list(law.prony_weights + law.prony_times),
+        "prony_parameters": list(law.prony_parameters),
     }
     if isinstance(k.split_ir, TermsIR):
         context.update(_terms_context(k.split_ir, names))
@@ -231,7 +232,8 @@ def kernel_row(k: KernelIR, sources: list[str]) -> dict:
             "derived_params": len(k.law.constants), "consts": k.consts_size, "flops_energy": k.flops.energy,
             "flops_gradient": k.flops.gradient, "flops_hessian": k.flops.hessian, "linear": k.linear,
             "invertible": k.invertible, "batched": _batched(k), "bulk": isinstance(k.split_ir, NodalPressureIR) or bool(k.viscous_bulk),
-            "prony_terms": len(k.law.prony_weights), "sources": sources}
+            "prony_terms": len(k.law.prony_weights), "prony_volumetric": bool(k.law.prony_volumetric_weights),
+            "sources": sources}
 
 
 def row_order(row: dict) -> tuple:

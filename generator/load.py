@@ -30,7 +30,7 @@ FORMAT_KEYS = {"type", "node_order"}
 LAW_KEYS = {"name", "description", "parameters"}
 LAW_OPTIONAL_KEYS = {"energy", "isochoric", "volumetric", "bulk", "derived", "invertible", "limits", "rotation_invariant",
                      "viscoelastic"}
-VISCOELASTIC_KEYS = {"weights", "times"}
+VISCOELASTIC_KEYS = {"weights", "times", "volumetric_weights"}
 # One limit: `parameter op number`, op one of > >= < <=.
 _LIMIT = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|>|<)\s*([^<>=\s].*?)\s*$")
 
@@ -267,15 +267,16 @@ def _fibre_families(energy: str, source: str) -> int:
 
 
 def _prony_series(data: Any, parameters: list[str], read: set[str], source: str) -> tuple[tuple[str, ...], ...]:
-    """(weights, times): the [viscoelastic] table's parameter names, term by term; ((), ()) without one.
+    """(weights, times, volumetric weights): the [viscoelastic] table's parameter names, term by term
+    (the volumetric weights () when the bulk part does not relax); ((), (), ()) without one.
     The runtime alone reads them, so the energy and the derived parameters must not."""
     if data is None:
-        return (), ()
+        return (), (), ()
     if not isinstance(data, dict):
         raise _fail(source, "viscoelastic", "expected a table with `weights` and `times`")
-    _check_keys(data, VISCOELASTIC_KEYS, VISCOELASTIC_KEYS, source, "viscoelastic.")
+    _check_keys(data, VISCOELASTIC_KEYS, {"weights", "times"}, source, "viscoelastic.")
     lists = []
-    for key in ("weights", "times"):
+    for key in [k for k in ("weights", "times", "volumetric_weights") if k in data]:
         names = data[key]
         if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
             raise _fail(source, f"viscoelastic.{key}", "expected a non-empty list of parameter names")
@@ -286,12 +287,15 @@ def _prony_series(data: Any, parameters: list[str], read: set[str], source: str)
                 raise _fail(source, f"viscoelastic.{key}", f"'{name}' is read by the energy or a derived parameter; "
                             "a Prony parameter is read by the runtime only")
         lists.append(tuple(names))
-    weights, times = lists
+    weights, times, volumetric = lists[0], lists[1], lists[2] if len(lists) > 2 else ()
     if len(weights) != len(times):
         raise _fail(source, "viscoelastic.times", f"{len(times)} times for {len(weights)} weights")
-    if len(set(weights + times)) != 2 * len(weights):
+    if volumetric and len(volumetric) != len(weights):
+        raise _fail(source, "viscoelastic.volumetric_weights",
+                    f"{len(volumetric)} volumetric weights for {len(weights)} terms")
+    if len(set(weights + times + volumetric)) != len(weights + times + volumetric):
         raise _fail(source, "viscoelastic", "a parameter is named twice")
-    return weights, times
+    return weights, times, volumetric
 
 
 def load_law(path: Path) -> LawSpec:
@@ -333,7 +337,10 @@ def load_law(path: Path) -> LawSpec:
         derived.append((name, expr))
     limits = _limits(data.get("limits", []), parameters, source)
     read = _names_read(energy) | {str(symbol) for _, expr in derived for symbol in expr.free_symbols}
-    prony_weights, prony_times = _prony_series(data.get("viscoelastic"), parameters, read, source)
+    prony_weights, prony_times, prony_volumetric = _prony_series(data.get("viscoelastic"), parameters, read, source)
+    if prony_volumetric and not bulk:
+        raise _fail(source, "viscoelastic.volumetric_weights", "the law has no bulk part to relax (`bulk`, or "
+                    "`isochoric` + `volumetric`)")
     fibres = tuple(name for family in FIBRE_PARAMETERS[:families] for name in family)
     return LawSpec(
         name=data["name"],
@@ -351,6 +358,7 @@ def load_law(path: Path) -> LawSpec:
         fibre_families=families,
         prony_weights=prony_weights,
         prony_times=prony_times,
+        prony_volumetric_weights=prony_volumetric,
     )
 
 

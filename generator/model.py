@@ -142,10 +142,17 @@ class LawSpec:
     # does (docs/viscoelasticity.md).
     prony_weights: tuple[str, ...] = ()
     prony_times: tuple[str, ...] = ()
+    # The weights of the same terms on the bulk part's stress; () when it does not relax.
+    prony_volumetric_weights: tuple[str, ...] = ()
 
     @property
     def viscoelastic(self) -> bool:
         return bool(self.prony_weights)
+
+    @property
+    def prony_parameters(self) -> tuple[str, ...]:
+        """Every parameter of the Prony series (the kernels never read them)."""
+        return self.prony_weights + self.prony_times + self.prony_volumetric_weights
 
     @property
     def constants(self) -> tuple[tuple[str, sympy.Expr], ...]:
@@ -153,7 +160,7 @@ class LawSpec:
         fibres = fibre_constants(self.fibre_families)
         if self.derived:
             return self.derived + fibres
-        prony = set(self.prony_weights + self.prony_times)
+        prony = set(self.prony_parameters)
         return tuple((name, sympy.Symbol(name, real=True)) for name in self.own_parameters
                      if name not in prony) + fibres
 

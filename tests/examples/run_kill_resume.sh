@@ -44,7 +44,7 @@ write_scene refining_static "  {type: static, load_steps: 16, tolerance: 1.0e-10
   "adaptivity: {refine: {criteria: [{name: R_ZZ, threshold: 0.4}], max_level: 1}}"
 
 for solver in implicit explicit; do
-  sed 's/law: stvk, young: 1.0e7, poisson: 0.3/law: viscoelastic_neohookean, mu: 3.4e6, kappa: 8.0e6, g1: 0.3, tau1: 0.05, g2: 0.2, tau2: 0.5/; s/out-'"$solver"'/out-viscous_'"$solver"'/' \
+  sed 's/law: stvk, young: 1.0e7, poisson: 0.3/law: viscoelastic_neohookean, mu: 3.4e6, kappa: 8.0e6, g1: 0.3, tau1: 0.05, g2: 0.2, tau2: 0.5, k1: 0.1, k2: 0/; s/out-'"$solver"'/out-viscous_'"$solver"'/' \
     "$solver.yaml" > "viscous_$solver.yaml"
 done
 

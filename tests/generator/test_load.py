@@ -205,7 +205,7 @@ def test_fibre_direction_names_are_reserved(tmp_path):
 
 
 _VISCOUS_LAW = ('name = "viscous"\ndescription = "d"\nisochoric = "c10*(I1bar - 3)"\n'
-                'volumetric = "kappa/2*(J - 1)**2"\nparameters = ["c10", "kappa", "g1", "tau1"]\n')
+                'volumetric = "kappa/2*(J - 1)**2"\nparameters = ["c10", "kappa", "g1", "tau1", "k1"]\n')
 
 
 def test_a_prony_series_names_its_parameters_term_by_term(tmp_path):
@@ -213,8 +213,13 @@ def test_a_prony_series_names_its_parameters_term_by_term(tmp_path):
     path.write_text(_VISCOUS_LAW + '[viscoelastic]\nweights = ["g1"]\ntimes = ["tau1"]\n')
     law = load_law(path)
     assert law.viscoelastic and law.prony_weights == ("g1",) and law.prony_times == ("tau1",)
-    assert law.parameters == ("c10", "kappa", "g1", "tau1")
-    assert [name for name, _ in law.constants] == ["c10", "kappa"]  # the kernels never read g1, tau1
+    assert law.prony_volumetric_weights == ()
+    assert law.parameters == ("c10", "kappa", "g1", "tau1", "k1")
+    assert [name for name, _ in law.constants] == ["c10", "kappa", "k1"]
+    path.write_text(_VISCOUS_LAW + '[viscoelastic]\nweights = ["g1"]\ntimes = ["tau1"]\nvolumetric_weights = ["k1"]\n')
+    law = load_law(path)
+    assert law.prony_volumetric_weights == ("k1",)
+    assert [name for name, _ in law.constants] == ["c10", "kappa"]  # the kernels never read g1, tau1, k1
 
 
 @pytest.mark.parametrize("table, key, message", [
@@ -225,10 +230,21 @@ def test_a_prony_series_names_its_parameters_term_by_term(tmp_path):
     ('weights = ["g1", "tau1"]\ntimes = ["tau1"]\n', "viscoelastic.times", "1 times for 2 weights"),
     ('weights = ["c10"]\ntimes = ["tau1"]\n', "viscoelastic.weights", "read by the energy"),
     ('weights = ["g1"]\ntimes = ["g1"]\n', "viscoelastic", "named twice"),
+    ('weights = ["g1"]\ntimes = ["tau1"]\nvolumetric_weights = ["k1", "g1"]\n', "viscoelastic.volumetric_weights",
+     "2 volumetric weights for 1 terms"),
 ])
+
 def test_prony_series_errors_name_file_and_key(tmp_path, table, key, message):
     path = tmp_path / "viscous.toml"
     path.write_text(_VISCOUS_LAW + "[viscoelastic]\n" + table)
     with pytest.raises(GeneratorInputError) as error:
         load_law(path)
     assert str(path) in str(error.value) and f"'{key}'" in str(error.value) and message in str(error.value)
+
+
+def test_volumetric_weights_need_a_bulk_part(tmp_path):
+    path = tmp_path / "viscous.toml"
+    path.write_text('name = "viscous"\ndescription = "d"\nenergy = "c10*(I1 - 3)"\nparameters = ["c10", "g1", "tau1", "k1"]\n'
+                    '[viscoelastic]\nweights = ["g1"]\ntimes = ["tau1"]\nvolumetric_weights = ["k1"]\n')
+    with pytest.raises(GeneratorInputError, match=r"viscous.toml: key 'viscoelastic.volumetric_weights': .*no bulk part"):
+        load_law(path)

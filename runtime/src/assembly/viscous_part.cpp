@@ -109,36 +109,51 @@ ViscousPart::ViscousPart(const Model& model) : model_(&model) {
       throw std::logic_error(std::string("ViscousPart: more than 27 quadrature points in ") + kernel.element);
     if (cell_index_.empty()) cell_index_.assign(model.cell_count(), -1);
     const std::vector<double>& params = material.parameters(kernel);
-    std::vector<double> weights, times;
+    std::vector<double> weights, times, volumetric(kernel.prony_terms, 0.0);
     for (int i = 0; i < kernel.prony_terms; ++i) {
       weights.push_back(params[kernel.prony_weights[i]]);
       times.push_back(params[kernel.prony_times[i]]);
+      if (kernel.prony_volumetric_weights) volumetric[i] = params[kernel.prony_volumetric_weights[i]];
     }
-    if (const double sum = std::accumulate(weights.begin(), weights.end(), 0.0); !(sum < 1.0))
-      throw InputError(material.owner() + ": the Prony weights of law '" + kernel.law + "' sum to " +
-                       std::to_string(sum) + "; they must sum to less than 1 (g_inf = 1 - sum > 0)");
+    for (const auto& [values, what] : {std::pair{&weights, "weights"}, {&volumetric, "volumetric weights"}})
+      if (const double sum = std::accumulate(values->begin(), values->end(), 0.0); !(sum < 1.0))
+        throw InputError(material.owner() + ": the Prony " + what + " of law '" + kernel.law + "' sum to " +
+                         std::to_string(sum) + "; they must sum to less than 1 (the long-term share 1 - sum > 0)");
     cell_index_[cell] = cell_count();
-    cells_.push_back({cell, series_of(weights, times)});
+    const int series = series_of(weights, times, volumetric);
+    cells_.push_back({cell, series});
     const std::size_t block = static_cast<std::size_t>(kernel.dim) * kernel.dim;
-    history_start_.push_back(history_start_.back() + kernel.quadrature_points * (kernel.prony_terms + 1) * block);
+    history_start_.push_back(history_start_.back() + kernel.quadrature_points * blocks_per_point(series) * block);
     point_start_.push_back(point_start_.back() + kernel.quadrature_points * block);
   }
   fixed_stress_.assign(point_start_.back(), 0.0);
   decay_.assign(weight_.size(), 1.0);
   ramp_.assign(weight_.size(), 1.0);
   beta_.assign(term_start_.size() - 1, 1.0);
+  beta_bulk_.assign(term_start_.size() - 1, 1.0);
 }
 
-int ViscousPart::series_of(const std::vector<double>& weights, const std::vector<double>& times) {
+int ViscousPart::series_of(const std::vector<double>& weights, const std::vector<double>& times,
+                           const std::vector<double>& volumetric) {
+  const auto same = [](const std::vector<double>& a, const std::vector<double>& all, int from, int to) {
+    return std::equal(a.begin(), a.end(), all.begin() + from, all.begin() + to);
+  };
   for (std::size_t s = 0; s + 1 < term_start_.size(); ++s)
-    if (std::equal(weights.begin(), weights.end(), weight_.begin() + term_start_[s],
-                   weight_.begin() + term_start_[s + 1]) &&
-        std::equal(times.begin(), times.end(), time_.begin() + term_start_[s], time_.begin() + term_start_[s + 1]))
+    if (same(weights, weight_, term_start_[s], term_start_[s + 1]) &&
+        same(times, time_, term_start_[s], term_start_[s + 1]) &&
+        same(volumetric, volumetric_weight_, term_start_[s], term_start_[s + 1]))
       return static_cast<int>(s);
   weight_.insert(weight_.end(), weights.begin(), weights.end());
   time_.insert(time_.end(), times.begin(), times.end());
+  volumetric_weight_.insert(volumetric_weight_.end(), volumetric.begin(), volumetric.end());
   term_start_.push_back(static_cast<int>(weight_.size()));
+  relaxes_bulk_.push_back(std::any_of(volumetric.begin(), volumetric.end(), [](double k) { return k > 0.0; }));
   return static_cast<int>(term_start_.size()) - 2;
+}
+
+int ViscousPart::blocks_per_point(int series) const {
+  const int terms = term_start_[series + 1] - term_start_[series];
+  return relaxes_bulk_[series] ? 2 * terms + 2 : terms + 1;
 }
 
 void ViscousPart::begin_step(std::span<const double> history, double dt) {
@@ -152,8 +167,11 @@ void ViscousPart::begin_step(std::span<const double> history, double dt) {
     else decay_[i] = std::exp(-x), ramp_[i] = -std::expm1(-x) / x;
   }
   for (std::size_t s = 0; s < beta_.size(); ++s) {
-    beta_[s] = 1.0;
-    for (int i = term_start_[s]; i < term_start_[s + 1]; ++i) beta_[s] -= weight_[i] * (1.0 - ramp_[i]);
+    beta_[s] = beta_bulk_[s] = 1.0;
+    for (int i = term_start_[s]; i < term_start_[s + 1]; ++i) {
+      beta_[s] -= weight_[i] * (1.0 - ramp_[i]);
+      beta_bulk_[s] -= volumetric_weight_[i] * (1.0 - ramp_[i]);
+    }
   }
 #pragma omp parallel for schedule(dynamic, 256) if (cell_count() >= 1024)
   for (int v = 0; v < cell_count(); ++v) {
@@ -163,13 +181,18 @@ void ViscousPart::begin_step(std::span<const double> history, double dt) {
     double* fixed = fixed_stress_.data() + point_start_[v];
     std::fill(fixed, fixed + kernel.quadrature_points * block, 0.0);
     if (history.empty()) continue;
+    const int parts = relaxes_bulk_[series] ? 2 : 1;  // S_d, then S_U
     for (int q = 0; q < kernel.quadrature_points; ++q) {
-      const double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
-      const double* last = point + terms * block;  // S_d at the step's start
-      for (int t = 0; t < terms; ++t) {
-        const int i = first + t;
-        for (int m = 0; m < block; ++m)
-          fixed[q * block + m] += weight_[i] * (decay_[i] * point[t * block + m] - ramp_[i] * last[m]);
+      const double* point = history.data() + history_start_[v] + q * blocks_per_point(series) * block;
+      for (int part = 0; part < parts; ++part) {
+        const double* terms_h = point + part * (terms + 1) * block;
+        const double* last = terms_h + terms * block;  // the part's stress at the step's start
+        const double* weights = (part == 0 ? weight_ : volumetric_weight_).data();
+        for (int t = 0; t < terms; ++t) {
+          const int i = first + t;
+          for (int m = 0; m < block; ++m)
+            fixed[q * block + m] += weights[i] * (decay_[i] * terms_h[t * block + m] - ramp_[i] * last[m]);
+        }
       }
     }
   }
@@ -185,7 +208,7 @@ void ViscousPart::adjust_cell(int index, const double* u, double* g, double* k) 
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
-  const double beta = beta_[cells_[index].series], rest = 1.0 - beta;
+  const double beta = beta_[cells_[index].series], bulk_extra = beta_bulk_[cells_[index].series] - beta;
   constexpr int d = D;
   const int n = kernel.nodes, dofs = kernel.dofs;
   for (int i = 0; i < dofs; ++i) g[i] *= beta;
@@ -209,7 +232,7 @@ void ViscousPart::adjust_cell(int index, const double* u, double* g, double* k) 
         dJ[j * d + a] = p.dJ(j, a);
         double h = 0.0;
         for (int b = 0; b < d; ++b) h += FS[a * d + b] * p.G(j, b);
-        g[j * d + a] += p.weight * (rest * U[1] * dJ[j * d + a] + h);
+        g[j * d + a] += p.weight * (bulk_extra * U[1] * dJ[j * d + a] + h);
       }
     if (!k) continue;
     double SG[kMaxCellDofs];  // S_h G_l, node-major
@@ -219,7 +242,7 @@ void ViscousPart::adjust_cell(int index, const double* u, double* g, double* k) 
         for (int c = 0; c < d; ++c) sum += S[b * d + c] * p.G(l, c);
         SG[l * d + b] = sum;
       }
-    const double second = p.weight * rest * U[2], first = p.weight * rest * U[1];
+    const double second = p.weight * bulk_extra * U[2], first = p.weight * bulk_extra * U[1];
     double M[9];
     for (int j = 0; j < n; ++j)
       for (int l = 0; l < n; ++l) {
@@ -244,7 +267,7 @@ double ViscousPart::energy_cell(int index, const double* u, double W) const {
   const int cell = cells_[index].cell;
   const tm_kernel& kernel = model_->kernel(cell);
   const double* consts = model_->consts(cell);
-  const double beta = beta_[cells_[index].series];
+  const double beta = beta_[cells_[index].series], bulk_extra = beta_bulk_[cells_[index].series] - beta;
   constexpr int d = D;
   double energy = beta * W;
   for (int q = 0; q < kernel.quadrature_points; ++q) {
@@ -259,7 +282,7 @@ double ViscousPart::energy_cell(int index, const double* u, double W) const {
         for (int c = 0; c < d; ++c) C += p.F[c * d + a] * p.F[c * d + b];
         SE += S[a * d + b] * 0.5 * (C - (a == b ? 1.0 : 0.0));
       }
-    energy += p.weight * ((1.0 - beta) * U[0] + SE);
+    energy += p.weight * (bulk_extra * U[0] + SE);
   }
   return energy;
 }
@@ -288,7 +311,7 @@ void ViscousPart::commit_cell(int v, std::span<const double> u, std::vector<doub
     const Point<D> p(kernel, consts, q, local);
     double U[3];
     bulk(kernel, consts, p.J, U);
-    double Finv[9], Sd[9];  // S_d = F^-1 P - J U'(J) C^-1, C^-1 = F^-1 F^-T
+    double Finv[9], stresses[2][9];  // S_d = F^-1 P - S_U, S_U = J U'(J) C^-1, C^-1 = F^-1 F^-T
     p.inverse(Finv);
     for (int a = 0; a < d; ++a)
       for (int b = 0; b < d; ++b) {
@@ -297,16 +320,20 @@ void ViscousPart::commit_cell(int v, std::span<const double> u, std::vector<doub
           S += Finv[a * d + c] * P[q * block + c * d + b];
           Cinv += Finv[a * d + c] * Finv[b * d + c];
         }
-        Sd[a * d + b] = S - p.J * U[1] * Cinv;
+        stresses[1][a * d + b] = p.J * U[1] * Cinv;
+        stresses[0][a * d + b] = S - stresses[1][a * d + b];
       }
-    double* point = history.data() + history_start_[v] + q * (terms + 1) * block;
-    double* last = point + terms * block;
-    for (int t = 0; t < terms; ++t) {
-      const int i = first + t;
-      for (int m = 0; m < block; ++m)
-        point[t * block + m] = decay_[i] * point[t * block + m] + ramp_[i] * (Sd[m] - last[m]);
+    double* point = history.data() + history_start_[v] + q * blocks_per_point(series) * block;
+    for (int part = 0; part < (relaxes_bulk_[series] ? 2 : 1); ++part) {
+      double* terms_h = point + part * (terms + 1) * block;
+      double* last = terms_h + terms * block;
+      for (int t = 0; t < terms; ++t) {
+        const int i = first + t;
+        for (int m = 0; m < block; ++m)
+          terms_h[t * block + m] = decay_[i] * terms_h[t * block + m] + ramp_[i] * (stresses[part][m] - last[m]);
+      }
+      std::copy(stresses[part], stresses[part] + block, last);
     }
-    std::copy(Sd, Sd + block, last);
   }
 }
 

@@ -21,10 +21,11 @@ namespace {
 
 constexpr double kMu = 1e3, kKappa = 5e3;  // Pa: instantaneous shear and bulk moduli
 
-Scene viscous_scene(double g1, double tau1, double g2, double tau2, SolverType type) {
+/// k1, k2: the terms' weights on the bulk part's stress (0: it stays elastic).
+Scene viscous_scene(double g1, double tau1, double g2, double tau2, SolverType type, double k1 = 0, double k2 = 0) {
   Scene scene = test::cantilever("viscoelastic_neohookean", type);
-  scene.model.materials[0].constants = {{"mu", kMu},    {"kappa", kKappa}, {"g1", g1},
-                                        {"tau1", tau1}, {"g2", g2},        {"tau2", tau2}};
+  scene.model.materials[0].constants = {{"mu", kMu}, {"kappa", kKappa}, {"g1", g1}, {"tau1", tau1},
+                                        {"g2", g2},  {"tau2", tau2},    {"k1", k1}, {"k2", k2}};
   scene.model.materials[0].density = 1;
   scene.model.loads.gravity = {0, 0, 0};
   return scene;
@@ -40,6 +41,7 @@ struct Case {
   const char* cut;  ///< the beam's cell type (test::beam)
   int order;
   const char* split;
+  double bulk_weight;  ///< k1 (k2 = 0.1)
 };
 
 class ViscousDerivatives : public testing::TestWithParam<Case> {};
@@ -49,7 +51,7 @@ class ViscousDerivatives : public testing::TestWithParam<Case> {};
 TEST_P(ViscousDerivatives, ForceAndTangentDeriveFromTheStepEnergy) {
   const Case c = GetParam();
   const Mesh mesh = test::beam(c.dim, c.cut, {2, 1, 1}, c.order);
-  Scene scene = viscous_scene(0.4, 0.5, 0.3, 2.0, SolverType::implicit_euler);
+  Scene scene = viscous_scene(0.4, 0.5, 0.3, 2.0, SolverType::implicit_euler, c.bulk_weight, 0.1);
   scene.model.materials[0].split = c.split;
   const Model model(mesh, scene.model);
   Assembler assembler(model);
@@ -94,12 +96,13 @@ TEST_P(ViscousDerivatives, ForceAndTangentDeriveFromTheStepEnergy) {
     EXPECT_NEAR(Kd[i], (g_plus[free[i]] - g_minus[free[i]]) / (2 * h), 1e-6 * k_scale) << "free dof " << i;
 }
 
-INSTANTIATE_TEST_SUITE_P(Elements, ViscousDerivatives,
-                         testing::Values(Case{"tet4", 3, "tet6", 1, "whole"}, Case{"hex8", 3, "hex8", 1, "whole"},
-                                         Case{"tet10", 3, "tet6", 2, "whole"}, Case{"tet4_anp", 3, "tet6", 1, "anp"},
-                                         Case{"tri3", 2, "tri3", 1, "whole"}, Case{"quad4", 2, "quad4", 1, "whole"},
-                                         Case{"tri3_anp", 2, "tri3", 1, "anp"}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    Elements, ViscousDerivatives,
+    testing::Values(Case{"tet4", 3, "tet6", 1, "whole", 0.0}, Case{"hex8", 3, "hex8", 1, "whole", 0.3},
+                    Case{"tet10", 3, "tet6", 2, "whole", 0.0}, Case{"tet4_anp", 3, "tet6", 1, "anp", 0.3},
+                    Case{"tri3", 2, "tri3", 1, "whole", 0.3}, Case{"quad4", 2, "quad4", 1, "whole", 0.0},
+                    Case{"tri3_anp", 2, "tri3", 1, "anp", 0.0}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 // --- Relaxation --------------------------------------------------------------
 
@@ -118,9 +121,9 @@ Matrix inverse(const Matrix& A) {
   return inv;
 }
 
-/// P(t) = F (S_U + G(t) S_d) of the law at a held F, with
+/// P(t) = F (K(t) S_U + G(t) S_d) of the law at a held F, with
 /// S_d = mu J^(-2/3) (I - I1/3 C^-1) and S_U = kappa J (J - 1) C^-1.
-Matrix relaxed_piola(const Matrix& F, double relaxation) {
+Matrix relaxed_piola(const Matrix& F, double relaxation, double bulk_relaxation) {
   Matrix C{};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
@@ -134,7 +137,7 @@ Matrix relaxed_piola(const Matrix& F, double relaxation) {
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       const double Sd = kMu * std::pow(J, -2.0 / 3.0) * ((a == b ? 1.0 : 0.0) - I1 / 3 * Cinv[a][b]);
-      S[a][b] = kKappa * J * (J - 1) * Cinv[a][b] + relaxation * Sd;
+      S[a][b] = bulk_relaxation * kKappa * J * (J - 1) * Cinv[a][b] + relaxation * Sd;
     }
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
@@ -144,11 +147,15 @@ Matrix relaxed_piola(const Matrix& F, double relaxation) {
 
 /// A unit hex8 stretched in one very short step to a held F and left to
 /// relax: the nominal stress on its x = 1 face (the sum of the face's nodal
-/// forces) follows G(t) = g_inf + g1 exp(-t/tau1) + g2 exp(-t/tau2).
-TEST(ViscousRelaxation, AHeldStretchRelaxesAsTheRelaxationFunction) {
-  const double g1 = 0.3, tau1 = 0.2, g2 = 0.5, tau2 = 2.0;
+/// forces) follows G(t) = g_inf + g1 exp(-t/tau1) + g2 exp(-t/tau2) in the
+/// isochoric part and K(t) likewise with k1, k2 in the bulk part (k = 0:
+/// the bulk part stays elastic).
+class ViscousRelaxation : public testing::TestWithParam<std::array<double, 2>> {};
+
+TEST_P(ViscousRelaxation, AHeldStretchRelaxesAsTheRelaxationFunctions) {
+  const double g1 = 0.3, tau1 = 0.2, g2 = 0.5, tau2 = 2.0, k1 = GetParam()[0], k2 = GetParam()[1];
   const Mesh mesh = test::beam(3, "hex8", {1, 1, 1});
-  Scene scene = viscous_scene(g1, tau1, g2, tau2, SolverType::implicit_euler);
+  Scene scene = viscous_scene(g1, tau1, g2, tau2, SolverType::implicit_euler, k1, k2);
   const Model model(mesh, scene.model);
   Assembler assembler(model);
   const Matrix F = {{{1.25, 0.1, 0.0}, {0.0, 0.9, 0.05}, {0.02, 0.0, 0.95}}};
@@ -169,7 +176,8 @@ TEST(ViscousRelaxation, AHeldStretchRelaxesAsTheRelaxationFunction) {
     // The stretch ramps over the first step: as a step at its middle, to O(first^2).
     const double since = t - first / 2;
     const double relaxation = 1 - g1 - g2 + g1 * std::exp(-since / tau1) + g2 * std::exp(-since / tau2);
-    const Matrix P = relaxed_piola(F, relaxation);
+    const double bulk_relaxation = 1 - k1 - k2 + k1 * std::exp(-since / tau1) + k2 * std::exp(-since / tau2);
+    const Matrix P = relaxed_piola(F, relaxation, bulk_relaxation);
     std::array<double, 3> face{};
     for (int n = 0; n < mesh.node_count(); ++n)
       if (near(mesh.rest_positions[3 * n], 1))
@@ -177,6 +185,12 @@ TEST(ViscousRelaxation, AHeldStretchRelaxesAsTheRelaxationFunction) {
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(face[a], P[a][0], 1e-8 * kMu) << "t = " << t << ", component " << a;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(BulkWeights, ViscousRelaxation,
+                         testing::Values(std::array<double, 2>{0.0, 0.0}, std::array<double, 2>{0.4, 0.25}),
+                         [](const auto& info) {
+                           return std::string(info.param[0] > 0 ? "bulk_relaxes" : "bulk_elastic");
+                         });
 
 // --- Creep -------------------------------------------------------------------
 
@@ -247,14 +261,16 @@ INSTANTIATE_TEST_SUITE_P(Integrators, ViscousCreep,
                            return std::string(info.param == SolverType::implicit_euler ? "implicit" : "explicit");
                          });
 
-/// A static solve is the long-term equilibrium: shear modulus g_inf mu.
+/// A static solve is the long-term equilibrium: shear modulus g_inf mu,
+/// bulk modulus k_inf kappa.
 TEST(ViscousStatic, AStaticSolveGivesTheLongTermResponse) {
-  const double g1 = 0.6, s = 0.1;
+  const double g1 = 0.6, k1 = 0.5, s = 0.1;
   Mesh mesh = test::beam(3, "hex8", {1, 1, 1});
   Scene scene = creep_scene(g1, 10.0, SolverType::static_newton, 0, 0, mesh, s);
+  scene.model.materials[0].constants["k1"] = k1;
   SolveStatistics statistics;
   const State state = test::integrate(mesh, scene, statistics);
-  const double expected = s * (1 / (3 * (1 - g1) * kMu) + 1 / (9 * kKappa));
+  const double expected = s * (1 / (3 * (1 - g1) * kMu) + 1 / (9 * (1 - k1) * kKappa));
   for (int n = 0; n < mesh.node_count(); ++n)
     if (near(mesh.rest_positions[3 * n], 1)) EXPECT_NEAR(state.displacement[3 * n], expected, 1e-3 * expected);
 }

@@ -255,8 +255,8 @@ class ViscousBeam : public SteppedBeam {
  protected:
   static Scene viscous(const std::string& name) {
     Scene s = scene(name, "viscoelastic_neohookean", SolverType::implicit_euler);
-    s.model.materials[0].constants = {{"mu", 3e6},    {"kappa", 8e6}, {"g1", 0.3},
-                                      {"tau1", 0.05}, {"g2", 0.2},    {"tau2", 0.5}};
+    s.model.materials[0].constants = {{"mu", 3e6}, {"kappa", 8e6}, {"g1", 0.3}, {"tau1", 0.05},
+                                      {"g2", 0.2}, {"tau2", 0.5},  {"k1", 0.1}, {"k2", 0.0}};
     return s;
   }
 };

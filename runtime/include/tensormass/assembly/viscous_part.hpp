@@ -1,36 +1,40 @@
 /// \file viscous_part.hpp
 /// Finite-strain viscoelasticity (Simo 1987; Holzapfel 2000, section 6.10)
 /// for the cells whose law has a Prony series (tm_kernel::prony_terms).
-/// The law's kernel gives the instantaneous elastic response; at each
-/// quadrature point the part of its second Piola-Kirchhoff stress other
-/// than the bulk part U(J), S_d = S - J U'(J) C^-1 (the isochoric stress
-/// of a law written as isochoric + volumetric; the whole stress of a law
-/// with no bulk part), relaxes with
+/// The law's kernel gives the instantaneous elastic response. At each
+/// quadrature point its second Piola-Kirchhoff stress is split into the bulk
+/// part's S_U = J U'(J) C^-1 and the rest S_d = S - S_U (the isochoric
+/// stress of a law written as isochoric + volumetric; the whole stress of a
+/// law with no bulk part), and term i of the series relaxes S_d with the
+/// weight g_i and S_U with k_i (0 unless the law declares volumetric
+/// weights), both with the time tau_i:
 ///
 ///   G(t) = g_inf + sum_i g_i exp(-t / tau_i),   g_inf = 1 - sum_i g_i,
-///   S(t) = S_U + g_inf S_d(t) + sum_i g_i H_i(t),
-///   H_i(t) = integral_0^t exp(-(t - s) / tau_i) dS_d/ds ds.
+///   S(t) = g_inf S_d + sum_i g_i H_i + k_inf S_U + sum_i k_i B_i,
+///   H_i(t) = integral_0^t exp(-(t - s) / tau_i) dS_d/ds ds   (B_i likewise of S_U).
 ///
 /// Over a step of length dt, with e_i = exp(-dt / tau_i) and
-/// c_i = (1 - e_i) tau_i / dt (the update is exact when S_d varies linearly
-/// over the step),
+/// c_i = (1 - e_i) tau_i / dt (the update is exact when the stresses vary
+/// linearly over the step),
 ///
-///   H_i(t + dt) = e_i H_i(t) + c_i (S_d(t + dt) - S_d(t)),
-///   S(t + dt)   = S_U + beta S_d + S_h,   beta = g_inf + sum_i g_i c_i,
-///   S_h         = sum_i g_i (e_i H_i(t) - c_i S_d(t))   (fixed over the step).
+///   H_i(t + dt) = e_i H_i(t) + c_i (S_d(t + dt) - S_d(t))   (B_i likewise),
+///   S(t + dt)   = beta_d S_d + beta_U S_U + S_h,
+///   beta_d      = g_inf + sum_i g_i c_i,   beta_U = k_inf + sum_i k_i c_i,
+///   S_h         = sum_i g_i (e_i H_i - c_i S_d(t)) + k_i (e_i B_i - c_i S_U(t))   (fixed over the step).
 ///
 /// So a cell's force and tangent are its kernel's, g and K, turned into
-///   beta g + (1 - beta) g_U + g_h,   beta K + (1 - beta) K_U + K_h,
+///   beta_d g + (beta_U - beta_d) g_U + g_h,   beta_d K + (beta_U - beta_d) K_U + K_h,
 /// with g_U, K_U those of the bulk part integrated at the cell's points and
 /// g_h, K_h those of the fixed stress S_h (a geometric stiffness); they
-/// derive from the step's energy beta W + (1 - beta) W_U + sum_q w_q S_h : E.
-/// A static solve has dt = infinity: the long-term response (beta = g_inf).
+/// derive from the step's energy beta_d W + (beta_U - beta_d) W_U +
+/// sum_q w_q S_h : E. A static solve has dt = infinity: the long-term
+/// response (beta_d = g_inf, beta_U = k_inf).
 ///
-/// The history (H_i and S_d at each point of each viscous cell) is the
-/// integrators' State::viscous_history, so that checkpoints carry it and a
-/// resumed run goes on bit for bit. Cells of the whole split and the
-/// one-point anp split (tet4, tri3) only: their kernels' F is the plain
-/// deformation gradient at each point.
+/// The history (H_i, B_i and the stresses at the last commit, at each point
+/// of each viscous cell) is the integrators' State::viscous_history, so that
+/// checkpoints carry it and a resumed run goes on bit for bit. Cells of the
+/// whole split and the one-point anp split (tet4, tri3) only: their
+/// kernels' F is the plain deformation gradient at each point.
 #ifndef TENSORMASS_ASSEMBLY_VISCOUS_PART_HPP
 #define TENSORMASS_ASSEMBLY_VISCOUS_PART_HPP
 
@@ -51,8 +55,9 @@ class ViscousPart {
 
   bool empty() const { return cells_.empty(); }
   int cell_count() const { return static_cast<int>(cells_.size()); }
-  /// Doubles of State::viscous_history: per viscous cell and point,
-  /// (terms + 1) d-by-d blocks: H_1 .. H_m, then S_d at the last commit.
+  /// Doubles of State::viscous_history: per viscous cell and point, d-by-d
+  /// blocks H_1 .. H_m, then S_d at the last commit; when the bulk part
+  /// relaxes, B_1 .. B_m and S_U follow.
   std::size_t history_size() const { return history_start_.empty() ? 0 : history_start_.back(); }
   /// The viscous index of mesh-wide cell `cell`, or -1 for an elastic cell.
   int index_of(int cell) const { return cell_index_.empty() ? -1 : cell_index_[cell]; }
@@ -83,12 +88,16 @@ class ViscousPart {
   template <int D>
   void commit_cell(int v, std::span<const double> u, std::vector<double>& history) const;
   /// The index of the series (weights, times), added when new.
-  int series_of(const std::vector<double>& weights, const std::vector<double>& times);
+  int series_of(const std::vector<double>& weights, const std::vector<double>& times,
+                const std::vector<double>& volumetric);
+  /// d-by-d history blocks per point of a cell of `series`.
+  int blocks_per_point(int series) const;
   /// Per term of each distinct series (cells of one material share theirs):
-  /// the weight g_i and the relaxation time tau_i.
-  std::vector<double> weight_, time_;
-  std::vector<int> term_start_;  ///< per series +1, into weight_/time_
-  std::vector<double> beta_;     ///< per series, of the current step
+  /// the weights g_i, k_i and the relaxation time tau_i.
+  std::vector<double> weight_, volumetric_weight_, time_;
+  std::vector<int> term_start_;           ///< per series +1, into weight_/time_
+  std::vector<char> relaxes_bulk_;        ///< per series: some k_i > 0
+  std::vector<double> beta_, beta_bulk_;  ///< per series, of the current step: beta_d, beta_U
   std::vector<Cell> cells_;
   std::vector<int> cell_index_;             ///< per mesh cell, or empty
   std::vector<std::size_t> history_start_;  ///< per viscous cell +1

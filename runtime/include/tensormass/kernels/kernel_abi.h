@@ -110,12 +110,17 @@ typedef struct tm_kernel {
   tm_bulk_fn bulk;
   /// A viscoelastic law's Prony series (docs/viscoelasticity.md): term i has
   /// the weight params[prony_weights[i]] and the relaxation time
-  /// params[prony_times[i]]. 0 and NULL for an elastic law. The kernels
+  /// params[prony_times[i]] (and, when prony_volumetric_weights is not NULL, the
+  /// weight params[prony_volumetric_weights[i]] on the bulk part's stress).
+  /// 0 and NULL for an elastic law. The kernels
   /// compute the instantaneous elastic response; the runtime's viscous part
   /// (assembly/viscous_part.hpp) adds the history.
   int prony_terms;
   const int* prony_weights;
   const int* prony_times;
+  /// The same terms' weights on the bulk part's stress (params indices), or
+  /// NULL when the bulk part does not relax.
+  const int* prony_volumetric_weights;
 } tm_kernel;
 
 /// Static reference-element facts the runtime needs (meshes, criteria, output).
