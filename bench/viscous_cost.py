@@ -27,7 +27,7 @@ from bench_metadata import metadata, write_result  # noqa: E402
 MU, KAPPA = 3.4e3, 1.6e4
 # (element, beam cut, cubes, quick cubes): 24,000 cells each
 CASES = [("tet4", "tet6", (40, 10, 10), (8, 2, 2)), ("hex8", "hex8", (60, 20, 20), (12, 4, 4))]
-SOLVERS = {"implicit": "{type: implicit, dt: 0.01, steps: 10}", "explicit": "{type: explicit, dt: 2.0e-4, steps: 200}"}
+SOLVERS = {"implicit": "{type: implicit, dt: 0.01, steps: 30}", "explicit": "{type: explicit, dt: 2.0e-4, steps: 500}"}
 LAWS = {"elastic": f"law: mooney_rivlin, c10: {MU / 2}, c01: 0, kappa: {KAPPA}",
         "viscoelastic": f"law: viscoelastic_neohookean, mu: {MU}, kappa: {KAPPA}, g1: 0.3, tau1: 0.05, g2: 0.2, "
                         "tau2: 0.5, k1: 0, k2: 0"}
