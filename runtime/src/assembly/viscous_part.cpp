@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "tensormass/common/errors.hpp"
+#include "tensormass/kernels/mean_dilatation.hpp"
 #include "tensormass/kernels/registry.hpp"
 
 namespace tensormass {
@@ -38,17 +39,7 @@ struct Point {
         for (int j = 0; j < n; ++j) sum += u[j * d + a] * GT[c * n + j];
         F[a * d + c] = sum;
       }
-    if constexpr (D == 2) {
-      cof[0] = F[3], cof[1] = -F[2], cof[2] = -F[1], cof[3] = F[0];
-      J = F[0] * F[3] - F[1] * F[2];
-    } else {
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-          cof[i * 3 + j] = F[i1 * 3 + j1] * F[i2 * 3 + j2] - F[i1 * 3 + j2] * F[i2 * 3 + j1];
-        }
-      J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
-    }
+    J = tensormass::kernel::mean_dilatation::finite_strain::cofactor<D>(F, cof);  // not the parameter `kernel`
   }
   /// F^-1 (d by d) into Finv.
   void inverse(double* Finv) const {
