@@ -413,7 +413,7 @@ void Assembler::assemble_kernels(std::span<const double> u, std::span<double> gr
 bool Assembler::batches(int cell) const {
   const tm_kernel& kernel = model_->kernel(cell);
   return batched_ && kernel.batch_width > 1 && kernel.batch_width <= KernelPlan::kMaxBatch &&
-         !model_->blend_from(cell) && kernel.prony_terms == 0;
+         !model_->blend_from(cell) && kernel.prony_terms == 0;  // viscous cells are adjusted one by one
 }
 
 KernelPlan::Mode Assembler::plan_mode(int cell) const {
@@ -447,20 +447,8 @@ void Assembler::run_batch(int chunk, const KernelPlan::Batch& batch, std::span<c
     const auto pack = width == 4 ? pack_lanes<4, D, N> : width == 2 ? pack_lanes<2, D, N> : pack_lanes<0, D, N>;
     pack(node_dofs, nodes, width, u.data(), buffers.u.data());
   });
-  // Viscoelastic lanes turn their kernel's force (and tangent) into the step's.
-  const auto adjust_viscous = [&](double* k) {
-    if (kernel.prony_terms == 0) return;
-    const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
-    double local[kMaxCellDofs];
-    for (int lane = 0; lane < batch.size; ++lane) {
-      model_->gather(batch.cells[lane], u, local);
-      viscous_.adjust(viscous_.index_of(batch.cells[lane]), local,
-                      buffers.g.data() + static_cast<std::size_t>(lane) * dofs, k ? k + lane * dofs2 : nullptr);
-    }
-  };
   if (!stiffness) {
     kernel.gradient_batch(buffers.u.data(), consts, buffers.g.data());
-    adjust_viscous(nullptr);
     with_batch_shape(kernel, [&]<int D, int N>() {
       scatter_lanes<D, N>(node_dofs, nodes, width, batch.size, buffers.g.data(), gradient.data());
     });
@@ -468,7 +456,6 @@ void Assembler::run_batch(int chunk, const KernelPlan::Batch& batch, std::span<c
   }
   buffers.k.resize(static_cast<std::size_t>(dofs) * dofs * width);
   kernel.gradient_hessian_batch(buffers.u.data(), consts, buffers.g.data(), buffers.k.data());
-  adjust_viscous(buffers.k.data());
   const std::size_t dofs2 = static_cast<std::size_t>(dofs) * dofs;
   for (int lane = 0; lane < batch.size; ++lane) {
     double* k = buffers.k.data() + lane * dofs2;
